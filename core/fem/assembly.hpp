@@ -1,0 +1,65 @@
+#pragma once
+/// @file Whole-mesh pieces built from the element kernels: geometry, mass, and the elasticity and gravity terms.
+
+#include <memory>
+#include <vector>
+
+#include "core/fem/element.hpp"
+#include "core/mesh/mesh.hpp"
+#include "core/solve/block_pattern.hpp"
+#include "core/time/term.hpp"
+
+namespace stoss::fem {
+
+/// Gauss data of every element; throws std::invalid_argument naming the element if one is inverted.
+std::vector<ElementGeometry> precompute_mesh(const mesh::Mesh& mesh);
+
+/// The element's nodes as rows of an 8×3 matrix, from stacked positions x.
+Matrix83 gather(const mesh::Hex& hex, const Eigen::VectorXd& x);
+
+/// Global dof indices 3I + i of an element, in element order.
+std::vector<int> element_dofs(const mesh::Hex& hex);
+
+/// Consistent mass matrix M ⊗ 1 (3 per node) (1.9); density per element.
+solve::SparseMatrix assemble_mass(const mesh::Mesh& mesh, const std::vector<ElementGeometry>& geometry,
+                                  const std::vector<double>& element_density);
+
+/// Strain energy of St. Venant–Kirchhoff bodies: f_int with the force rule of the scheme.
+class ElasticityTerm : public time::Term {
+ public:
+  ElasticityTerm(const mesh::Mesh& mesh, std::vector<ElementGeometry> geometry,
+                 std::vector<SaintVenantKirchhoff> element_material);
+  std::string name() const override { return "elasticity"; }
+  double energy(const Eigen::VectorXd& x) const override;
+  void register_blocks(solve::BlockPattern& pattern) override;
+  void begin_step(const time::StepContext& step, Eigen::VectorXd& z) override;
+  void add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+           solve::BlockPattern* K) const override;
+
+ private:
+  /// h·f_alg and h·∂f_alg/∂x_1 of element e under the step's force rule.
+  void element_step(const time::StepContext& step, int e, const Eigen::VectorXd& x_1, Vector24& f,
+                    Matrix24* K) const;
+
+  std::vector<mesh::Hex> hex8_;
+  std::vector<ElementGeometry> geometry_;
+  std::vector<SaintVenantKirchhoff> material_;
+  std::vector<int> block_;
+  std::vector<Vector24> force_n_;  ///< f_int(x_n) per element, cached for HHT
+};
+
+/// Dead load of gravity: V = −Σ (M g)·x, exact in every scheme.
+class GravityTerm : public time::Term {
+ public:
+  GravityTerm(const solve::SparseMatrix& mass, const Eigen::Vector3d& g);
+  std::string name() const override { return "gravity"; }
+  double energy(const Eigen::VectorXd& x) const override { return -load_.dot(x); }
+  void register_blocks(solve::BlockPattern&) override {}
+  void add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+           solve::BlockPattern* K) const override;
+
+ private:
+  Eigen::VectorXd load_;  ///< f_ext = M g stacked
+};
+
+}  // namespace stoss::fem

@@ -1,0 +1,154 @@
+#include "core/mesh/generators.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace stoss::mesh {
+namespace {
+
+enum Face { zeta_minus, zeta_plus, eta_minus, eta_plus, xi_minus, xi_plus };  // order of hex_faces
+
+void add_face(BodyMesh& m, const char* surface, const Hex& h, Face f) {
+  m.surfaces[surface].push_back(hex_faces(h)[f]);
+}
+
+void add_box_faces(BodyMesh& m, const Hex& h, const std::array<int, 3>& ijk, const std::array<int, 3>& n) {
+  if (ijk[0] == 0) add_face(m, "xmin", h, xi_minus);
+  if (ijk[0] == n[0] - 1) add_face(m, "xmax", h, xi_plus);
+  if (ijk[1] == 0) add_face(m, "ymin", h, eta_minus);
+  if (ijk[1] == n[1] - 1) add_face(m, "ymax", h, eta_plus);
+  if (ijk[2] == 0) add_face(m, "bottom", h, zeta_minus);
+  if (ijk[2] == n[2] - 1) add_face(m, "top", h, zeta_plus);
+}
+
+/// Finds a node within `tolerance` (max-norm) of a point, or appends it: a hash grid of cell size
+/// `tolerance`, so a match can only sit in the 27 cells around the point's own.
+class NodeMerger {
+ public:
+  NodeMerger(std::vector<Eigen::Vector3d>& nodes, const Eigen::Vector3d& origin, double tolerance)
+      : nodes_(nodes), origin_(origin), tolerance_(tolerance) {}
+
+  int index_of(const Eigen::Vector3d& x) {
+    const Cell c = cell_of(x);
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          const auto it = cells_.find({c[0] + dx, c[1] + dy, c[2] + dz});
+          if (it == cells_.end()) continue;
+          for (int n : it->second)
+            if ((nodes_[n] - x).lpNorm<Eigen::Infinity>() <= tolerance_) return n;
+        }
+    nodes_.push_back(x);
+    cells_[c].push_back(static_cast<int>(nodes_.size()) - 1);
+    return static_cast<int>(nodes_.size()) - 1;
+  }
+
+ private:
+  using Cell = std::array<long long, 3>;
+  struct CellHash {
+    size_t operator()(const Cell& c) const {
+      return std::hash<long long>()(c[0]) ^ (std::hash<long long>()(c[1]) * 0x9e3779b97f4a7c15ULL) ^
+             (std::hash<long long>()(c[2]) * 0xc2b2ae3d27d4eb4fULL);
+    }
+  };
+
+  Cell cell_of(const Eigen::Vector3d& x) const {
+    const Eigen::Vector3d s = (x - origin_) / tolerance_;
+    return {static_cast<long long>(std::floor(s[0])), static_cast<long long>(std::floor(s[1])),
+            static_cast<long long>(std::floor(s[2]))};
+  }
+
+  std::vector<Eigen::Vector3d>& nodes_;
+  Eigen::Vector3d origin_;
+  double tolerance_;
+  std::unordered_map<Cell, std::vector<int>, CellHash> cells_;
+};
+
+/// Parameters of one cube-sphere patch (a, σ) of formulation.md §7.
+struct Patch {
+  int a;
+  double sigma;
+};
+
+Eigen::Vector3d patch_direction(const Patch& patch, int i, int j, int divisions) {
+  const double quarter = std::numbers::pi / 4, step = std::numbers::pi / (2 * divisions);
+  const double u = std::tan(-quarter + i * step), v = std::tan(-quarter + j * step);
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  p[patch.a] = patch.sigma;  // p = σ e_a + u e_b + v e_c, (a, b, c) cyclic
+  p[(patch.a + 1) % 3] = u;
+  p[(patch.a + 2) % 3] = v;
+  return p.normalized();
+}
+
+void add_patch(BodyMesh& m, NodeMerger& merger, const Patch& patch, const Eigen::Vector3d& center,
+               double outer, double inner, int d, int layers) {
+  auto id = [&](int i, int j, int k) { return (i * (d + 1) + j) * (layers + 1) + k; };
+  std::vector<int> node((d + 1) * (d + 1) * (layers + 1));
+  for (int i = 0; i <= d; ++i)
+    for (int j = 0; j <= d; ++j) {
+      const Eigen::Vector3d p = patch_direction(patch, i, j, d);
+      for (int k = 0; k <= layers; ++k)
+        node[id(i, j, k)] = merger.index_of(center + (inner + k * (outer - inner) / layers) * p);
+    }
+  for (int i = 0; i < d; ++i)
+    for (int j = 0; j < d; ++j)
+      for (int k = 0; k < layers; ++k) {
+        // Bottom quad (i,j),(i+1,j),(i+1,j+1),(i,j+1); for σ = −1 the roles of i and j exchange.
+        const int i1 = patch.sigma > 0 ? i + 1 : i, j1 = patch.sigma > 0 ? j : j + 1;
+        const int i3 = patch.sigma > 0 ? i : i + 1, j3 = patch.sigma > 0 ? j + 1 : j;
+        const Hex h{node[id(i, j, k)],
+                    node[id(i1, j1, k)],
+                    node[id(i + 1, j + 1, k)],
+                    node[id(i3, j3, k)],
+                    node[id(i, j, k + 1)],
+                    node[id(i1, j1, k + 1)],
+                    node[id(i + 1, j + 1, k + 1)],
+                    node[id(i3, j3, k + 1)]};
+        m.hex8.push_back(h);
+        if (k == 0) add_face(m, "inner", h, zeta_minus);
+        if (k == layers - 1) add_face(m, "outer", h, zeta_plus);
+      }
+}
+
+}  // namespace
+
+BodyMesh box(const Eigen::Vector3d& min, const Eigen::Vector3d& max, const std::array<int, 3>& n) {
+  if (!(max.array() > min.array()).all()) throw std::invalid_argument("box: max must be > min componentwise");
+  if (n[0] < 1 || n[1] < 1 || n[2] < 1) throw std::invalid_argument("box: every division must be >= 1");
+  BodyMesh m;
+  auto id = [&](int i, int j, int k) { return i + (n[0] + 1) * (j + (n[1] + 1) * k); };
+  const Eigen::Vector3d size = max - min;
+  for (int k = 0; k <= n[2]; ++k)
+    for (int j = 0; j <= n[1]; ++j)
+      for (int i = 0; i <= n[0]; ++i)
+        m.nodes.push_back(min + Eigen::Vector3d(size[0] * i / n[0], size[1] * j / n[1], size[2] * k / n[2]));
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        const Hex h{id(i, j, k),     id(i + 1, j, k),     id(i + 1, j + 1, k),     id(i, j + 1, k),
+                    id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)};
+        m.hex8.push_back(h);
+        add_box_faces(m, h, {i, j, k}, n);
+      }
+  return m;
+}
+
+BodyMesh hollow_sphere(const Eigen::Vector3d& center, double outer_radius, double inner_radius, int divisions,
+                       int layers) {
+  if (!(inner_radius > 0 && outer_radius > inner_radius))
+    throw std::invalid_argument("hollow_sphere: need outer_radius > inner_radius > 0");
+  if (divisions < 1 || layers < 1)
+    throw std::invalid_argument("hollow_sphere: divisions and layers must be >= 1");
+  BodyMesh m;
+  NodeMerger merger(m.nodes, center, 1e-9 * outer_radius);
+  for (int a = 0; a < 3; ++a)
+    for (double sigma : {1.0, -1.0})
+      add_patch(m, merger, {a, sigma}, center, outer_radius, inner_radius, divisions, layers);
+  return m;
+}
+
+}  // namespace stoss::mesh

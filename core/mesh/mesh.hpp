@@ -1,0 +1,58 @@
+#pragma once
+/// @file Mesh: nodes, trilinear hexahedra and named quad surfaces of every body in a scene.
+
+#include <Eigen/Core>
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace stoss::mesh {
+
+using Hex = std::array<int, 8>;   ///< node indices in VTK_HEXAHEDRON order (formulation.md §1.1)
+using Quad = std::array<int, 4>;  ///< face node indices, ordered so that (b−a)×(d−a) points outwards
+
+/// One body's mesh with body-local node indices (what generators and importers produce).
+struct BodyMesh {
+  std::vector<Eigen::Vector3d> nodes;
+  std::vector<Hex> hex8;
+  std::map<std::string, std::vector<Quad>> surfaces;
+};
+
+/// A body's place inside the global Mesh. Surfaces hold global node indices.
+struct Body {
+  std::string name;
+  int node_begin = 0, node_end = 0;        ///< [begin, end) in Mesh::nodes
+  int element_begin = 0, element_end = 0;  ///< [begin, end) in Mesh::hex8
+  std::map<std::string, std::vector<Quad>> surfaces;
+};
+
+/// All bodies of a scene in one node and element numbering.
+struct Mesh {
+  std::vector<Eigen::Vector3d> nodes;  ///< reference coordinates X_I
+  std::vector<Hex> hex8;
+  std::vector<int> element_body;       ///< body index of each element
+  std::vector<Body> bodies;
+
+  int node_count() const { return static_cast<int>(nodes.size()); }
+  int element_count() const { return static_cast<int>(hex8.size()); }
+
+  /// Appends a body, renumbering its nodes; returns the body index.
+  int add_body(const std::string& name, const BodyMesh& body);
+  /// Body index by name, or -1.
+  int find_body(const std::string& name) const;
+  /// Surface "body/surface"; throws std::out_of_range naming what is missing.
+  const std::vector<Quad>& surface(const std::string& body_slash_surface) const;
+  /// Sorted unique node indices of a surface.
+  std::vector<int> surface_nodes(const std::string& body_slash_surface) const;
+  /// Stacked reference coordinates (3 per node).
+  Eigen::VectorXd reference_positions() const;
+};
+
+/// Faces that belong to exactly one element, in outward order (formulation.md §1.1).
+std::vector<Quad> boundary_faces(const std::vector<Hex>& hex8);
+
+/// The six faces of a hex8 in outward order: ζ−, ζ+, η−, η+, ξ−, ξ+.
+std::array<Quad, 6> hex_faces(const Hex& h);
+
+}  // namespace stoss::mesh

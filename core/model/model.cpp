@@ -1,0 +1,40 @@
+#include "core/model/model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace stoss::model {
+
+std::string to_string(Scheme s) {
+  switch (s) {
+    case Scheme::midpoint: return "midpoint";
+    case Scheme::energy_momentum: return "energy_momentum";
+    case Scheme::hht: return "hht";
+  }
+  return "unknown";
+}
+
+int TimeSpec::steps() const {
+  if (step <= 0 || end <= 0) return 0;
+  // A step count within round-off of an integer is that integer (end = 1, step = 0.01 → 100).
+  return static_cast<int>(std::ceil(end / step - 1e-9));
+}
+
+bool Model::has_effect(const std::string& e) const {
+  return std::find(effects.begin(), effects.end(), e) != effects.end();
+}
+
+std::vector<std::string> resolve_effects(const Model& m) {
+  std::vector<std::string> out{effect::inertia, effect::elasticity};
+  if (m.gravity && m.gravity->norm() > 0) out.push_back(effect::gravity);
+  if (!m.boundary.empty()) out.push_back(effect::dirichlet);
+  const bool frictionless = std::any_of(m.contact.begin(), m.contact.end(),
+                                        [](const ContactPair& c) { return c.friction == 0; });
+  const bool frictional = std::any_of(m.contact.begin(), m.contact.end(),
+                                      [](const ContactPair& c) { return c.friction > 0; });
+  if (frictionless) out.push_back(effect::contact_frictionless);
+  if (frictional) out.push_back(effect::contact_frictional);
+  return out;
+}
+
+}  // namespace stoss::model

@@ -1,0 +1,105 @@
+#pragma once
+/// @file Model: what a validated scene becomes. Plain data, immutable during a run.
+
+#include <Eigen/Core>
+#include <array>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/mesh/mesh.hpp"
+
+namespace stoss::model {
+
+enum class Scheme { midpoint, energy_momentum, hht };
+std::string to_string(Scheme s);
+
+/// St. Venant–Kirchhoff parameters (formulation.md (1.4)–(1.5)).
+struct Material {
+  std::string model = "saint_venant_kirchhoff";
+  double youngs_modulus = 0;
+  double poisson_ratio = 0;
+  double density = 0;
+};
+
+struct BodySpec {
+  std::string name;
+  Material material;
+  Eigen::Vector3d initial_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d initial_angular_velocity = Eigen::Vector3d::Zero();
+  /// Point the angular velocity turns about; unset means the body's centre of mass.
+  std::optional<Eigen::Vector3d> center;
+};
+
+/// Dirichlet condition: the nodes of a surface keep their initial position in the fixed directions.
+struct Boundary {
+  std::string surface;                 ///< "body/surface"
+  std::array<bool, 3> fix{true, true, true};
+};
+
+enum class Enforcement { lagrange, penalty };
+enum class ImpactMode { persist, exact, velocity_correction };
+enum class NormalTraction { discrete_derivative, midpoint };
+
+/// One contact pair (formulation.md §3–5). Slave nodes against master faces.
+struct ContactPair {
+  std::string slave;                   ///< "body/surface"
+  std::string master;                  ///< "body/surface"
+  Enforcement enforcement = Enforcement::lagrange;
+  double friction = 0;                 ///< Coulomb μ; > 0 makes the pair frictional (penalty)
+  ImpactMode impact = ImpactMode::persist;
+  double switch_hysteresis = 0.05;     ///< ε_sw of §3.4
+  std::optional<double> normal_stiffness;      ///< ε_N; unset: 10 E ℓ (§5.1)
+  std::optional<double> tangential_stiffness;  ///< ε_T; unset: 10 E ℓ
+  NormalTraction normal_traction = NormalTraction::discrete_derivative;
+};
+
+struct TimeSpec {
+  Scheme scheme = Scheme::energy_momentum;
+  double step = 0;
+  double end = 0;
+  double alpha = -0.05;                ///< HHT-α only
+  int steps() const;                   ///< number of steps to reach `end`
+};
+
+struct SolverSpec {
+  double tolerance = 1e-10;            ///< relative residual and increment tolerance of Newton
+  int max_iterations = 25;
+};
+
+struct OutputSpec {
+  int every = 1;                       ///< a frame every this many steps (plus the first and last)
+};
+
+/// The effects a scene calls for, in a fixed vocabulary reported back to users.
+namespace effect {
+inline constexpr const char* inertia = "inertia";
+inline constexpr const char* elasticity = "elasticity";
+inline constexpr const char* gravity = "gravity";
+inline constexpr const char* dirichlet = "dirichlet";
+inline constexpr const char* contact_frictionless = "contact_frictionless";
+inline constexpr const char* contact_frictional = "contact_frictional";
+}  // namespace effect
+
+struct Model {
+  std::string name;
+  nlohmann::json scene;                ///< the scene as submitted, defaults filled in
+  mesh::Mesh mesh;
+  std::vector<BodySpec> bodies;        ///< same order as mesh.bodies
+  std::vector<Boundary> boundary;
+  std::optional<Eigen::Vector3d> gravity;
+  std::vector<ContactPair> contact;
+  TimeSpec time;
+  SolverSpec solver;
+  OutputSpec output;
+  std::vector<std::string> effects;    ///< resolved effect list, e.g. {"inertia","elasticity","gravity"}
+
+  bool has_effect(const std::string& e) const;
+  int dof_count() const { return 3 * mesh.node_count(); }
+};
+
+/// Resolves the effect list from what the model contains (service.md §1).
+std::vector<std::string> resolve_effects(const Model& m);
+
+}  // namespace stoss::model

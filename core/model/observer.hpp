@@ -1,0 +1,87 @@
+#pragma once
+/// @file What a run reports while it goes: the series layout, each converged step, frames, the summary.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "core/model/model.hpp"
+
+namespace stoss::model {
+
+/// One named time series (service.md §3 /series/<name>): `components` values per step.
+struct SeriesSpec {
+  std::string name;
+  int components = 1;      ///< 1 → dataset [S], 3 → [S,3]
+  bool integer = false;    ///< stored as int32
+};
+
+/// The series a run writes; only those of effects the scene calls for (service.md §3).
+struct SeriesLayout {
+  std::vector<SeriesSpec> series;
+  int index_of(const std::string& name) const;  ///< -1 if absent
+  int row_size() const;                         ///< sum of components
+};
+
+/// Values of every series at one converged step (t0 included as step 0), in layout order.
+struct StepRow {
+  int step = 0;
+  double time = 0;
+  std::vector<double> values;  ///< row_size() values, components of a series contiguous
+};
+
+/// Node fields written as a frame (service.md §3 /frames).
+struct Frame {
+  double time = 0;
+  Eigen::VectorXd position;          ///< 3 per node
+  Eigen::VectorXd velocity;          ///< 3 per node
+  Eigen::VectorXd contact_pressure;  ///< 1 per node; empty when the scene has no contact
+};
+
+/// What a finished (or stopped) run reports: the job summary of service.md §2.
+struct Summary {
+  bool completed = false;            ///< false when canceled or failed
+  int steps = 0;                     ///< converged steps
+  double end_time = 0;
+  double initial_energy = 0;
+  double energy_drift = 0;           ///< max over steps |H_n − H_0| / |H_0|
+  double linear_momentum_drift = 0;  ///< max |L_n − L_0| / max(|L_0|, m·v scale)
+  double angular_momentum_drift = 0; ///< max |J_n − J_0| / max(|J_0|, ...)
+  double max_penetration = 0;        ///< only meaningful with contact
+  int newton_iterations = 0;         ///< total
+  double newton_iterations_per_step = 0;
+  double wall_seconds = 0;
+  double linear_solver_seconds = 0;
+};
+
+/// Receives a run as it happens. The HDF5 writer is one observer, a job's progress another.
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  /// Called once before step 1, with the series layout and the node count.
+  virtual void begin(const Model& model, const SeriesLayout& layout) {}
+  /// Every converged step, and step 0 (the initial state).
+  virtual void step(const StepRow& row) {}
+  /// Frames at step 0, every output.every steps, and the last step.
+  virtual void frame(const Frame& frame) {}
+  /// A log line (solver events, warnings). Not for progress.
+  virtual void log(const std::string& line) {}
+  /// Called once at the end, whether the run completed, was canceled or failed.
+  virtual void end(const Summary& summary) {}
+};
+
+/// Fans one run out to several observers.
+class ObserverList : public Observer {
+ public:
+  explicit ObserverList(std::vector<Observer*> observers) : observers_(std::move(observers)) {}
+  void begin(const Model& m, const SeriesLayout& l) override { for (auto* o : observers_) o->begin(m, l); }
+  void step(const StepRow& r) override { for (auto* o : observers_) o->step(r); }
+  void frame(const Frame& f) override { for (auto* o : observers_) o->frame(f); }
+  void log(const std::string& s) override { for (auto* o : observers_) o->log(s); }
+  void end(const Summary& s) override { for (auto* o : observers_) o->end(s); }
+
+ private:
+  std::vector<Observer*> observers_;
+};
+
+}  // namespace stoss::model

@@ -1,0 +1,130 @@
+#include "core/scene/build.hpp"
+
+#include <Eigen/LU>
+#include <cmath>
+
+#include "core/mesh/generators.hpp"
+
+namespace stoss::scene::detail {
+namespace {
+
+using nlohmann::json;
+
+Eigen::Vector3d vector3(const json& v) {
+  return {v[0].get<double>(), v[1].get<double>(), v[2].get<double>()};
+}
+
+mesh::BodyMesh inline_mesh(const json& m) {
+  mesh::BodyMesh body;
+  for (const json& x : m["nodes"]) body.nodes.push_back(vector3(x));
+  body.hex8 = m["hex8"].get<std::vector<mesh::Hex>>();
+  for (const auto& [name, quads] : m["surfaces"].items())
+    body.surfaces[name] = quads.get<std::vector<mesh::Quad>>();
+  if (!body.surfaces.contains("boundary")) body.surfaces["boundary"] = mesh::boundary_faces(body.hex8);
+  return body;
+}
+
+model::BodySpec body_spec(const json& b) {
+  model::BodySpec spec;
+  spec.name = b["name"].get<std::string>();
+  const json& m = b["material"];
+  spec.material = {m["model"].get<std::string>(), m["youngs_modulus"].get<double>(),
+                   m["poisson_ratio"].get<double>(), m["density"].get<double>()};
+  spec.initial_velocity = vector3(b["initial_velocity"]);
+  spec.initial_angular_velocity = vector3(b["initial_angular_velocity"]);
+  if (b.contains("center")) spec.center = vector3(b["center"]);
+  return spec;
+}
+
+model::Boundary boundary(const json& e) {
+  const auto fix = e["fix"].get<std::string>();
+  return {e["surface"].get<std::string>(),
+          {fix.find('x') != std::string::npos, fix.find('y') != std::string::npos,
+           fix.find('z') != std::string::npos}};
+}
+
+model::ContactPair contact_pair(const json& e) {
+  model::ContactPair pair;
+  pair.slave = e["slave"].get<std::string>();
+  pair.master = e["master"].get<std::string>();
+  pair.enforcement =
+      e["enforcement"] == "penalty" ? model::Enforcement::penalty : model::Enforcement::lagrange;
+  pair.friction = e["friction"].get<double>();
+  pair.impact = e["impact"] == "exact"                 ? model::ImpactMode::exact
+                : e["impact"] == "velocity_correction" ? model::ImpactMode::velocity_correction
+                                                       : model::ImpactMode::persist;
+  pair.switch_hysteresis = e["switch_hysteresis"].get<double>();
+  if (e.contains("normal_stiffness")) pair.normal_stiffness = e["normal_stiffness"].get<double>();
+  if (e.contains("tangential_stiffness")) pair.tangential_stiffness = e["tangential_stiffness"].get<double>();
+  pair.normal_traction = e["normal_traction"] == "midpoint" ? model::NormalTraction::midpoint
+                                                            : model::NormalTraction::discrete_derivative;
+  return pair;
+}
+
+model::TimeSpec time_spec(const json& t) {
+  model::TimeSpec spec;
+  spec.scheme = t["scheme"] == "midpoint" ? model::Scheme::midpoint
+                : t["scheme"] == "hht"    ? model::Scheme::hht
+                                          : model::Scheme::energy_momentum;
+  spec.step = t["step"].get<double>();
+  spec.end = t["end"].get<double>();
+  if (t.contains("alpha")) spec.alpha = t["alpha"].get<double>();
+  return spec;
+}
+
+}  // namespace
+
+double min_jacobian_determinant(const std::vector<Eigen::Vector3d>& nodes, const mesh::Hex& element) {
+  static constexpr double corner[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                                          {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+  const double g = 1 / std::sqrt(3.0);
+  double lowest = INFINITY;
+  for (int p = 0; p < 8; ++p) {
+    const Eigen::Vector3d xi(p & 1 ? g : -g, p & 2 ? g : -g, p & 4 ? g : -g);
+    Eigen::Matrix3d J0 = Eigen::Matrix3d::Zero();
+    for (int I = 0; I < 8; ++I) {
+      const Eigen::Vector3d a =
+          Eigen::Vector3d::Ones() + xi.cwiseProduct(Eigen::Map<const Eigen::Vector3d>(corner[I]));
+      const Eigen::Vector3d dN(corner[I][0] * a[1] * a[2], a[0] * corner[I][1] * a[2],
+                               a[0] * a[1] * corner[I][2]);
+      J0 += nodes[element[I]] * (dN / 8).transpose();  // (1.1), (1.2)
+    }
+    lowest = std::min(lowest, J0.determinant());
+  }
+  return lowest;
+}
+
+mesh::BodyMesh body_mesh(const json& m) {
+  if (m.contains("box")) {
+    const json& b = m["box"];
+    return mesh::box(vector3(b["min"]), vector3(b["max"]), b["divisions"].get<std::array<int, 3>>());
+  }
+  if (m.contains("hollow_sphere")) {
+    const json& s = m["hollow_sphere"];
+    return mesh::hollow_sphere(vector3(s["center"]), s["outer_radius"].get<double>(),
+                               s["inner_radius"].get<double>(), s["divisions"].get<int>(),
+                               s["layers"].get<int>());
+  }
+  return inline_mesh(m);
+}
+
+model::Model build_model(const json& scene) {
+  model::Model m;
+  m.name = scene["name"].get<std::string>();
+  m.scene = scene;
+  for (const json& b : scene["bodies"]) {
+    m.mesh.add_body(b["name"].get<std::string>(), body_mesh(b["mesh"]));
+    m.bodies.push_back(body_spec(b));
+  }
+  for (const json& e : scene["boundary"]) m.boundary.push_back(boundary(e));
+  for (const json& e : scene["contact"]) m.contact.push_back(contact_pair(e));
+  const Eigen::Vector3d g = vector3(scene["gravity"]);
+  if (g.norm() > 0) m.gravity = g;
+  m.time = time_spec(scene["time"]);
+  m.solver = {scene["solver"]["tolerance"].get<double>(), scene["solver"]["max_iterations"].get<int>()};
+  m.output = {scene["output"]["every"].get<int>()};
+  m.effects = model::resolve_effects(m);
+  return m;
+}
+
+}  // namespace stoss::scene::detail

@@ -1,0 +1,75 @@
+#include "core/scene/scene.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+#include "core/scene/build.hpp"
+#include "core/scene/validate.hpp"
+
+namespace stoss::scene {
+
+extern const char* const schema_text;
+
+namespace {
+
+std::string issue_lines(const std::vector<Issue>& issues) {
+  std::string text;
+  for (const Issue& i : issues)
+    text += (text.empty() ? "" : "\n") + (i.pointer.empty() ? i.message : i.pointer + ": " + i.message);
+  return text;
+}
+
+/// The parser's message without its "[json.exception.parse_error.101] " prefix.
+std::string parse_message(const nlohmann::json::parse_error& e) {
+  const std::string what = e.what();
+  const size_t end_of_tag = what.find("] ");
+  return what.rfind("[json.exception.", 0) == 0 && end_of_tag != std::string::npos
+             ? what.substr(end_of_tag + 2)
+             : what;
+}
+
+}  // namespace
+
+SceneError::SceneError(std::vector<Issue> found)
+    : std::runtime_error(issue_lines(found)), issues(std::move(found)) {}
+
+model::Model load(const nlohmann::json& scene) {
+  nlohmann::json filled = scene;
+  detail::Checker checker;
+  detail::check_scene(filled, checker);
+  if (!checker.issues().empty()) throw SceneError(checker.issues());
+  return detail::build_model(filled);
+}
+
+model::Model load_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw SceneError({{"", "cannot read " + path + ": " + std::strerror(errno)}});
+  nlohmann::json scene;
+  try {
+    scene = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw SceneError({{"", parse_message(e)}});
+  }
+  return load(scene);
+}
+
+Summary summarize(const model::Model& model) {
+  Summary s;
+  s.effects = model.effects;
+  s.nodes = model.mesh.node_count();
+  s.elements = model.mesh.element_count();
+  s.dofs = model.dof_count();
+  s.steps = model.time.steps();
+  const int every = std::max(model.output.every, 1);
+  s.frames = s.steps / every + 1 + (s.steps % every != 0 ? 1 : 0);
+  return s;
+}
+
+nlohmann::json schema() {
+  static const nlohmann::json parsed = nlohmann::json::parse(schema_text);
+  return parsed;
+}
+
+}  // namespace stoss::scene

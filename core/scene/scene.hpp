@@ -1,0 +1,57 @@
+#pragma once
+/// @file Scene JSON → Model: validation with JSON-pointer errors, defaults, mesh building, effect
+/// resolution. The contract is api/scene.schema.json (compiled in, see schema()).
+
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/model/model.hpp"
+
+namespace stoss::scene {
+
+/// Largest mesh a generator is asked to build; bigger box/hollow_sphere parameters are an issue
+/// (a guard against runaway allocations; the server's own, configurable limits are lower).
+inline constexpr long long max_generated_nodes = 10'000'000;
+
+/// One problem with a scene: where (RFC 6901 JSON pointer, "" = the whole document) and which rule
+/// it breaks, with the offending value, e.g. {"/bodies/1/material/poisson_ratio",
+/// "must be in (-1, 0.5), got 0.5"}.
+struct Issue {
+  std::string pointer;
+  std::string message;
+};
+
+/// A scene that cannot be run: every issue found, not just the first.
+/// @note what() lists them one per line as "pointer: message" (just "message" for pointer "").
+class SceneError : public std::runtime_error {
+ public:
+  explicit SceneError(std::vector<Issue> issues);
+  std::vector<Issue> issues;
+};
+
+/// Validates a scene, fills in defaults, builds the mesh (bodies in order) and resolves effects.
+/// @note model.scene is the input with every default filled in; model.effects = resolve_effects.
+/// @throws SceneError listing every issue found.
+model::Model load(const nlohmann::json& scene);
+
+/// load() of a file. An unreadable file or malformed JSON is a SceneError with pointer "" and the
+/// reason (for JSON: the parser's message with line and column).
+model::Model load_file(const std::string& path);
+
+/// What a dry run reports (POST /v1/validate, `stoss validate`).
+struct Summary {
+  std::vector<std::string> effects;
+  int nodes = 0;
+  int elements = 0;
+  int dofs = 0;
+  int steps = 0;
+  int frames = 0;  ///< frames written: step 0, every output.every-th step, and the last step
+};
+Summary summarize(const model::Model& model);
+
+/// The scene JSON Schema (api/scene.schema.json, draft 2020-12), parsed.
+nlohmann::json schema();
+
+}  // namespace stoss::scene

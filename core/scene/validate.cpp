@@ -1,0 +1,317 @@
+#include "core/scene/validate.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "core/scene/build.hpp"
+
+namespace stoss::scene::detail {
+namespace {
+
+using Surfaces = std::optional<std::set<std::string>>;  ///< nullopt: the body's mesh is invalid
+using SurfaceIndex = std::map<std::string, Surfaces>;   ///< body name → its surface names
+const json zero3 = json::array({0, 0, 0});
+
+void check_node_limit(double nodes, const std::string& p, Checker& c) {
+  if (nodes > static_cast<double>(max_generated_nodes))
+    c.fail(p,
+           "must give at most " + std::to_string(max_generated_nodes) + " nodes, got " + number_text(nodes));
+}
+
+void check_divisions(json& divisions, const std::string& p, Checker& c) {
+  if (!divisions.is_array() || divisions.size() != 3) {
+    c.fail(p, "must be an array of 3 integers, got " + shown(divisions));
+    return;
+  }
+  double nodes = 1;
+  for (size_t a = 0; a < 3; ++a)
+    if (const auto n = integer(divisions[a], child(p, a), at_least(1), c))
+      nodes *= static_cast<double>(*n + 1);
+  check_node_limit(nodes, p, c);
+}
+
+void check_box(json& box, const std::string& p, Checker& c) {
+  if (!object_with(box, p, {"min", "max", "divisions"}, c)) return;
+  const auto low = vector3_field(box, "min", p, Presence::must(), c);
+  const auto high = vector3_field(box, "max", p, Presence::must(), c);
+  if (low && high && !(high->array() > low->array()).all())
+    c.fail(child(p, "max"), "must be > min componentwise, got " + shown(box["max"]));
+  if (json* divisions = member(box, "divisions", p, Presence::must(), c))
+    check_divisions(*divisions, child(p, "divisions"), c);
+}
+
+void check_hollow_sphere(json& sphere, const std::string& p, Checker& c) {
+  if (!object_with(sphere, p, {"center", "outer_radius", "inner_radius", "divisions", "layers"}, c)) return;
+  vector3_field(sphere, "center", p, Presence::or_default(zero3), c);
+  const auto inner = number_field(sphere, "inner_radius", p, Presence::must(), above(0), c);
+  const auto outer = number_field(sphere, "outer_radius", p, Presence::must(), above(0), c);
+  if (inner && outer && !(*outer > *inner))
+    c.fail(child(p, "outer_radius"), "must be > inner_radius (" + shown(sphere["inner_radius"]) + "), got " +
+                                         shown(sphere["outer_radius"]));
+  const auto d = integer_field(sphere, "divisions", p, Presence::or_default(6), at_least(1), c);
+  const auto layers = integer_field(sphere, "layers", p, Presence::or_default(2), at_least(1), c);
+  if (d && layers) check_node_limit((6.0 * *d * *d + 2) * (*layers + 1), p, c);
+}
+
+/// Rows of `width` node indices, each in [0, node_count) when the node count is known.
+void check_index_rows(json& rows, const std::string& p, size_t width, std::optional<size_t> node_count,
+                      Checker& c) {
+  const Interval range =
+      node_count ? between(0, static_cast<double>(*node_count) - 1, true, true) : at_least(0);
+  for (size_t i = 0; i < rows.size(); ++i) {
+    if (!rows[i].is_array() || rows[i].size() != width) {
+      c.fail(child(p, i),
+             "must be an array of " + std::to_string(width) + " node indices, got " + shown(rows[i]));
+      continue;
+    }
+    for (size_t k = 0; k < width; ++k) integer(rows[i][k], child(child(p, i), k), range, c);
+  }
+}
+
+std::optional<size_t> check_nodes(const json& nodes, const std::string& p, Checker& c) {
+  if (!non_empty_array(nodes, p, c)) return std::nullopt;
+  for (size_t i = 0; i < nodes.size(); ++i) vector3(nodes[i], child(p, i), c);
+  return nodes.size();
+}
+
+void check_named_surfaces(json& surfaces, const std::string& p, std::optional<size_t> node_count,
+                          std::set<std::string>& names, Checker& c) {
+  if (!surfaces.is_object()) {
+    c.fail(p, "must be an object, got " + shown(surfaces));
+    return;
+  }
+  for (auto& [key, quads] : surfaces.items()) {
+    const std::string q = child(p, key);
+    if (!name(json(key), q, c) || !non_empty_array(quads, q, c)) continue;
+    check_index_rows(quads, q, 4, node_count, c);
+    names.insert(key);
+  }
+}
+
+void check_jacobians(const json& mesh, const std::string& p, Checker& c) {
+  std::vector<Eigen::Vector3d> nodes;
+  for (const json& x : mesh["nodes"])
+    nodes.emplace_back(x[0].get<double>(), x[1].get<double>(), x[2].get<double>());
+  const json& hex8 = mesh["hex8"];
+  for (size_t e = 0; e < hex8.size(); ++e) {
+    const double det = min_jacobian_determinant(nodes, hex8[e].get<mesh::Hex>());
+    if (!(det > 0))
+      c.fail(child(child(p, "hex8"), e), "det J0 must be > 0 at every Gauss point, got " + rounded_text(det));
+  }
+}
+
+Surfaces check_inline_mesh(json& mesh, const std::string& p, Checker& c) {
+  const size_t start = c.mark();
+  std::optional<size_t> node_count;
+  if (json* nodes = member(mesh, "nodes", p, Presence::must(), c))
+    node_count = check_nodes(*nodes, child(p, "nodes"), c);
+  json* hex8 = member(mesh, "hex8", p, Presence::must(), c);
+  if (hex8 && non_empty_array(*hex8, child(p, "hex8"), c))
+    check_index_rows(*hex8, child(p, "hex8"), 8, node_count, c);
+  if (c.mark() == start) check_jacobians(mesh, p, c);
+  std::set<std::string> names{"boundary"};
+  if (json* surfaces = member(mesh, "surfaces", p, Presence::or_default(json::object()), c))
+    check_named_surfaces(*surfaces, child(p, "surfaces"), node_count, names, c);
+  return c.mark() == start ? Surfaces(names) : std::nullopt;
+}
+
+Surfaces check_mesh(json& mesh, const std::string& p, Checker& c) {
+  if (!object_with(mesh, p, {"box", "hollow_sphere", "nodes", "hex8", "surfaces"}, c)) return std::nullopt;
+  const bool inline_mesh = mesh.contains("nodes") || mesh.contains("hex8") || mesh.contains("surfaces");
+  if (mesh.contains("box") + mesh.contains("hollow_sphere") + inline_mesh != 1) {
+    c.fail(p, "exactly one of box, hollow_sphere, nodes+hex8");
+    return std::nullopt;
+  }
+  const size_t start = c.mark();
+  if (inline_mesh) return check_inline_mesh(mesh, p, c);
+  if (mesh.contains("box")) {
+    check_box(mesh["box"], child(p, "box"), c);
+    if (c.mark() == start) return std::set<std::string>{"xmin", "xmax", "ymin", "ymax", "bottom", "top"};
+  } else {
+    check_hollow_sphere(mesh["hollow_sphere"], child(p, "hollow_sphere"), c);
+    if (c.mark() == start) return std::set<std::string>{"outer", "inner"};
+  }
+  return std::nullopt;
+}
+
+void check_material(json& m, const std::string& p, Checker& c) {
+  if (!object_with(m, p, {"model", "youngs_modulus", "poisson_ratio", "density"}, c)) return;
+  choice_field(m, "model", p, Presence::or_default("saint_venant_kirchhoff"), {"saint_venant_kirchhoff"}, c);
+  number_field(m, "youngs_modulus", p, Presence::must(), above(0), c);
+  number_field(m, "poisson_ratio", p, Presence::must(), between(-1, 0.5, false, false), c);
+  number_field(m, "density", p, Presence::must(), above(0), c);
+}
+
+struct NamedSurfaces {
+  std::string name;
+  Surfaces surfaces;
+};
+
+std::optional<NamedSurfaces> check_body(json& b, const std::string& p, Checker& c) {
+  const std::initializer_list<std::string_view> fields{
+      "name", "mesh", "material", "initial_velocity", "initial_angular_velocity", "center"};
+  if (!object_with(b, p, fields, c)) return std::nullopt;
+  const json* name_value = member(b, "name", p, Presence::must(), c);
+  const auto body_name = name_value ? name(*name_value, child(p, "name"), c) : std::nullopt;
+  Surfaces surfaces;
+  if (json* m = member(b, "mesh", p, Presence::must(), c)) surfaces = check_mesh(*m, child(p, "mesh"), c);
+  if (json* m = member(b, "material", p, Presence::must(), c)) check_material(*m, child(p, "material"), c);
+  vector3_field(b, "initial_velocity", p, Presence::or_default(zero3), c);
+  vector3_field(b, "initial_angular_velocity", p, Presence::or_default(zero3), c);
+  vector3_field(b, "center", p, Presence::may(), c);
+  if (!body_name) return std::nullopt;
+  return NamedSurfaces{*body_name, surfaces};
+}
+
+SurfaceIndex check_bodies(json& bodies, const std::string& p, Checker& c) {
+  SurfaceIndex index;
+  std::map<std::string, std::string> first_pointer;
+  if (!non_empty_array(bodies, p, c)) return index;
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    const auto body = check_body(bodies[i], child(p, i), c);
+    if (!body) continue;
+    const std::string name_pointer = child(child(p, i), "name");
+    if (const auto [it, fresh] = first_pointer.try_emplace(body->name, name_pointer); !fresh) {
+      c.fail(name_pointer, "must be unique, got " + shown(body->name) + " (also " + it->second + ")");
+      continue;
+    }
+    index[body->name] = body->surfaces;
+  }
+  return index;
+}
+
+/// A "body/surface" reference to an existing surface; returns the body name when it names a body.
+std::optional<std::string> check_surface_ref(const json& value, const std::string& p,
+                                             const SurfaceIndex& index, Checker& c) {
+  const auto ref = string(value, p, c);
+  if (!ref) return std::nullopt;
+  const size_t slash = ref->find('/');
+  if (slash == std::string::npos || slash == 0 || slash + 1 == ref->size()) {
+    c.fail(p, "must be of the form body/surface, got " + shown(value));
+    return std::nullopt;
+  }
+  const std::string body = ref->substr(0, slash), surface = ref->substr(slash + 1);
+  const auto it = index.find(body);
+  if (it == index.end()) {
+    c.fail(p, "no body named " + shown(body));
+    return std::nullopt;
+  }
+  if (it->second && !it->second->contains(surface)) {
+    std::string known;
+    for (const std::string& s : *it->second) known += (known.empty() ? "" : ", ") + s;
+    c.fail(p, "body " + shown(body) + " has no surface " + shown(surface) + " (it has " + known + ")");
+  }
+  return body;
+}
+
+void check_contact_pair(json& e, const std::string& p, const SurfaceIndex& index, Checker& c) {
+  const std::initializer_list<std::string_view> fields{"slave",
+                                                       "master",
+                                                       "enforcement",
+                                                       "friction",
+                                                       "impact",
+                                                       "switch_hysteresis",
+                                                       "normal_stiffness",
+                                                       "tangential_stiffness",
+                                                       "normal_traction"};
+  if (!object_with(e, p, fields, c)) return;
+  const json* slave = member(e, "slave", p, Presence::must(), c);
+  const json* master = member(e, "master", p, Presence::must(), c);
+  const auto slave_body = slave ? check_surface_ref(*slave, child(p, "slave"), index, c) : std::nullopt;
+  const auto master_body = master ? check_surface_ref(*master, child(p, "master"), index, c) : std::nullopt;
+  if (slave_body && master_body && *slave_body == *master_body)
+    c.fail(child(p, "master"), "must be on another body than slave, got " + shown(*master));
+  const auto friction = number_field(e, "friction", p, Presence::or_default(0.0), at_least(0), c);
+  const bool frictional = friction && *friction > 0;
+  const auto enforcement =
+      choice_field(e, "enforcement", p, Presence::or_default(frictional ? "penalty" : "lagrange"),
+                   {"lagrange", "penalty"}, c);
+  if (frictional && enforcement == "lagrange")
+    c.fail(child(p, "enforcement"), "friction > 0 requires enforcement \"penalty\"");
+  choice_field(e, "impact", p, Presence::or_default("persist"), {"persist", "exact", "velocity_correction"},
+               c);
+  number_field(e, "switch_hysteresis", p, Presence::or_default(0.05), at_least(0), c);
+  number_field(e, "normal_stiffness", p, Presence::may(), above(0), c);
+  number_field(e, "tangential_stiffness", p, Presence::may(), above(0), c);
+  choice_field(e, "normal_traction", p, Presence::or_default("discrete_derivative"),
+               {"discrete_derivative", "midpoint"}, c);
+}
+
+void check_fix(const json& fix, const std::string& p, Checker& c) {
+  const auto letters = string(fix, p, c);
+  if (!letters) return;
+  const std::set<char> distinct(letters->begin(), letters->end());
+  const bool ok = !letters->empty() && distinct.size() == letters->size() &&
+                  std::all_of(letters->begin(), letters->end(), [](char l) { return l >= 'x' && l <= 'z'; });
+  if (!ok) c.fail(p, "must be distinct letters from \"xyz\", got " + shown(fix));
+}
+
+void check_boundary_condition(json& e, const std::string& p, const SurfaceIndex& index, Checker& c) {
+  if (!object_with(e, p, {"surface", "fix"}, c)) return;
+  if (const json* surface = member(e, "surface", p, Presence::must(), c))
+    check_surface_ref(*surface, child(p, "surface"), index, c);
+  if (const json* fix = member(e, "fix", p, Presence::or_default("xyz"), c))
+    check_fix(*fix, child(p, "fix"), c);
+}
+
+template <class CheckEntry>
+void check_entries(json& scene, const char* key, const SurfaceIndex& index, CheckEntry check_entry,
+                   Checker& c) {
+  json* entries = member(scene, key, "", Presence::or_default(json::array()), c);
+  if (!array(*entries, child("", key), c)) return;
+  for (size_t i = 0; i < entries->size(); ++i) check_entry((*entries)[i], child(child("", key), i), index, c);
+}
+
+void check_time(json& t, const std::string& p, Checker& c) {
+  if (!object_with(t, p, {"scheme", "step", "end", "alpha"}, c)) return;
+  const auto scheme = choice_field(t, "scheme", p, Presence::or_default("energy_momentum"),
+                                   {"energy_momentum", "midpoint", "hht"}, c);
+  const auto step = number_field(t, "step", p, Presence::must(), above(0), c);
+  const auto end = number_field(t, "end", p, Presence::must(), above(0), c);
+  if (step && end && *end < *step)
+    c.fail(child(p, "end"), "must be >= step (" + shown(t["step"]) + "), got " + shown(t["end"]));
+  if (step && end && *end / *step > 1e9)
+    c.fail(child(p, "step"), "must give at most 1e9 steps, got end / step = " + number_text(*end / *step));
+  const Presence alpha = scheme == "hht" ? Presence::or_default(-0.05) : Presence::may();
+  number_field(t, "alpha", p, alpha, between(-1.0 / 3, 0, true, true, "-1/3, 0"), c);
+}
+
+void check_solver(json& s, const std::string& p, Checker& c) {
+  if (!object_with(s, p, {"tolerance", "max_iterations"}, c)) return;
+  number_field(s, "tolerance", p, Presence::or_default(1e-10), between(0, 1e-3, false, true, "0, 1e-3"), c);
+  integer_field(s, "max_iterations", p, Presence::or_default(25), between(1, 200, true, true), c);
+}
+
+void check_output(json& o, const std::string& p, Checker& c) {
+  if (!object_with(o, p, {"every"}, c)) return;
+  integer_field(o, "every", p, Presence::or_default(1), at_least(1), c);
+}
+
+void check_format(const json& format, const std::string& p, Checker& c) {
+  if (format != "stoss-scene/1") c.fail(p, "must be \"stoss-scene/1\", got " + shown(format));
+}
+
+}  // namespace
+
+void check_scene(json& scene, Checker& c) {
+  const std::initializer_list<std::string_view> fields{"format",   "name", "bodies", "contact", "gravity",
+                                                       "boundary", "time", "solver", "output"};
+  if (!object_with(scene, "", fields, c)) return;
+  if (const json* format = member(scene, "format", "", Presence::must(), c))
+    check_format(*format, "/format", c);
+  if (const json* n = member(scene, "name", "", Presence::or_default("unnamed"), c)) string(*n, "/name", c);
+  SurfaceIndex index;
+  if (json* bodies = member(scene, "bodies", "", Presence::must(), c))
+    index = check_bodies(*bodies, "/bodies", c);
+  check_entries(scene, "contact", index, check_contact_pair, c);
+  check_entries(scene, "boundary", index, check_boundary_condition, c);
+  vector3_field(scene, "gravity", "", Presence::or_default(zero3), c);
+  if (json* t = member(scene, "time", "", Presence::must(), c)) check_time(*t, "/time", c);
+  if (json* s = member(scene, "solver", "", Presence::or_default(json::object()), c))
+    check_solver(*s, "/solver", c);
+  if (json* o = member(scene, "output", "", Presence::or_default(json::object()), c))
+    check_output(*o, "/output", c);
+}
+
+}  // namespace stoss::scene::detail

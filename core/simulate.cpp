@@ -1,0 +1,222 @@
+#include "core/simulate.hpp"
+
+#include <Eigen/Geometry>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "core/fem/assembly.hpp"
+#include "core/time/integrator.hpp"
+
+namespace stoss {
+namespace {
+
+using model::Model;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// Everything a run builds from the model: only the terms the scene calls for.
+struct Problem {
+  std::vector<fem::ElementGeometry> geometry;
+  solve::SparseMatrix mass;
+  std::unique_ptr<fem::ElasticityTerm> elasticity;
+  std::unique_ptr<fem::GravityTerm> gravity;
+  std::vector<char> fixed;
+  double total_mass = 0;
+  double length_scale = 1;
+};
+
+
+double bounding_box_diagonal(const mesh::Mesh& mesh) {
+  Eigen::Vector3d lo = mesh.nodes.front(), hi = mesh.nodes.front();
+  for (const auto& p : mesh.nodes) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return std::max((hi - lo).norm(), 1e-300);
+}
+
+std::vector<char> fixed_dofs(const Model& m) {
+  std::vector<char> fixed(m.dof_count(), 0);
+  for (const model::Boundary& b : m.boundary)
+    for (int node : m.mesh.surface_nodes(b.surface))
+      for (int k = 0; k < 3; ++k)
+        if (b.fix[k]) fixed[3 * node + k] = 1;
+  return fixed;
+}
+
+Problem build_problem(const Model& m) {
+  if (!m.contact.empty())
+    throw std::invalid_argument("contact pairs are not supported by this build yet: remove /contact to run the scene");
+  Problem p;
+  p.geometry = fem::precompute_mesh(m.mesh);
+  std::vector<double> density;
+  std::vector<fem::SaintVenantKirchhoff> material;
+  for (int body : m.mesh.element_body) {
+    const model::Material& mat = m.bodies[body].material;
+    density.push_back(mat.density);
+    material.emplace_back(mat.youngs_modulus, mat.poisson_ratio);
+  }
+  p.mass = fem::assemble_mass(m.mesh, p.geometry, density);
+  p.elasticity = std::make_unique<fem::ElasticityTerm>(m.mesh, p.geometry, std::move(material));
+  if (m.has_effect(model::effect::gravity)) p.gravity = std::make_unique<fem::GravityTerm>(p.mass, *m.gravity);
+  p.fixed = fixed_dofs(m);
+  p.total_mass = p.mass.sum() / 3;
+  p.length_scale = bounding_box_diagonal(m.mesh);
+  return p;
+}
+
+/// v_I = v_0 + ω × (X_I − c), c the given centre or the body's centre of mass; zero on fixed dofs.
+Eigen::VectorXd initial_velocity(const Model& m, const Problem& p, const Eigen::VectorXd& X) {
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(X.size());
+  const Eigen::VectorXd nodal_mass = p.mass * Eigen::VectorXd::Ones(X.size());
+  for (size_t b = 0; b < m.bodies.size(); ++b) {
+    const mesh::Body& body = m.mesh.bodies[b];
+    const model::BodySpec& spec = m.bodies[b];
+    Eigen::Vector3d com = Eigen::Vector3d::Zero();
+    double mass = 0;
+    for (int I = body.node_begin; I < body.node_end; ++I) {
+      com += nodal_mass[3 * I] * X.segment<3>(3 * I);
+      mass += nodal_mass[3 * I];
+    }
+    const Eigen::Vector3d center = spec.center.value_or(com / mass);
+    for (int I = body.node_begin; I < body.node_end; ++I)
+      v.segment<3>(3 * I) = spec.initial_velocity + spec.initial_angular_velocity.cross(X.segment<3>(3 * I) - center);
+  }
+  for (Eigen::Index i = 0; i < v.size(); ++i)
+    if (p.fixed[i]) v[i] = 0;
+  return v;
+}
+
+model::SeriesLayout series_layout(const Model& m) {
+  model::SeriesLayout l;
+  l.series = {{"kinetic_energy"}, {"strain_energy"}};
+  if (m.has_effect(model::effect::gravity)) l.series.push_back({"potential_energy"});
+  l.series.push_back({"total_energy"});
+  l.series.push_back({"linear_momentum", 3});
+  l.series.push_back({"angular_momentum", 3});
+  l.series.push_back({"newton_iterations", 1, true});
+  l.series.push_back({"residual_norm"});
+  l.series.push_back({"step_seconds"});
+  return l;
+}
+
+/// Energies and momenta (1.10)–(1.11) of a state.
+struct Balance {
+  double kinetic = 0, strain = 0, potential = 0;
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero(), angular = Eigen::Vector3d::Zero();
+  double momentum_scale = 0, angular_scale = 0;  ///< Σ|p_I|, Σ|x_I||p_I|: scales for relative drifts
+  double total() const { return kinetic + strain + potential; }
+};
+
+Balance balance(const Problem& p, const time::State& s) {
+  Balance b;
+  const Eigen::VectorXd momentum = p.mass * s.v;
+  b.kinetic = 0.5 * s.v.dot(momentum);
+  b.strain = p.elasticity->energy(s.x);
+  if (p.gravity) b.potential = p.gravity->energy(s.x);
+  for (Eigen::Index I = 0; I < s.x.size() / 3; ++I) {
+    const Eigen::Vector3d pI = momentum.segment<3>(3 * I), xI = s.x.segment<3>(3 * I);
+    b.linear += pI;
+    b.angular += xI.cross(pI);
+    b.momentum_scale += pI.norm();
+    b.angular_scale += xI.norm() * pI.norm();
+  }
+  return b;
+}
+
+model::StepRow step_row(const time::State& s, const Balance& b, const model::SeriesLayout& layout,
+                        const solve::NewtonResult* newton, double step_seconds) {
+  model::StepRow row{s.step, s.t, {}};
+  row.values.push_back(b.kinetic);
+  row.values.push_back(b.strain);
+  if (layout.index_of("potential_energy") >= 0) row.values.push_back(b.potential);
+  row.values.push_back(b.total());
+  for (int k = 0; k < 3; ++k) row.values.push_back(b.linear[k]);
+  for (int k = 0; k < 3; ++k) row.values.push_back(b.angular[k]);
+  row.values.push_back(newton ? newton->iterations : 0);
+  row.values.push_back(newton ? newton->residuals.back() : 0.0);
+  row.values.push_back(step_seconds);
+  return row;
+}
+
+/// Tracks the drifts of the summary against the initial state.
+void update_drifts(model::Summary& sum, const Balance& b0, const Balance& b) {
+  const double H0 = std::abs(b0.total()) > 0 ? std::abs(b0.total()) : 1.0;
+  sum.energy_drift = std::max(sum.energy_drift, std::abs(b.total() - b0.total()) / H0);
+  const double Ls = std::max(b0.linear.norm(), b0.momentum_scale), Js = std::max(b0.angular.norm(), b0.angular_scale);
+  if (Ls > 0) sum.linear_momentum_drift = std::max(sum.linear_momentum_drift, (b.linear - b0.linear).norm() / Ls);
+  if (Js > 0) sum.angular_momentum_drift = std::max(sum.angular_momentum_drift, (b.angular - b0.angular).norm() / Js);
+}
+
+std::string failure_message(const time::State& s, double h, const solve::NewtonResult& r) {
+  std::ostringstream out;
+  out << "step " << s.step + 1 << " (t = " << s.t << " → " << s.t + h << ") did not converge: " << r.failure
+      << "; residual history: " << solve::format_history(r.residuals)
+      << ". Hint: reduce time.step, or check the material and initial velocities.";
+  return out.str();
+}
+
+bool frame_due(const Model& m, int step, int steps) { return step % m.output.every == 0 || step == steps; }
+
+model::Frame frame_of(const time::State& s) { return model::Frame{s.t, s.x, s.v, {}}; }
+
+}  // namespace
+
+model::Summary simulate(const Model& m, model::Observer& observer, const CancelFlag* cancel) {
+  const auto wall0 = Clock::now();
+  Problem p = build_problem(m);
+  std::vector<time::Term*> terms{p.elasticity.get()};
+  if (p.gravity) terms.push_back(p.gravity.get());
+  time::Integrator integrator(p.mass, terms, p.fixed, time::make_scheme(m.time.scheme, m.time.alpha),
+                              solve::NewtonOptions{m.solver.tolerance, m.solver.max_iterations},
+                              p.length_scale, p.total_mass);
+  time::State s;
+  s.x = m.mesh.reference_positions();
+  s.v = initial_velocity(m, p, s.x);
+  s.a = Eigen::VectorXd::Zero(s.x.size());
+  integrator.initialize(s);
+
+  const model::SeriesLayout layout = series_layout(m);
+  const int steps = m.time.steps();
+  observer.begin(m, layout);
+  const Balance b0 = balance(p, s);
+  observer.step(step_row(s, b0, layout, nullptr, 0.0));
+  observer.frame(frame_of(s));
+
+  model::Summary sum;
+  sum.initial_energy = b0.total();
+  auto finish = [&](bool completed) {
+    sum.completed = completed;
+    sum.steps = s.step;
+    sum.end_time = s.t;
+    sum.newton_iterations_per_step = s.step > 0 ? double(sum.newton_iterations) / s.step : 0.0;
+    sum.wall_seconds = seconds_since(wall0);
+    sum.linear_solver_seconds = integrator.linear_solver_seconds();
+    observer.end(sum);
+    return sum;
+  };
+  const auto log = [&](const std::string& line) { observer.log(line); };
+  for (int n = 1; n <= steps; ++n) {
+    if (cancel && cancel->load()) return finish(false);
+    const double h = std::min(m.time.step, m.time.end - s.t);
+    const auto t0 = Clock::now();
+    const solve::NewtonResult r = integrator.step(s, h, log);
+    if (!r.converged) {
+      const std::string message = failure_message(s, h, r);
+      observer.log(message);
+      finish(false);
+      throw SolverError(message);
+    }
+    sum.newton_iterations += r.iterations;
+    const Balance b = balance(p, s);
+    update_drifts(sum, b0, b);
+    observer.step(step_row(s, b, layout, &r, seconds_since(t0)));
+    if (frame_due(m, n, steps)) observer.frame(frame_of(s));
+  }
+  return finish(true);
+}
+
+}  // namespace stoss

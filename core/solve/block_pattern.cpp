@@ -1,0 +1,100 @@
+#include "core/solve/block_pattern.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace stoss::solve {
+
+int BlockPattern::add_block(std::vector<int> rows, std::vector<int> cols) {
+  built_ = false;
+  blocks_.push_back(Block{std::move(rows), std::move(cols), {}});
+  return static_cast<int>(blocks_.size()) - 1;
+}
+
+int BlockPattern::add_sparse(const SparseMatrix& S) {
+  built_ = false;
+  std::vector<std::pair<int, int>> entries;
+  entries.reserve(S.nonZeros());
+  for (int c = 0; c < S.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(S, c); it; ++it) entries.emplace_back(static_cast<int>(it.row()), c);
+  sparse_entries_.push_back(std::move(entries));
+  return static_cast<int>(sparse_entries_.size()) - 1;
+}
+
+void BlockPattern::scatter_sparse(int id, const SparseMatrix& S, double factor) {
+  const std::vector<int>& slots = sparse_slots_[id];
+  double* data = matrix_.valuePtr();
+  const double* values = S.valuePtr();
+  for (size_t k = 0; k < slots.size(); ++k) data[slots[k]] += factor * values[k];
+}
+
+void BlockPattern::clear() {
+  blocks_.clear();
+  sparse_entries_.clear();
+  sparse_slots_.clear();
+  built_ = false;
+}
+
+void BlockPattern::build(int n) {
+  std::vector<std::vector<int>> columns(n);
+  for (int i = 0; i < n; ++i) columns[i].push_back(i);
+  for (const Block& b : blocks_)
+    for (int c : b.cols)
+      for (int r : b.rows) columns[c].push_back(r);
+  for (const auto& entries : sparse_entries_)
+    for (auto [r, c] : entries) columns[c].push_back(r);
+  std::vector<int> outer(n + 1, 0), inner;
+  for (int c = 0; c < n; ++c) {
+    auto& col = columns[c];
+    std::sort(col.begin(), col.end());
+    col.erase(std::unique(col.begin(), col.end()), col.end());
+    outer[c + 1] = outer[c] + static_cast<int>(col.size());
+    inner.insert(inner.end(), col.begin(), col.end());
+    std::vector<int>().swap(col);
+  }
+  matrix_ = SparseMatrix(n, n);
+  matrix_.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+  std::copy(outer.begin(), outer.end(), matrix_.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), matrix_.innerIndexPtr());
+  matrix_.coeffs().setZero();
+  for (Block& b : blocks_) {
+    b.slots.resize(b.rows.size() * b.cols.size());
+    for (size_t j = 0; j < b.cols.size(); ++j)
+      for (size_t i = 0; i < b.rows.size(); ++i) b.slots[i + j * b.rows.size()] = slot(b.rows[i], b.cols[j]);
+  }
+  sparse_slots_.assign(sparse_entries_.size(), {});
+  for (size_t k = 0; k < sparse_entries_.size(); ++k)
+    for (auto [r, c] : sparse_entries_[k]) sparse_slots_[k].push_back(slot(r, c));
+  diagonal_slots_.resize(n);
+  for (int i = 0; i < n; ++i) diagonal_slots_[i] = slot(i, i);
+  built_ = true;
+  ++generation_;
+}
+
+int BlockPattern::slot(int row, int col) const {
+  const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col];
+  const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col + 1];
+  const int* it = std::lower_bound(begin, end, row);
+  if (it == end || *it != row) throw std::logic_error("BlockPattern: entry outside the pattern");
+  return static_cast<int>(it - matrix_.innerIndexPtr());
+}
+
+void BlockPattern::zero() { matrix_.coeffs().setZero(); }
+
+void BlockPattern::scatter(int block, const Eigen::Ref<const Eigen::MatrixXd>& values) {
+  const Block& b = blocks_[block];
+  double* data = matrix_.valuePtr();
+  const Eigen::Index nr = static_cast<Eigen::Index>(b.rows.size());
+  for (Eigen::Index j = 0; j < values.cols(); ++j)
+    for (Eigen::Index i = 0; i < nr; ++i) data[b.slots[i + j * nr]] += values(i, j);
+}
+
+void BlockPattern::add_diagonal(int i, double value) { matrix_.valuePtr()[diagonal_slots_[i]] += value; }
+
+void BlockPattern::eliminate(const std::vector<char>& fixed) {
+  for (int c = 0; c < matrix_.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(matrix_, c); it; ++it)
+      if (fixed[c] || fixed[it.row()]) it.valueRef() = (it.row() == c) ? 1.0 : 0.0;
+}
+
+}  // namespace stoss::solve

@@ -1,0 +1,60 @@
+#pragma once
+/// @file Sparse matrix whose pattern is the union of dense blocks, built once and refilled in place.
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+namespace stoss::solve {
+
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+/// Collects dense blocks (element matrices), builds their union pattern once, and maps every block
+/// entry to its slot in the value array, so refilling a matrix costs one pass over the entries.
+class BlockPattern {
+ public:
+  /// Registers a block coupling rows × cols; returns its id for scatter(). Invalidates the pattern.
+  int add_block(std::vector<int> rows, std::vector<int> cols);
+  /// Registers the pattern of a sparse matrix of the same size; returns its id for scatter_sparse().
+  int add_sparse(const SparseMatrix& S);
+  /// Registers a square block rows × rows.
+  int add_block(const std::vector<int>& dofs) { return add_block(dofs, dofs); }
+  /// Builds the n×n pattern (diagonal always included) and the scatter maps.
+  void build(int n);
+  bool built() const { return built_; }
+  /// Forgets every block (call before registering a new set).
+  void clear();
+
+  /// Sets every stored value to zero, keeping the pattern.
+  void zero();
+  /// A(rows[i], cols[j]) += values(i, j) for the block's rows and cols.
+  void scatter(int block, const Eigen::Ref<const Eigen::MatrixXd>& values);
+  /// A += factor · S for a matrix registered with add_sparse (same pattern as then).
+  void scatter_sparse(int id, const SparseMatrix& S, double factor);
+  /// A(i, i) += value.
+  void add_diagonal(int i, double value);
+  /// Replaces rows and columns of the marked dofs by identity rows (Dirichlet elimination).
+  void eliminate(const std::vector<char>& fixed);
+
+  const SparseMatrix& matrix() const { return matrix_; }
+  SparseMatrix& matrix() { return matrix_; }
+  /// Incremented every time the pattern is rebuilt; solvers redo their symbolic analysis on change.
+  int generation() const { return generation_; }
+
+ private:
+  struct Block {
+    std::vector<int> rows, cols;
+    std::vector<int> slots;  ///< value index of entry (i, j) at i + j * rows.size()
+  };
+  int slot(int row, int col) const;
+
+  std::vector<Block> blocks_;
+  std::vector<std::vector<std::pair<int, int>>> sparse_entries_;  ///< (row, col) per registered sparse matrix
+  std::vector<std::vector<int>> sparse_slots_;
+  std::vector<int> diagonal_slots_;
+  SparseMatrix matrix_;
+  bool built_ = false;
+  int generation_ = 0;
+};
+
+}  // namespace stoss::solve

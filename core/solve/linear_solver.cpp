@@ -1,0 +1,43 @@
+#include "core/solve/linear_solver.hpp"
+
+#include <Eigen/UmfPackSupport>
+#include <chrono>
+
+namespace stoss::solve {
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+struct LinearSolver::Impl {
+  Eigen::UmfPackLU<SparseMatrix> lu;
+};
+
+LinearSolver::LinearSolver() : impl_(std::make_unique<Impl>()) {}
+LinearSolver::~LinearSolver() = default;
+LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
+LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
+
+bool LinearSolver::factorize(const BlockPattern& A) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (analyzed_generation_ != A.generation()) {
+    impl_->lu.analyzePattern(A.matrix());
+    analyzed_generation_ = A.generation();
+  }
+  impl_->lu.factorize(A.matrix());
+  seconds_ += seconds_since(t0);
+  ++factorizations_;
+  const bool ok = impl_->lu.info() == Eigen::Success;
+  factorized_generation_ = ok ? A.generation() : -1;
+  return ok;
+}
+
+Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) const {
+  const auto t0 = std::chrono::steady_clock::now();
+  Eigen::VectorXd x = impl_->lu.solve(b);
+  seconds_ += seconds_since(t0);
+  return x;
+}
+
+}  // namespace stoss::solve

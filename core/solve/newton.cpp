@@ -1,0 +1,92 @@
+#include "core/solve/newton.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace stoss::solve {
+namespace {
+
+bool acceptable(double trial, double current) { return std::isfinite(trial) && trial <= 10 * current + 1e-300; }
+
+/// One Newton iteration's bookkeeping: the iterate, its residual and its measure.
+struct Iterate {
+  Eigen::VectorXd z, R;
+  double r = 0;
+};
+
+}  // namespace
+
+std::string format_history(const std::vector<double>& residuals) {
+  std::string out;
+  char buffer[32];
+  for (double r : residuals) {
+    std::snprintf(buffer, sizeof buffer, "%s%.2e", out.empty() ? "" : " ", r);
+    out += buffer;
+  }
+  return out;
+}
+
+NewtonResult newton_solve(NonlinearSystem& system, Eigen::VectorXd& z, BlockPattern& A, LinearSolver& solver,
+                          const NewtonOptions& options, const std::function<void(const std::string&)>& log) {
+  NewtonResult result;
+  Iterate current{z, Eigen::VectorXd(z.size()), 0};
+  system.evaluate(current.z, current.R, nullptr);
+  current.r = system.residual_measure(current.R);
+  result.residuals.push_back(current.r);
+  if (!std::isfinite(current.r)) {
+    result.failure = "residual is not finite at the predictor";
+    return result;
+  }
+  double increment = 0;
+  bool refactor = !options.reuse_factorization || !solver.ready_for(A);
+  for (int it = 0; it <= options.max_iterations; ++it) {
+    if (current.r <= options.tolerance && (it == 0 || increment <= options.tolerance)) {
+      z = current.z;
+      result.converged = true;
+      return result;
+    }
+    if (it == options.max_iterations) break;
+    const bool fresh = refactor;
+    if (fresh) {
+      system.evaluate(current.z, current.R, &A);  // Jacobian at the current iterate
+      if (!solver.factorize(A)) {
+        result.failure = "singular Jacobian";
+        return result;
+      }
+      refactor = !options.reuse_factorization;
+    }
+    const Eigen::VectorXd dz = solver.solve(current.R);
+    increment = system.increment_measure(dz);
+    ++result.iterations;
+    Iterate trial{current.z - dz, Eigen::VectorXd(z.size()), 0};
+    system.evaluate(trial.z, trial.R, nullptr);
+    trial.r = system.residual_measure(trial.R);
+    if (!fresh && !(trial.r <= options.reuse_contraction * current.r)) {
+      refactor = true;  // the old factorisation no longer contracts well: redo this iteration fresh
+      continue;
+    }
+    double scale = 1;
+    for (int cut = 0; fresh && !acceptable(trial.r, current.r) && cut < options.max_backtracks; ++cut) {
+      scale *= 0.5;
+      ++result.backtracks;
+      if (log)
+        log("newton: residual " + format_history({trial.r}) + " after a full step, halving it (scale " +
+            std::to_string(scale) + ")");
+      trial.z = current.z - scale * dz;
+      system.evaluate(trial.z, trial.R, nullptr);
+      trial.r = system.residual_measure(trial.R);
+    }
+    increment *= scale;
+    if (trial.r > options.reuse_contraction * current.r) refactor = true;
+    current = std::move(trial);
+    result.residuals.push_back(current.r);
+    if (!std::isfinite(current.r)) {
+      result.failure = "residual is not finite";
+      return result;
+    }
+  }
+  result.failure = "no convergence in " + std::to_string(options.max_iterations) + " iterations";
+  return result;
+}
+
+}  // namespace stoss::solve

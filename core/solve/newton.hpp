@@ -1,0 +1,51 @@
+#pragma once
+/// @file Newton's method on a sparse nonlinear system, with backtracking when a full step fails.
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/solve/block_pattern.hpp"
+#include "core/solve/linear_solver.hpp"
+
+namespace stoss::solve {
+
+/// A square nonlinear system R(z) = 0 with its Jacobian.
+class NonlinearSystem {
+ public:
+  virtual ~NonlinearSystem() = default;
+  /// R(z) and, when A is given, ∂R/∂z into A (pattern built, values zeroed by the callee).
+  virtual void evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& R, BlockPattern* A) = 0;
+  /// Dimensionless size of a residual: converged when ≤ tolerance.
+  virtual double residual_measure(const Eigen::VectorXd& R) const = 0;
+  /// Dimensionless size of an increment: converged when ≤ tolerance.
+  virtual double increment_measure(const Eigen::VectorXd& dz) const = 0;
+};
+
+struct NewtonOptions {
+  double tolerance = 1e-10;
+  int max_iterations = 25;
+  int max_backtracks = 6;  ///< halvings of a step whose residual is not finite or grew tenfold
+  /// Keep the last factorisation (across iterations and steps) while it contracts the residual by at
+  /// least `reuse_contraction` per iteration; refactorise with a fresh Jacobian otherwise.
+  bool reuse_factorization = true;
+  double reuse_contraction = 0.25;
+};
+
+struct NewtonResult {
+  bool converged = false;
+  int iterations = 0;                 ///< linear solves (with a fresh or a reused factorisation)
+  int backtracks = 0;                 ///< step halvings taken
+  std::vector<double> residuals;      ///< residual_measure after each evaluation
+  std::string failure;                ///< why it stopped, when not converged
+};
+
+/// Runs Newton from z (updated in place). `log` receives a line whenever backtracking acts.
+NewtonResult newton_solve(NonlinearSystem& system, Eigen::VectorXd& z, BlockPattern& A, LinearSolver& solver,
+                          const NewtonOptions& options, const std::function<void(const std::string&)>& log = {});
+
+/// "1.2e+00 3.4e-05 ..." for error messages.
+std::string format_history(const std::vector<double>& residuals);
+
+}  // namespace stoss::solve

@@ -1,0 +1,40 @@
+#pragma once
+/// @file Time schemes: how x_{n+1} determines v_{n+1}, the inertia part of the step residual, and the
+/// force rule the terms use (formulation.md §2). One file per scheme.
+
+#include <Eigen/Core>
+#include <memory>
+
+#include "core/model/model.hpp"
+#include "core/solve/block_pattern.hpp"
+#include "core/time/term.hpp"
+
+namespace stoss::time {
+
+/// Positions, velocities and (HHT only) accelerations at t, stacked 3 per node.
+struct State {
+  Eigen::VectorXd x, v, a;
+  double t = 0;
+  int step = 0;
+};
+
+class Scheme {
+ public:
+  virtual ~Scheme() = default;
+  virtual ForceRule force_rule() const = 0;
+  virtual double alpha() const { return 0; }
+  /// Adds the inertia part of the residual (momentum units) at x_1 to R.
+  virtual void add_inertia(const State& s, double h, const solve::SparseMatrix& M, const Eigen::VectorXd& x_1,
+                           Eigen::VectorXd& R) const = 0;
+  /// c with ∂(inertia residual)/∂x_1 = c M.
+  virtual double inertia_jacobian_factor(double h) const = 0;
+  /// Sets s.x = x_1 and the matching velocity (and acceleration); does not touch t.
+  virtual void advance(State& s, double h, const Eigen::VectorXd& x_1) const = 0;
+  /// Whether the scheme needs an initial acceleration (HHT: M a_0 = f_ext − f_int(x_0)).
+  virtual bool needs_initial_acceleration() const { return false; }
+};
+
+/// The scheme a model asks for.
+std::unique_ptr<Scheme> make_scheme(model::Scheme scheme, double alpha);
+
+}  // namespace stoss::time

@@ -1,0 +1,97 @@
+#include "server/cli/commands.hpp"
+
+#include <cstdio>
+#include <iostream>
+
+#include "core/output/result_writer.hpp"
+#include "core/scene/scene.hpp"
+#include "core/simulate.hpp"
+#include "server/cli/progress.hpp"
+
+namespace stoss::cli {
+namespace {
+
+void print_scene_error(const scene::SceneError& e) {
+  std::cerr << "invalid scene:\n";
+  for (const scene::Issue& i : e.issues)
+    std::cerr << "  " << (i.pointer.empty() ? "" : i.pointer + ": ") << i.message << "\n";
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& s : items) out += (out.empty() ? "" : " ") + s;
+  return out;
+}
+
+void print_summary(const model::Summary& s) {
+  std::printf("steps %d, t = %.6g\n", s.steps, s.end_time);
+  std::printf("energy drift %.3e (relative, max over steps)\n", s.energy_drift);
+  std::printf("momentum drift: linear %.3e, angular %.3e\n", s.linear_momentum_drift, s.angular_momentum_drift);
+  std::printf("newton iterations %d (%.2f per step)\n", s.newton_iterations, s.newton_iterations_per_step);
+  std::printf("wall %.3f s (linear solver %.3f s)\n", s.wall_seconds, s.linear_solver_seconds);
+}
+
+int usage(const char* text) {
+  std::cerr << "usage: " << text << "\n";
+  return invalid_scene;
+}
+
+}  // namespace
+
+int run_command(const std::vector<std::string>& args) {
+  std::string scene_path, out_dir = "out";
+  for (size_t i = 0; i < args.size(); ++i) {
+    if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size()) out_dir = args[++i];
+    else if (scene_path.empty() && args[i].rfind("-", 0) != 0) scene_path = args[i];
+    else return usage("stoss run SCENE.json [-o DIR]");
+  }
+  if (scene_path.empty()) return usage("stoss run SCENE.json [-o DIR]");
+  try {
+    const model::Model model = scene::load_file(scene_path);
+    output::ResultWriter writer(out_dir);
+    ProgressObserver progress;
+    model::ObserverList observers({&writer, &progress});
+    const model::Summary summary = simulate(model, observers);
+    print_summary(summary);
+    std::printf("result: %s/result.h5\n", out_dir.c_str());
+    return success;
+  } catch (const scene::SceneError& e) {
+    print_scene_error(e);
+    return invalid_scene;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "invalid scene: " << e.what() << "\n";
+    return invalid_scene;
+  } catch (const std::exception& e) {
+    std::cerr << "solver failure: " << e.what() << "\n";
+    return solver_failure;
+  }
+}
+
+int validate_command(const std::vector<std::string>& args) {
+  if (args.empty() || args.size() > 2) return usage("stoss validate SCENE.json [--json]");
+  const bool json = args.size() == 2 && args[1] == "--json";
+  try {
+    const scene::Summary s = scene::summarize(scene::load_file(args[0]));
+    if (json) {
+      std::cout << nlohmann::json{{"valid", true}, {"effects", s.effects}, {"nodes", s.nodes},
+                                  {"elements", s.elements}, {"dofs", s.dofs}, {"steps", s.steps},
+                                  {"frames", s.frames}}.dump(2)
+                << "\n";
+    } else {
+      std::printf("valid scene\neffects: %s\nnodes %d, elements %d, dofs %d\nsteps %d, frames %d\n",
+                  join(s.effects).c_str(), s.nodes, s.elements, s.dofs, s.steps, s.frames);
+    }
+    return success;
+  } catch (const scene::SceneError& e) {
+    if (json) {
+      nlohmann::json errors = nlohmann::json::array();
+      for (const auto& i : e.issues) errors.push_back({{"pointer", i.pointer}, {"message", i.message}});
+      std::cout << nlohmann::json{{"valid", false}, {"errors", errors}}.dump(2) << "\n";
+    } else {
+      print_scene_error(e);
+    }
+    return invalid_scene;
+  }
+}
+
+}  // namespace stoss::cli

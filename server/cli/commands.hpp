@@ -1,0 +1,17 @@
+#pragma once
+/// @file The command-line subcommands that run the core without a server.
+
+#include <string>
+#include <vector>
+
+namespace stoss::cli {
+
+/// Exit codes of `stoss run` and `stoss validate`.
+enum ExitCode { success = 0, solver_failure = 1, invalid_scene = 2 };
+
+/// `stoss run SCENE.json -o DIR`: writes DIR/result.h5 and DIR/result.xdmf, progress on stderr.
+int run_command(const std::vector<std::string>& args);
+/// `stoss validate SCENE.json [--json]`: effects, node and DOF counts, steps, or every error.
+int validate_command(const std::vector<std::string>& args);
+
+}  // namespace stoss::cli

@@ -1,0 +1,33 @@
+// stoss: run | validate | serve.
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "server/cli/commands.hpp"
+#include "server/http/serve.hpp"
+
+namespace {
+constexpr const char* usage_text =
+    "usage: stoss <command> [args]\n"
+    "  run SCENE.json [-o DIR]     simulate; writes DIR/result.h5 and DIR/result.xdmf (exit 0 ok, 1 solver, 2 scene)\n"
+    "  validate SCENE.json [--json] check a scene: effects, node/DOF counts, steps, or every error\n"
+    "  serve [--listen HOST:PORT] [--data DIR] [--workers N] [--token-file F]   the job service\n";
+}
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::cerr << usage_text;
+    return 2;
+  }
+  const std::string command = argv[1];
+  const std::vector<std::string> args(argv + 2, argv + argc);
+  if (command == "run") return stoss::cli::run_command(args);
+  if (command == "validate") return stoss::cli::validate_command(args);
+  if (command == "serve") return stoss::server::serve_command(args);
+  if (command == "--version") {
+    std::cout << "stoss " << STOSS_VERSION << "\n";
+    return 0;
+  }
+  std::cerr << usage_text;
+  return 2;
+}
