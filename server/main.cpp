@@ -11,6 +11,8 @@ constexpr const char* usage_text =
     "usage: stoss <command> [args]\n"
     "  run SCENE.json [-o DIR]     simulate; writes DIR/result.h5 and DIR/result.xdmf (exit 0 ok, 1 solver, 2 scene)\n"
     "  validate SCENE.json [--json] check a scene: effects, node/DOF counts, steps, or every error\n"
+    "  study SCENE.json --steps h1,h2,... [--schemes a,b] [--reference H] [--csv|--json]\n"
+    "                              error and wall time per scheme and step size against a fine reference\n"
     "  serve [--listen HOST:PORT] [--data DIR] [--workers N] [--token-file F]   the job service\n";
 }
 
@@ -22,6 +24,7 @@ int main(int argc, char** argv) {
   const std::string command = argv[1];
   const std::vector<std::string> args(argv + 2, argv + argc);
   if (command == "run") return stoss::cli::run_command(args);
+  if (command == "study") return stoss::cli::study_command(args);
   if (command == "validate") return stoss::cli::validate_command(args);
   if (command == "serve") return stoss::server::serve_command(args);
   if (command == "--version") {

@@ -1,5 +1,9 @@
 #include "core/scene/build.hpp"
 
+#include <algorithm>
+
+#include "core/fem/hex8.hpp"
+
 #include <Eigen/LU>
 #include <cmath>
 
@@ -75,23 +79,10 @@ model::TimeSpec time_spec(const json& t) {
 }  // namespace
 
 double min_jacobian_determinant(const std::vector<Eigen::Vector3d>& nodes, const mesh::Hex& element) {
-  static constexpr double corner[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
-                                          {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
-  const double g = 1 / std::sqrt(3.0);
-  double lowest = INFINITY;
-  for (int p = 0; p < 8; ++p) {
-    const Eigen::Vector3d xi(p & 1 ? g : -g, p & 2 ? g : -g, p & 4 ? g : -g);
-    Eigen::Matrix3d J0 = Eigen::Matrix3d::Zero();
-    for (int I = 0; I < 8; ++I) {
-      const Eigen::Vector3d a =
-          Eigen::Vector3d::Ones() + xi.cwiseProduct(Eigen::Map<const Eigen::Vector3d>(corner[I]));
-      const Eigen::Vector3d dN(corner[I][0] * a[1] * a[2], a[0] * corner[I][1] * a[2],
-                               a[0] * a[1] * corner[I][2]);
-      J0 += nodes[element[I]] * (dN / 8).transpose();  // (1.1), (1.2)
-    }
-    lowest = std::min(lowest, J0.determinant());
-  }
-  return lowest;
+  fem::Matrix83 X;
+  for (int I = 0; I < 8; ++I) X.row(I) = nodes[element[I]].transpose();
+  const std::array<double, 8> det = fem::jacobian_determinants(X);  // (1.2)
+  return *std::min_element(det.begin(), det.end());
 }
 
 mesh::BodyMesh body_mesh(const json& m) {

@@ -8,6 +8,12 @@ namespace {
 
 bool acceptable(double trial, double current) { return std::isfinite(trial) && trial <= 10 * current + 1e-300; }
 
+/// A fresh Newton step that no longer halves a residual already near the tolerance, with an increment
+/// within it, has hit the round-off floor of the residual (as the CPP of formulation.md §3.2 does).
+bool stagnated_at_round_off(double trial, double current, double increment, double tolerance) {
+  return increment <= tolerance && trial <= 100 * tolerance && trial > 0.5 * current;
+}
+
 /// One Newton iteration's bookkeeping: the iterate, its residual and its measure.
 struct Iterate {
   Eigen::VectorXd z, R;
@@ -77,6 +83,13 @@ NewtonResult newton_solve(NonlinearSystem& system, Eigen::VectorXd& z, BlockPatt
       trial.r = system.residual_measure(trial.R);
     }
     increment *= scale;
+    if (fresh && stagnated_at_round_off(trial.r, current.r, increment, options.tolerance)) {
+      z = trial.z;
+      result.residuals.push_back(trial.r);
+      result.converged = true;
+      if (log) log("newton: residual stagnated at " + format_history({trial.r}) + " (round-off), accepted");
+      return result;
+    }
     if (trial.r > options.reuse_contraction * current.r) refactor = true;
     current = std::move(trial);
     result.residuals.push_back(current.r);

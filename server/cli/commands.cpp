@@ -2,10 +2,12 @@
 
 #include <cstdio>
 #include <iostream>
+#include <sstream>
 
 #include "core/output/result_writer.hpp"
 #include "core/scene/scene.hpp"
 #include "core/simulate.hpp"
+#include "core/study/study.hpp"
 #include "server/cli/progress.hpp"
 
 namespace stoss::cli {
@@ -63,6 +65,77 @@ int run_command(const std::vector<std::string>& args) {
     return invalid_scene;
   } catch (const std::exception& e) {
     std::cerr << "solver failure: " << e.what() << "\n";
+    return solver_failure;
+  }
+}
+
+namespace {
+
+std::vector<std::string> split_commas(const std::string& text) {
+  std::vector<std::string> out;
+  std::string item;
+  std::istringstream in(text);
+  while (std::getline(in, item, ',')) out.push_back(item);
+  return out;
+}
+
+model::Scheme parse_scheme(const std::string& name) {
+  if (name == "energy_momentum") return model::Scheme::energy_momentum;
+  if (name == "midpoint") return model::Scheme::midpoint;
+  if (name == "hht") return model::Scheme::hht;
+  throw std::invalid_argument("--schemes: unknown scheme \"" + name + "\" (energy_momentum, midpoint, hht)");
+}
+
+study::Options study_options(const std::vector<std::string>& args, std::string& scene_path, std::string& format) {
+  study::Options o;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const bool has_value = i + 1 < args.size();
+    if (args[i] == "--steps" && has_value) {
+      for (const auto& h : split_commas(args[++i])) o.steps.push_back(std::stod(h));
+    } else if (args[i] == "--schemes" && has_value) {
+      o.schemes.clear();
+      for (const auto& name : split_commas(args[++i])) o.schemes.push_back(parse_scheme(name));
+    } else if (args[i] == "--reference" && has_value) {
+      o.reference_step = std::stod(args[++i]);
+    } else if (args[i] == "--csv" || args[i] == "--json") {
+      format = args[i].substr(2);
+    } else if (scene_path.empty() && args[i].rfind("-", 0) != 0) {
+      scene_path = args[i];
+    } else {
+      throw std::invalid_argument("unexpected argument \"" + args[i] + "\"");
+    }
+  }
+  if (scene_path.empty() || o.steps.empty()) throw std::invalid_argument("a scene and --steps are required");
+  for (double h : o.steps)
+    if (!(h > 0)) throw std::invalid_argument("--steps: every step must be > 0");
+  return o;
+}
+
+}  // namespace
+
+int study_command(const std::vector<std::string>& args) {
+  constexpr const char* text =
+      "stoss study SCENE.json --steps h1,h2,... [--schemes energy_momentum,midpoint,hht] [--reference H] "
+      "[--csv|--json]";
+  std::string scene_path, format = "markdown";
+  study::Options options;
+  try {
+    options = study_options(args, scene_path, format);
+  } catch (const std::exception& e) {
+    std::cerr << e.what() << "\n";
+    return usage(text);
+  }
+  try {
+    const study::Result result = study::run(scene::load_file(scene_path), options);
+    if (format == "csv") std::cout << study::to_csv(result);
+    else if (format == "json") std::cout << study::to_json(result).dump(2) << "\n";
+    else std::cout << "reference: energy_momentum, h = " << result.reference_step << "\n\n" << study::to_markdown(result);
+    return success;
+  } catch (const scene::SceneError& e) {
+    print_scene_error(e);
+    return invalid_scene;
+  } catch (const std::exception& e) {
+    std::cerr << "study failed: " << e.what() << "\n";
     return solver_failure;
   }
 }

@@ -1,0 +1,50 @@
+#pragma once
+/// @file What accuracy costs in time: one scene run with several schemes and step sizes, each compared
+/// with a fine reference run.
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "core/model/model.hpp"
+
+namespace stoss::study {
+
+struct Options {
+  std::vector<model::Scheme> schemes{model::Scheme::energy_momentum, model::Scheme::midpoint, model::Scheme::hht};
+  std::vector<double> steps;                                   ///< step sizes to sweep
+  double reference_step = 0;                                   ///< 0: smallest step / 32
+  model::Scheme reference_scheme = model::Scheme::energy_momentum;
+};
+
+/// One run of the sweep.
+struct Row {
+  std::string scheme;
+  double step = 0;
+  int steps = 0;
+  bool completed = false;
+  std::string failure;              ///< why the run stopped, when it did not complete
+  double displacement_error = 0;    ///< max over nodes |x(T) − x_ref(T)| at the end time T
+  double energy_error = 0;          ///< max over steps |H_n − H_0| / |H_0|
+  double momentum_error = 0;        ///< max of the relative linear and angular momentum drifts
+  double wall_seconds = 0;
+  int newton_iterations = 0;
+  double newton_per_step = 0;
+};
+
+struct Result {
+  double reference_step = 0;
+  double reference_wall_seconds = 0;
+  std::vector<Row> rows;
+};
+
+/// Runs the reference and then every scheme × step of `options` on `model` (its own scheme and step
+/// are replaced; everything else is kept). A run that fails is a row with completed = false.
+Result run(const model::Model& model, const Options& options);
+
+std::string to_csv(const Result& result);
+nlohmann::json to_json(const Result& result);
+/// A Markdown table, as the README shows it.
+std::string to_markdown(const Result& result);
+
+}  // namespace stoss::study
