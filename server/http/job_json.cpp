@@ -1,0 +1,42 @@
+#include "server/http/job_json.hpp"
+
+namespace stoss::server::http {
+
+namespace {
+
+nlohmann::json time_or_null(const std::optional<jobs::Millis>& t) {
+  return t ? nlohmann::json(jobs::format_rfc3339(*t)) : nlohmann::json(nullptr);
+}
+
+nlohmann::json links(const jobs::Job& job) {
+  const std::string self = "/v1/jobs/" + job.id.str();
+  nlohmann::json l = {{"self", self}, {"log", self + "/log"}};
+  if (!jobs::is_terminal(job.status)) l["cancel"] = self + "/cancel";
+  if (job.status == jobs::Status::succeeded) {
+    l["result"] = self + "/result";
+    l["result_xdmf"] = self + "/result.xdmf";
+    l["series"] = self + "/series";
+  }
+  return l;
+}
+
+}  // namespace
+
+nlohmann::json job_json(const jobs::Job& job) {
+  nlohmann::json j = {{"id", job.id.str()},
+                      {"status", jobs::to_string(job.status)},
+                      {"created", jobs::format_rfc3339(job.created)},
+                      {"started", time_or_null(job.started)},
+                      {"finished", time_or_null(job.finished)},
+                      {"attempt", job.attempt},
+                      {"cancel_requested", job.cancel_requested},
+                      {"progress", jobs::to_json(job.progress)},
+                      {"effects", job.effects},
+                      {"summary", job.summary ? *job.summary : nlohmann::json(nullptr)},
+                      {"links", links(job)}};
+  if (job.error) j["error"] = *job.error;
+  if (job.idempotency_key) j["idempotency_key"] = *job.idempotency_key;
+  return j;
+}
+
+}  // namespace stoss::server::http

@@ -1,0 +1,13 @@
+#pragma once
+/// @file The job JSON of service.md §2: id, status, times, progress, effects, summary, error, links.
+
+#include <nlohmann/json.hpp>
+
+#include "server/jobs/job.hpp"
+
+namespace stoss::server::http {
+
+/// What GET /v1/jobs/{id} returns for `job`.
+nlohmann::json job_json(const jobs::Job& job);
+
+}  // namespace stoss::server::http

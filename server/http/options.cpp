@@ -1,0 +1,116 @@
+#include "server/http/options.hpp"
+
+#include <cmath>
+#include <functional>
+#include <map>
+
+namespace stoss::server::http {
+
+namespace {
+
+long long parse_integer(const std::string& flag, const std::string& text, long long min, long long max) {
+  std::size_t used = 0;
+  long long value = 0;
+  try {
+    value = std::stoll(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || text.empty() || value < min || value > max)
+    throw UsageError(flag + " needs an integer in [" + std::to_string(min) + ", " + std::to_string(max) +
+                     "], got '" + text + "'");
+  return value;
+}
+
+jobs::Millis parse_seconds(const std::string& flag, const std::string& text) {
+  std::size_t used = 0;
+  double seconds = 0;
+  try {
+    seconds = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || text.empty() || !(seconds >= 0.01 && seconds <= 86400))
+    throw UsageError(flag + " needs seconds in [0.01, 86400], got '" + text + "'");
+  return static_cast<jobs::Millis>(std::llround(seconds * 1000));
+}
+
+void parse_listen(const std::string& text, ServeOptions& o) {
+  const auto colon = text.rfind(':');
+  if (colon == std::string::npos || colon == 0)
+    throw UsageError("--listen needs HOST:PORT, got '" + text + "'");
+  o.host = text.substr(0, colon);
+  o.port = static_cast<int>(parse_integer("--listen port", text.substr(colon + 1), 0, 65535));
+}
+
+using Setter = std::function<void(const std::string& flag, const std::string& value, ServeOptions& o)>;
+
+const std::map<std::string, Setter>& setters() {
+  static const std::map<std::string, Setter> table = {
+      {"--listen", [](auto&, auto& v, auto& o) { parse_listen(v, o); }},
+      {"--data", [](auto&, auto& v, auto& o) { o.data = v; }},
+      {"--token-file", [](auto&, auto& v, auto& o) { o.token_file = v; }},
+      {"--workers", [](auto& f, auto& v, auto& o) { o.pool.workers = int(parse_integer(f, v, 0, 256)); }},
+      {"--lease-seconds", [](auto& f, auto& v, auto& o) { o.pool.lease = parse_seconds(f, v); }},
+      {"--renew-seconds", [](auto& f, auto& v, auto& o) { o.pool.renew_every = parse_seconds(f, v); }},
+      {"--max-attempts",
+       [](auto& f, auto& v, auto& o) { o.max_attempts = int(parse_integer(f, v, 1, 100)); }},
+      {"--max-body-bytes",
+       [](auto& f, auto& v, auto& o) {
+         o.limits.max_body_bytes = std::size_t(parse_integer(f, v, 1, 1ll << 34));
+       }},
+      {"--max-nodes",
+       [](auto& f, auto& v, auto& o) { o.limits.max_nodes = int(parse_integer(f, v, 1, 1'000'000'000)); }},
+      {"--max-steps",
+       [](auto& f, auto& v, auto& o) { o.limits.max_steps = int(parse_integer(f, v, 1, 1'000'000'000)); }},
+      {"--max-frames",
+       [](auto& f, auto& v, auto& o) { o.limits.max_frames = int(parse_integer(f, v, 1, 1'000'000'000)); }},
+      {"--max-queue",
+       [](auto& f, auto& v, auto& o) { o.limits.max_queued = int(parse_integer(f, v, 0, 1'000'000'000)); }},
+  };
+  return table;
+}
+
+}  // namespace
+
+ServeOptions parse_serve_options(const std::vector<std::string>& args) {
+  ServeOptions options;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    std::string flag = args[i], value;
+    const auto equals = flag.find('=');
+    const bool inline_value = equals != std::string::npos;
+    if (inline_value) value = flag.substr(equals + 1), flag = flag.substr(0, equals);
+    auto setter = setters().find(flag);
+    if (setter == setters().end()) throw UsageError("unknown option '" + flag + "'");
+    if (!inline_value) {
+      if (i + 1 >= args.size()) throw UsageError(flag + " needs a value");
+      value = args[++i];
+    }
+    setter->second(flag, value, options);
+  }
+  if (options.pool.renew_every >= options.pool.lease)
+    throw UsageError("--renew-seconds must be shorter than --lease-seconds");
+  return options;
+}
+
+std::string serve_usage() {
+  return R"(usage: stoss serve [options]
+
+Runs the job service (HTTP/JSON, see api/openapi.yaml) until SIGINT or SIGTERM.
+
+  --listen HOST:PORT     address to bind (default 127.0.0.1:8080; port 0 picks a free one)
+  --data DIR             job database (DIR/jobs.db) and results (DIR/jobs/<id>/) (default ./var)
+  --workers N            jobs run at once in this process (default 2; 0 only queues)
+  --token-file F         require "Authorization: Bearer <first line of F>" on every route but /healthz
+  --max-body-bytes N     largest request body (default 16777216)
+  --max-nodes N          most mesh nodes in a scene (default 200000)
+  --max-steps N          most time steps in a scene (default 100000)
+  --max-frames N         most output frames in a scene (default 2000)
+  --max-queue N          most queued jobs; more submissions get 503 (default 1000)
+  --lease-seconds S      a running job's lease; a job whose worker died reruns after it (default 10)
+  --renew-seconds S      lease renewal interval (default 2)
+  --max-attempts N       runs a job may start before an expired lease fails it (default 3)
+)";
+}
+
+}  // namespace stoss::server::http

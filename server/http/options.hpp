@@ -1,0 +1,37 @@
+#pragma once
+/// @file ServeOptions: the flags of `stoss serve`, with their defaults.
+
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "server/http/limits.hpp"
+#include "server/jobs/worker_pool.hpp"
+
+namespace stoss::server::http {
+
+struct ServeOptions {
+  std::string host = "127.0.0.1";                   ///< --listen HOST:PORT
+  int port = 8080;                                  ///< 0: any free port (printed at start)
+  std::filesystem::path data = "var";               ///< --data DIR: jobs.db and jobs/<id>/
+  std::optional<std::filesystem::path> token_file;  ///< --token-file F
+  jobs::WorkerPoolOptions pool;                     ///< --workers, --lease-seconds, --renew-seconds
+  int max_attempts = 3;  ///< --max-attempts: runs before an expired lease fails a job
+  Limits limits;         ///< --max-body-bytes, --max-nodes, --max-steps, --max-frames, --max-queue
+};
+
+/// A command line `stoss serve` cannot work with; the message says which flag and why.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Parses the arguments after `stoss serve`. Throws UsageError.
+ServeOptions parse_serve_options(const std::vector<std::string>& args);
+
+/// The usage text of `stoss serve` with every flag and its default.
+std::string serve_usage();
+
+}  // namespace stoss::server::http

@@ -1,0 +1,362 @@
+#include "server/http/routes.hpp"
+
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include "core/output/result_reader.hpp"
+#include "core/scene/scene.hpp"
+#include "server/http/job_json.hpp"
+#include "server/http/problem.hpp"
+#include "server/http/scene_check.hpp"
+#include "server/jobs/sha256.hpp"
+
+namespace stoss::server::http {
+
+namespace {
+
+using httplib::Request;
+using httplib::Response;
+using Route = void (*)(App&, const Request&, Response&);
+
+constexpr const char* json_type = "application/json";
+constexpr std::size_t max_idempotency_key = 255;
+
+[[noreturn]] void fail(int status, const std::string& kind, const std::string& title,
+                       const std::string& detail) {
+  throw ProblemError(Problem{status, "urn:stoss:problem:" + kind, title, detail});
+}
+
+void send_json(Response& res, int status, const nlohmann::json& body) {
+  res.status = status;
+  res.set_content(dump(body), json_type);
+}
+
+/// The job named by the path's first capture; 404 for a malformed or unknown id (no lookup for the former).
+jobs::Job find_job(App& app, const Request& req) {
+  auto id = jobs::JobId::parse(req.matches[1].str());
+  if (!id) fail(404, "unknown-job", "Unknown job", "no such job (job ids are 32 lowercase hex digits)");
+  auto job = app.store.get(*id);
+  if (!job) fail(404, "unknown-job", "Unknown job", "no job " + id->str());
+  return *job;
+}
+
+/// 409 unless the job succeeded (its result files exist only then).
+void require_succeeded(const jobs::Job& job) {
+  if (job.status == jobs::Status::succeeded) return;
+  const std::string status = jobs::to_string(job.status);
+  const std::string why =
+      jobs::is_terminal(job.status) ? "; it has no result" : "; the result exists once it succeeded";
+  fail(409, "no-result", "Job has no result", "job " + job.id.str() + " is " + status + why);
+}
+
+std::optional<std::string> read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::optional<std::string> idempotency_key(const Request& req) {
+  if (!req.has_header("Idempotency-Key")) return std::nullopt;
+  std::string key = req.get_header_value("Idempotency-Key");
+  const bool visible_ascii = std::all_of(key.begin(), key.end(), [](char c) { return c > 0x20 && c < 0x7f; });
+  if (key.empty() || key.size() > max_idempotency_key || !visible_ascii)
+    fail(400, "bad-idempotency-key", "Bad Idempotency-Key",
+         "Idempotency-Key must be 1 to 255 visible ASCII characters");
+  return key;
+}
+
+void submit_job(App& app, const Request& req, Response& res) {
+  const auto key = idempotency_key(req);
+  const nlohmann::json scene = parse_json_body(req, app.limits);
+  const scene::Summary summary = check_scene(scene, app.limits);
+  jobs::NewJob job{key, jobs::sha256_hex(scene.dump()), scene, summary.effects, {}};
+  job.progress.steps = summary.steps;
+  job.progress.end = scene.contains("time") ? scene["time"].value("end", 0.0) : 0.0;
+  const jobs::CreateResult created = app.store.create(job, app.limits.max_queued);
+  using Outcome = jobs::CreateResult::Outcome;
+  switch (created.outcome) {
+    case Outcome::queue_full:
+      fail(503, "queue-full", "Queue full",
+           "the queue holds its limit of " + std::to_string(app.limits.max_queued) +
+               " jobs (max_queued); retry later");
+    case Outcome::key_conflict:
+      fail(422, "idempotency-key-reused", "Idempotency-Key reused",
+           "Idempotency-Key '" + *key + "' was used for job " + created.job->id.str() +
+               " with a different body");
+    case Outcome::existing:
+      return send_json(res, 200, job_json(*created.job));
+    case Outcome::created:
+      app.pool.notify();
+      res.set_header("Location", "/v1/jobs/" + created.job->id.str());
+      return send_json(res, 201, job_json(*created.job));
+  }
+}
+
+/// 1 to `max_length` ASCII digits.
+bool all_digits(const std::string& text, std::size_t max_length) {
+  return !text.empty() && text.size() <= max_length &&
+         std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+int list_limit(const Request& req) {
+  if (!req.has_param("limit")) return 20;
+  const std::string text = req.get_param_value("limit");
+  const int limit = all_digits(text, 3) ? std::stoi(text) : 0;
+  if (limit < 1 || limit > 200)
+    fail(400, "bad-parameter", "Bad parameter", "limit must be an integer in [1, 200]");
+  return limit;
+}
+
+std::optional<std::int64_t> list_cursor(const Request& req) {
+  if (!req.has_param("cursor")) return std::nullopt;
+  const std::string text = req.get_param_value("cursor");
+  if (!all_digits(text, 18))
+    fail(400, "bad-parameter", "Bad parameter", "cursor must be a next_cursor value from a listing");
+  return std::stoll(text);
+}
+
+std::optional<jobs::Status> list_status(const Request& req) {
+  if (!req.has_param("status")) return std::nullopt;
+  auto status = jobs::parse_status(req.get_param_value("status"));
+  if (!status)
+    fail(400, "bad-parameter", "Bad parameter",
+         "status must be one of queued, running, succeeded, failed, canceled");
+  return status;
+}
+
+void list_jobs(App& app, const Request& req, Response& res) {
+  const jobs::Page page = app.store.list(list_status(req), list_limit(req), list_cursor(req));
+  nlohmann::json body = {{"jobs", nlohmann::json::array()}, {"next_cursor", nullptr}};
+  for (const auto& job : page.jobs) body["jobs"].push_back(job_json(job));
+  if (page.next_cursor) body["next_cursor"] = std::to_string(*page.next_cursor);
+  send_json(res, 200, body);
+}
+
+void get_job(App& app, const Request& req, Response& res) {
+  send_json(res, 200, job_json(find_job(app, req)));
+}
+
+void cancel_job(App& app, const Request& req, Response& res) {
+  const jobs::Job job = find_job(app, req);
+  const jobs::CancelResult result = app.store.request_cancel(job.id);
+  using Outcome = jobs::CancelResult::Outcome;
+  switch (result.outcome) {
+    case Outcome::not_found:
+      fail(404, "unknown-job", "Unknown job", "no job " + job.id.str());
+    case Outcome::already_done:
+      fail(409, "already-finished", "Job already finished",
+           "job " + job.id.str() + " already " + jobs::to_string(result.job->status));
+    case Outcome::requested:
+      app.pool.cancel(job.id);
+      [[fallthrough]];
+    case Outcome::canceled:
+      return send_json(res, 202, job_json(*result.job));
+  }
+}
+
+void delete_job(App& app, const Request& req, Response& res) {
+  const jobs::Job job = find_job(app, req);
+  switch (app.store.remove(job.id)) {
+    case jobs::RemoveOutcome::not_found:
+      fail(404, "unknown-job", "Unknown job", "no job " + job.id.str());
+    case jobs::RemoveOutcome::not_finished:
+      fail(409, "not-finished", "Job not finished",
+           "job " + job.id.str() + " is " + jobs::to_string(job.status) + "; cancel it first");
+    case jobs::RemoveOutcome::removed:
+      app.files.remove(job.id);
+      res.status = 204;
+  }
+}
+
+/// Streams a file from disk; httplib applies a Range header to it (206 with Content-Range).
+void stream_file(const Request& req, Response& res, const std::filesystem::path& path,
+                 const std::string& type) {
+  auto in = std::make_shared<std::ifstream>(path, std::ios::binary);
+  std::error_code error;
+  const auto size = std::filesystem::file_size(path, error);
+  if (!*in || error) fail(500, "missing-result", "Result missing", "the result file cannot be read");
+  res.status = req.ranges.empty() ? 200 : 206;
+  res.set_content_provider(size, type, [in](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+    char buffer[1 << 16];
+    in->seekg(static_cast<std::streamoff>(offset));
+    in->read(buffer, static_cast<std::streamsize>(std::min(length, sizeof buffer)));
+    const auto n = in->gcount();
+    return n > 0 && sink.write(buffer, static_cast<std::size_t>(n));
+  });
+}
+
+void get_result(App& app, const Request& req, Response& res) {
+  const jobs::Job job = find_job(app, req);
+  require_succeeded(job);
+  const auto path = app.files.result(job.id);
+  std::error_code error;
+  const auto size = std::filesystem::file_size(path, error);
+  if (error)
+    fail(500, "missing-result", "Result missing",
+         "job " + job.id.str() + " succeeded but its result is gone");
+  const std::string etag = "\"" + job.id.str() + "-" + std::to_string(size) + "\"";
+  res.set_header("ETag", etag);
+  res.set_header("Accept-Ranges", "bytes");
+  res.set_header("Content-Disposition", "attachment; filename=\"result.h5\"");
+  if (req.get_header_value("If-None-Match") == etag) {
+    res.status = 304;
+    return;
+  }
+  stream_file(req, res, path, "application/x-hdf5");
+}
+
+void get_result_xdmf(App& app, const Request& req, Response& res) {
+  const jobs::Job job = find_job(app, req);
+  require_succeeded(job);
+  auto text = read_file(app.files.xdmf(job.id));
+  if (!text)
+    fail(500, "missing-result", "Result missing", "job " + job.id.str() + " succeeded but its XDMF is gone");
+  res.set_header("Content-Disposition", "attachment; filename=\"result.xdmf\"");
+  res.set_content(*text, "application/xml");
+}
+
+void get_series(App& app, const Request& req, Response& res) {
+  const std::string format = req.has_param("format") ? req.get_param_value("format") : "json";
+  if (format != "json" && format != "csv")
+    fail(400, "bad-parameter", "Bad parameter", "format must be json or csv");
+  const jobs::Job job = find_job(app, req);
+  require_succeeded(job);
+  const auto path = app.files.result(job.id);
+  if (format == "csv") return res.set_content(output::series_csv(path), "text/csv");
+  res.set_content(dump(output::series_json(path)), json_type);
+}
+
+void get_log(App& app, const Request& req, Response& res) {
+  const jobs::Job job = find_job(app, req);
+  res.set_content(read_file(app.files.log(job.id)).value_or(""), "text/plain; charset=utf-8");
+}
+
+void validate_scene(App& app, const Request& req, Response& res) {
+  const nlohmann::json scene = parse_json_body(req, app.limits);
+  const scene::Summary s = check_scene(scene, app.limits);
+  send_json(res, 200,
+            {{"valid", true},
+             {"effects", s.effects},
+             {"nodes", s.nodes},
+             {"elements", s.elements},
+             {"dofs", s.dofs},
+             {"steps", s.steps},
+             {"frames", s.frames}});
+}
+
+void get_schema(App&, const Request&, Response& res) {
+  res.set_content(dump(scene::schema()), "application/schema+json");
+}
+
+void get_health(App&, const Request&, Response& res) {
+  send_json(res, 200, {{"status", "ok"}});
+}
+
+void get_metrics(App& app, const Request&, Response& res) {
+  res.set_content(app.metrics.render(app.store.count_by_status(), app.pool.running()),
+                  "text/plain; version=0.0.4");
+}
+
+/// Checks the token, runs the route, writes a thrown Problem.
+httplib::Server::Handler guarded(App& app, Route route, bool needs_token) {
+  return [&app, route, needs_token](const Request& req, Response& res) {
+    try {
+      if (needs_token && app.auth && !app.auth->allows(req))
+        fail(401, "unauthorized", "Unauthorized", "this server needs Authorization: Bearer <token>");
+      route(app, req, res);
+    } catch (const ProblemError& e) {
+      e.problem().write(res);
+    }
+  };
+}
+
+struct RouteEntry {
+  RouteInfo info;
+  Route handler;
+};
+
+/// The API: every route, as api/openapi.yaml names it.
+const std::vector<RouteEntry>& route_table() {
+  static const std::vector<RouteEntry> table = {
+      {{"POST", "/v1/jobs", true}, submit_job},
+      {{"GET", "/v1/jobs", true}, list_jobs},
+      {{"GET", "/v1/jobs/{id}", true}, get_job},
+      {{"DELETE", "/v1/jobs/{id}", true}, delete_job},
+      {{"POST", "/v1/jobs/{id}/cancel", true}, cancel_job},
+      {{"GET", "/v1/jobs/{id}/result", true}, get_result},
+      {{"GET", "/v1/jobs/{id}/result.xdmf", true}, get_result_xdmf},
+      {{"GET", "/v1/jobs/{id}/series", true}, get_series},
+      {{"GET", "/v1/jobs/{id}/log", true}, get_log},
+      {{"POST", "/v1/validate", true}, validate_scene},
+      {{"GET", "/v1/schema/scene", true}, get_schema},
+      {{"GET", "/healthz", false}, get_health},
+      {{"GET", "/metrics", true}, get_metrics},
+  };
+  return table;
+}
+
+/// The httplib pattern of an OpenAPI path: "{id}" captures one segment, "." is literal.
+std::string pattern_of(const std::string& path) {
+  std::string pattern;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (path.compare(i, 4, "{id}") == 0) {
+      pattern += "([^/]+)";
+      i += 3;
+    } else {
+      if (path[i] == '.') pattern += '\\';
+      pattern += path[i];
+    }
+  }
+  return pattern;
+}
+
+}  // namespace
+
+std::vector<RouteInfo> routes() {
+  std::vector<RouteInfo> out;
+  for (const auto& r : route_table()) out.push_back(r.info);
+  return out;
+}
+
+void install_routes(httplib::Server& server, App& app) {
+  for (const auto& [info, handler] : route_table()) {
+    const std::string pattern = pattern_of(info.path);
+    auto guarded_handler = guarded(app, handler, info.needs_token);
+    if (info.method == "GET") server.Get(pattern, guarded_handler);
+    if (info.method == "POST") server.Post(pattern, guarded_handler);
+    if (info.method == "DELETE") server.Delete(pattern, guarded_handler);
+  }
+}
+
+void install_request_defaults(httplib::Server& server) {
+  server.set_pre_routing_handler([](const Request& req, Response&) {
+    const bool framed = req.has_header("Content-Length") || req.has_header("Transfer-Encoding");
+    // `req` is the server's own non-const Request, handed to this hook as const.
+    if (!framed) const_cast<Request&>(req).set_header("Content-Length", "0");
+    return httplib::Server::HandlerResponse::Unhandled;
+  });
+}
+
+void install_error_handling(httplib::Server& server, Metrics& metrics) {
+  server.set_error_handler(httplib::Server::HandlerWithResponse([](const Request& req, Response& res) {
+    if (!res.body.empty() || res.has_header("Content-Length"))
+      return httplib::Server::HandlerResponse::Unhandled;
+    problem_for_status(res.status, req).write(res);
+    return httplib::Server::HandlerResponse::Handled;
+  }));
+  server.set_exception_handler([](const Request& req, Response& res, std::exception_ptr error) {
+    std::string what = "unknown exception";
+    try {
+      std::rethrow_exception(error);
+    } catch (const std::exception& e) {
+      what = e.what();
+    } catch (...) {
+    }
+    std::cerr << "stoss: " << req.method << " " << req.path << " failed: " << what << std::endl;
+    Problem{500, "urn:stoss:problem:internal", "Internal Server Error", what}.write(res);
+  });
+  server.set_logger([&metrics](const Request&, const Response& res) { metrics.count_request(res.status); });
+}
+
+}  // namespace stoss::server::http

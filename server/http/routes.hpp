@@ -1,0 +1,52 @@
+#pragma once
+/// @file The routes of service.md §2 (api/openapi.yaml) on an httplib::Server.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "server/http/auth.hpp"
+#include "server/http/httplib.hpp"
+#include "server/http/limits.hpp"
+#include "server/http/metrics.hpp"
+#include "server/jobs/job_files.hpp"
+#include "server/jobs/store.hpp"
+#include "server/jobs/worker_pool.hpp"
+
+namespace stoss::server::http {
+
+/// What the routes work with.
+struct App {
+  jobs::JobStore& store;
+  jobs::WorkerPool& pool;
+  jobs::JobFiles files;
+  Limits limits;
+  std::optional<BearerAuth> auth;  ///< when set, every route but /healthz needs the token
+  Metrics metrics;
+};
+
+/// One route of the API: its method, its path as api/openapi.yaml writes it ("/v1/jobs/{id}"), and
+/// whether it needs the bearer token when the server has one.
+struct RouteInfo {
+  std::string method;
+  std::string path;
+  bool needs_token = true;
+};
+
+/// Every route install_routes registers (a test checks this against api/openapi.yaml).
+std::vector<RouteInfo> routes();
+
+/// Registers every route of the API. Handlers answer errors as problem+json.
+void install_routes(httplib::Server& server, App& app);
+
+/// Request hygiene before routing: a POST or DELETE without Content-Length and without Transfer-Encoding
+/// has an empty body (RFC 9112 §6.3), as `curl -X POST …/cancel` sends it; cpp-httplib 0.11 would
+/// otherwise wait for the client to close the connection.
+void install_request_defaults(httplib::Server& server);
+
+/// The error handler (problem+json for statuses httplib sets itself: unknown route, oversize body, …),
+/// the exception handler (catches everything, answers 500, never lets a request take the server down),
+/// and the request counter of /metrics.
+void install_error_handling(httplib::Server& server, Metrics& metrics);
+
+}  // namespace stoss::server::http

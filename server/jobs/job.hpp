@@ -1,0 +1,62 @@
+#pragma once
+/// @file Job: one submitted scene and everything the queue knows about it.
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "server/jobs/clock.hpp"
+#include "server/jobs/id.hpp"
+
+namespace stoss::server::jobs {
+
+/// Life cycle: queued → running → succeeded | failed | canceled (running → queued again when a lease
+/// expires).
+enum class Status { queued, running, succeeded, failed, canceled };
+
+inline constexpr Status all_statuses[] = {Status::queued, Status::running, Status::succeeded, Status::failed,
+                                          Status::canceled};
+
+std::string to_string(Status s);
+/// The status named `text`, or nullopt.
+std::optional<Status> parse_status(std::string_view text);
+/// succeeded, failed and canceled: nothing will happen to the job any more.
+bool is_terminal(Status s);
+
+/// How far a run has come (service.md §2 `progress`).
+struct Progress {
+  int step = 0;                       ///< converged steps so far
+  int steps = 0;                      ///< steps to reach `end`
+  double time = 0;                    ///< simulated time reached
+  double end = 0;                     ///< simulated end time
+  std::optional<double> eta_seconds;  ///< wall seconds still to go, once it can be estimated
+};
+
+nlohmann::json to_json(const Progress& p);
+Progress progress_from_json(const nlohmann::json& j);
+
+/// A job as the store holds it.
+struct Job {
+  std::int64_t seq = 0;  ///< insertion order (the list cursor); not shown as an id
+  JobId id = JobId::random();
+  Status status = Status::queued;
+  Millis created = 0;
+  std::optional<Millis> started;  ///< start of the latest attempt
+  std::optional<Millis> finished;
+  int attempt = 0;                    ///< number of claims so far
+  std::optional<std::string> worker;  ///< the worker holding the lease while running
+  std::optional<Millis> lease_expires;
+  bool cancel_requested = false;
+  std::optional<std::string> idempotency_key;
+  std::string body_hash;             ///< SHA-256 (hex) of the canonical scene JSON
+  nlohmann::json scene;              ///< the scene as submitted
+  std::vector<std::string> effects;  ///< resolved at submission
+  Progress progress;
+  std::optional<nlohmann::json> summary;  ///< set when the run ended (also for canceled runs)
+  std::optional<std::string> error;       ///< set when failed
+};
+
+}  // namespace stoss::server::jobs

@@ -1,0 +1,64 @@
+#include "server/jobs/job_observer.hpp"
+
+#include <algorithm>
+
+namespace stoss::server::jobs {
+
+ProgressObserver::ProgressObserver(ProgressSink sink, const Clock& clock, Millis interval)
+    : sink_(std::move(sink)), clock_(clock), interval_(interval) {}
+
+void ProgressObserver::begin(const model::Model& model, const model::SeriesLayout&) {
+  started_ = clock_.now();
+  current_ = Progress{0, model.time.steps(), 0.0, model.time.end, std::nullopt};
+  report(started_);
+}
+
+void ProgressObserver::step(const model::StepRow& row) {
+  current_.step = row.step;
+  current_.time = row.time;
+  const Millis now = clock_.now();
+  if (row.step > 0) {
+    const double per_step = static_cast<double>(now - started_) / 1000.0 / row.step;
+    current_.eta_seconds = per_step * std::max(0, current_.steps - row.step);
+  }
+  if (!last_report_ || now - *last_report_ >= interval_) report(now);
+}
+
+void ProgressObserver::end(const model::Summary&) {
+  if (current_.step >= current_.steps) current_.eta_seconds = 0.0;
+  report(clock_.now());
+}
+
+void ProgressObserver::report(Millis now) {
+  last_report_ = now;
+  if (sink_) sink_(current_);
+}
+
+void LogObserver::log(const std::string& line) {
+  out_ << line << '\n' << std::flush;
+}
+
+void LogObserver::end(const model::Summary& s) {
+  out_ << (s.completed ? "run completed: " : "run stopped: ") << s.steps << " steps, t = " << s.end_time
+       << ", energy drift " << s.energy_drift << ", " << s.newton_iterations << " Newton iterations, "
+       << s.wall_seconds << " s\n"
+       << std::flush;
+}
+
+nlohmann::json summary_json(const model::Summary& s, const model::Model& model) {
+  nlohmann::json j = {{"completed", s.completed},
+                      {"steps", s.steps},
+                      {"end_time", s.end_time},
+                      {"initial_energy", s.initial_energy},
+                      {"energy_drift", s.energy_drift},
+                      {"linear_momentum_drift", s.linear_momentum_drift},
+                      {"angular_momentum_drift", s.angular_momentum_drift},
+                      {"newton_iterations", s.newton_iterations},
+                      {"newton_iterations_per_step", s.newton_iterations_per_step},
+                      {"wall_seconds", s.wall_seconds},
+                      {"linear_solver_seconds", s.linear_solver_seconds}};
+  if (!model.contact.empty()) j["max_penetration"] = s.max_penetration;
+  return j;
+}
+
+}  // namespace stoss::server::jobs

@@ -1,0 +1,111 @@
+#pragma once
+/// @file JobStore: the state of the queue (what exists, who runs what, how it ended), behind one seam.
+/// SQLite implements it today (sqlite_store.hpp); another database can later, without touching HTTP.
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "server/jobs/job.hpp"
+
+namespace stoss::server::jobs {
+
+/// What POST /v1/jobs asks the store to keep.
+struct NewJob {
+  std::optional<std::string> idempotency_key;
+  std::string body_hash;
+  nlohmann::json scene;
+  std::vector<std::string> effects;
+  Progress progress;  ///< step 0 of `steps`
+};
+
+struct CreateResult {
+  enum class Outcome {
+    created,       ///< committed (durably) as a new queued job
+    existing,      ///< same idempotency key and body: the original job
+    key_conflict,  ///< same idempotency key, different body
+    queue_full     ///< max_queued jobs already wait
+  };
+  Outcome outcome;
+  std::optional<Job> job;  ///< set for created and existing
+};
+
+/// One page of a newest-first listing.
+struct Page {
+  std::vector<Job> jobs;
+  std::optional<std::int64_t> next_cursor;  ///< pass back as `cursor` for the next page
+};
+
+/// How a claimed run ended, as the worker reports it.
+struct Outcome {
+  Status status = Status::failed;  ///< succeeded, failed or canceled
+  std::optional<nlohmann::json> summary;
+  std::optional<std::string> error;
+};
+
+/// What a lease renewal found.
+enum class Lease {
+  held,              ///< renewed
+  cancel_requested,  ///< renewed, and the user asked to cancel
+  lost               ///< the job is no longer this worker's (rescued, deleted): stop without reporting
+};
+
+struct CancelResult {
+  enum class Outcome {
+    canceled,      ///< was queued: canceled at once
+    requested,     ///< is running: the worker will stop within a step
+    already_done,  ///< succeeded or failed: nothing to cancel
+    not_found
+  };
+  Outcome outcome;
+  std::optional<Job> job;  ///< the job after the call (unset when not_found)
+};
+
+enum class RemoveOutcome { removed, not_finished, not_found };
+
+/// What one pass of the rescuer did to running jobs whose lease had expired.
+struct Rescued {
+  int requeued = 0;  ///< back to queued for another attempt
+  int failed = 0;    ///< out of attempts
+  int canceled = 0;  ///< cancel had been requested
+  int total() const { return requeued + failed + canceled; }
+};
+
+/// The job queue's state. Every method is one transaction and safe to call from any thread.
+/// Workers are named by an opaque string; a worker may change a job only while it holds the lease.
+class JobStore {
+ public:
+  virtual ~JobStore() = default;
+
+  /// Queues a job unless the key was seen before or `max_queued` jobs are queued already.
+  virtual CreateResult create(const NewJob& job, int max_queued) = 0;
+  virtual std::optional<Job> get(const JobId& id) = 0;
+  /// Newest first; `cursor` continues a previous page.
+  virtual Page list(std::optional<Status> status, int limit, std::optional<std::int64_t> cursor) = 0;
+
+  /// Takes the oldest queued job: running, attempt + 1, lease until now + `lease`.
+  virtual std::optional<Job> claim(const std::string& worker, Millis lease) = 0;
+  /// Extends the lease to now + `lease` if `worker` still holds it.
+  virtual Lease renew(const JobId& id, const std::string& worker, Millis lease) = 0;
+  /// Records progress; false when the lease is lost.
+  virtual bool progress(const JobId& id, const std::string& worker, const Progress& p) = 0;
+  /// Records the end of a run; false (and no change) when the lease is lost.
+  virtual bool finish(const JobId& id, const std::string& worker, const Outcome& outcome) = 0;
+  /// Gives a running job back to the queue without counting the attempt (graceful shutdown).
+  virtual bool release(const JobId& id, const std::string& worker) = 0;
+
+  /// Cancels a queued job at once; flags a running one for its worker.
+  virtual CancelResult request_cancel(const JobId& id) = 0;
+  /// Running jobs whose lease ended before `now`: requeued while attempt < max_attempts,
+  /// otherwise failed with the reason; canceled if cancel had been requested.
+  virtual Rescued requeue_expired(Millis now, int max_attempts) = 0;
+  /// Deletes a finished job's record (its files are the caller's business).
+  virtual RemoveOutcome remove(const JobId& id) = 0;
+
+  /// Number of jobs in each status (every status present, possibly 0).
+  virtual std::map<Status, std::int64_t> count_by_status() = 0;
+};
+
+}  // namespace stoss::server::jobs

@@ -1,0 +1,79 @@
+#pragma once
+/// @file WorkerPool: N threads that claim queued jobs, hold their leases while an Executor runs them,
+/// and report how each run ended.
+
+#include <atomic>
+#include <condition_variable>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "server/jobs/executor.hpp"
+#include "server/jobs/periodic.hpp"
+#include "server/jobs/store.hpp"
+
+namespace stoss::server::jobs {
+
+struct WorkerPoolOptions {
+  int workers = 2;        ///< concurrent runs (0: this process only queues)
+  Millis lease = 10'000;  ///< a claim holds the job this long unless renewed
+  Millis renew_every = 2'000;
+  Millis idle_poll = 500;  ///< an idle worker looks for work this often even when not notified
+};
+
+class WorkerPool {
+ public:
+  WorkerPool(JobStore& store, Executor& executor, WorkerPoolOptions options);
+  ~WorkerPool() { stop(); }
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+
+  /// Starts the worker threads and the lease keeper.
+  void start();
+  /// Stops claiming, stops the running jobs within a step, gives them back to the queue (they run
+  /// again on the next start), and joins every thread.
+  void stop();
+  /// Wakes idle workers: a job was queued.
+  void notify();
+  /// Stops job `id` within a step if this pool is running it; true if it was.
+  bool cancel(const JobId& id);
+  /// Number of jobs this pool is running now.
+  int running() const;
+  /// This process's worker-name prefix (host, pid, random suffix).
+  const std::string& name() const { return name_; }
+
+ private:
+  /// Why a running job's cancel flag was set.
+  enum class Stop { none, user, shutdown, lease_lost };
+  struct Running {
+    Running(JobId id, std::string worker) : id(std::move(id)), worker(std::move(worker)) {}
+    JobId id;
+    std::string worker;
+    std::atomic<bool> cancel{false};
+    std::atomic<Stop> why{Stop::none};
+    void stop(Stop reason);
+  };
+
+  void work(int index);
+  void run_claimed(const Job& job);
+  void report(const Running& running, const Outcome& outcome);
+  void renew_leases();
+  std::optional<Job> claim(const std::string& worker);
+
+  JobStore& store_;
+  Executor& executor_;
+  WorkerPoolOptions options_;
+  std::string name_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stopping_ = false;
+  std::map<JobId, std::shared_ptr<Running>> running_;
+  std::vector<std::thread> threads_;
+  std::unique_ptr<Periodic> lease_keeper_;
+};
+
+}  // namespace stoss::server::jobs

@@ -1,0 +1,68 @@
+// Progress reports: the system shall report a run's progress about twice a second, not every step,
+// with an ETA, and once more at the end.
+#include "server/jobs/job_observer.hpp"
+
+#include <gtest/gtest.h>
+
+namespace stoss::server::jobs {
+namespace {
+
+model::Model model_of(int steps) {
+  model::Model m;
+  m.time.step = 0.01;
+  m.time.end = 0.01 * steps;
+  return m;
+}
+
+TEST(ProgressObserver, ReportsAtMostOncePerIntervalWithAnEta) {
+  ManualClock clock;
+  std::vector<Progress> reports;
+  ProgressObserver observer([&](const Progress& p) { reports.push_back(p); }, clock, 500);
+  observer.begin(model_of(1000), {});
+  ASSERT_EQ(reports.size(), 1u);  // step 0 right away
+  EXPECT_EQ(reports[0].steps, 1000);
+  for (int step = 1; step <= 100; ++step) {
+    clock.advance(10);  // 100 steps per second
+    observer.step({step, 0.01 * step, {}});
+  }
+  // One second of steps: reports at 500 ms and 1000 ms, not 100.
+  ASSERT_EQ(reports.size(), 3u);
+  EXPECT_EQ(reports[1].step, 50);
+  EXPECT_EQ(reports[2].step, 100);
+  EXPECT_NEAR(reports[2].time, 1.0, 1e-12);
+  ASSERT_TRUE(reports[2].eta_seconds);
+  EXPECT_NEAR(*reports[2].eta_seconds, 9.0, 1e-9);  // 900 steps to go at 10 ms each
+  observer.end({});
+  EXPECT_EQ(reports.size(), 4u);
+}
+
+TEST(ProgressObserver, TheFinalReportOfACompletedRunHasEtaZero) {
+  ManualClock clock;
+  Progress last;
+  ProgressObserver observer([&](const Progress& p) { last = p; }, clock, 500);
+  observer.begin(model_of(3), {});
+  for (int step = 1; step <= 3; ++step) observer.step({step, 0.01 * step, {}});
+  observer.end({});
+  EXPECT_EQ(last.step, 3);
+  EXPECT_EQ(last.eta_seconds, 0.0);
+}
+
+TEST(SummaryJson, CarriesMaxPenetrationOnlyWithContact) {
+  model::Summary s;
+  s.completed = true;
+  s.energy_drift = 1e-12;
+  s.max_penetration = 0.25;
+  s.newton_iterations = 42;
+  s.wall_seconds = 1.5;
+  model::Model m = model_of(10);
+  nlohmann::json j = summary_json(s, m);
+  EXPECT_EQ(j["energy_drift"], 1e-12);
+  EXPECT_EQ(j["newton_iterations"], 42);
+  EXPECT_EQ(j["wall_seconds"], 1.5);
+  EXPECT_FALSE(j.contains("max_penetration"));
+  m.contact.push_back({});
+  EXPECT_EQ(summary_json(s, m)["max_penetration"], 0.25);
+}
+
+}  // namespace
+}  // namespace stoss::server::jobs

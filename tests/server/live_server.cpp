@@ -1,0 +1,197 @@
+#include "tests/server/live_server.hpp"
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <fstream>
+#include <regex>
+#include <stdexcept>
+#include <thread>
+
+extern char** environ;
+
+namespace stoss::test {
+
+namespace {
+
+std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+/// Waits up to `deadline` for the child to exit; its status, or -1 if it still runs.
+int wait_exit(pid_t pid, std::chrono::milliseconds deadline) {
+  int status = -1;
+  const bool exited = eventually([&] { return waitpid(pid, &status, WNOHANG) == pid; }, deadline);
+  return exited ? status : -1;
+}
+
+}  // namespace
+
+TempDir::TempDir() {
+  std::string pattern = (std::filesystem::temp_directory_path() / "stoss-test-XXXXXX").string();
+  if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
+  path_ = pattern;
+}
+
+TempDir::~TempDir() {
+  std::error_code ignored;
+  std::filesystem::remove_all(path_, ignored);
+}
+
+LiveServer::LiveServer(const std::filesystem::path& data, const std::vector<std::string>& extra_args) {
+  static std::atomic<int> counter{0};
+  std::filesystem::create_directories(data);
+  out_ = data / ("server-" + std::to_string(counter++) + ".log");
+  std::vector<std::string> args = {STOSS_BINARY, "serve", "--listen", "127.0.0.1:0", "--data", data.string()};
+  args.insert(args.end(), extra_args.begin(), extra_args.end());
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, out_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  const int rc = posix_spawn(&pid_, STOSS_BINARY, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) throw std::runtime_error("cannot start " + std::string(STOSS_BINARY));
+
+  const std::regex listening(R"(listening on http://127\.0\.0\.1:(\d+))");
+  const bool up = eventually(
+      [&] {
+        std::smatch m;
+        const std::string text = read_text(out_);
+        if (std::regex_search(text, m, listening)) port_ = std::stoi(m[1]);
+        return port_ != 0 || !alive();
+      },
+      std::chrono::seconds(30));
+  if (!up || port_ == 0) {
+    const std::string text = output();
+    kill9();
+    throw std::runtime_error("stoss serve did not start: " + text);
+  }
+}
+
+LiveServer::~LiveServer() {
+  if (pid_ > 0) terminate();
+}
+
+httplib::Client LiveServer::client(const std::string& token) const {
+  httplib::Client c("127.0.0.1", port_);
+  c.set_read_timeout(std::chrono::seconds(60));
+  c.set_connection_timeout(std::chrono::seconds(10));
+  if (!token.empty()) c.set_bearer_token_auth(token);
+  return c;
+}
+
+void LiveServer::kill9() {
+  if (pid_ <= 0) return;
+  ::kill(pid_, SIGKILL);
+  waitpid(pid_, nullptr, 0);
+  pid_ = -1;
+}
+
+int LiveServer::terminate() {
+  if (pid_ <= 0) return exit_status_ == -1 ? -1 : WIFEXITED(exit_status_) ? WEXITSTATUS(exit_status_) : 128;
+  ::kill(pid_, SIGTERM);
+  const int status = wait_exit(pid_, std::chrono::seconds(60));
+  if (status == -1) {
+    ADD_FAILURE() << "stoss serve did not stop on SIGTERM within 60 s";
+    kill9();
+    return -1;
+  }
+  pid_ = -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+bool LiveServer::alive() const {
+  if (pid_ <= 0) return false;
+  int status = 0;
+  if (waitpid(pid_, &status, WNOHANG) != pid_) return true;
+  exit_status_ = status;
+  pid_ = -1;
+  return false;
+}
+
+std::string LiveServer::output() const {
+  return read_text(out_);
+}
+
+bool eventually(const std::function<bool()>& condition, std::chrono::milliseconds deadline) {
+  const auto end = std::chrono::steady_clock::now() + deadline;
+  while (!condition()) {
+    if (std::chrono::steady_clock::now() > end) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return true;
+}
+
+nlohmann::json box_scene(int divisions, int steps, std::array<double, 3> v, double omega) {
+  return {{"format", "stoss-scene/1"},
+          {"name", "box " + std::to_string(divisions) + "^3, " + std::to_string(steps) + " steps"},
+          {"bodies",
+           {{{"name", "box"},
+             {"mesh",
+              {{"box",
+                {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}, {"divisions", {divisions, divisions, divisions}}}}}},
+             {"material",
+              {{"model", "saint_venant_kirchhoff"},
+               {"youngs_modulus", 1000},
+               {"poisson_ratio", 0.3},
+               {"density", 2}}},
+             {"initial_velocity", v},
+             {"initial_angular_velocity", {0, 0, omega}}}}},
+          {"time", {{"scheme", "energy_momentum"}, {"step", 0.01}, {"end", 0.01 * steps}}},
+          {"output", {{"every", std::max(1, steps / 100)}}}};
+}
+
+double box_kinetic_energy(std::array<double, 3> v) {
+  return 0.5 * 2.0 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+nlohmann::json body_json(const httplib::Result& r) {
+  if (!r) {
+    ADD_FAILURE() << "no response: " << httplib::to_string(r.error());
+    return nullptr;
+  }
+  try {
+    return nlohmann::json::parse(r->body);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not JSON (" << e.what() << "): " << r->body;
+    return nullptr;
+  }
+}
+
+httplib::Result submit(httplib::Client& c, const nlohmann::json& scene, const std::string& key) {
+  httplib::Headers headers;
+  if (!key.empty()) headers.emplace("Idempotency-Key", key);
+  return c.Post("/v1/jobs", headers, scene.dump(), "application/json");
+}
+
+nlohmann::json job(httplib::Client& c, const std::string& id) {
+  return body_json(c.Get("/v1/jobs/" + id));
+}
+
+nlohmann::json wait_for_status(httplib::Client& c, const std::string& id,
+                               const std::vector<std::string>& statuses, std::chrono::milliseconds deadline) {
+  nlohmann::json last;
+  const bool reached = eventually(
+      [&] {
+        auto r = c.Get("/v1/jobs/" + id);
+        if (!r || r->status != 200) return false;
+        last = nlohmann::json::parse(r->body);
+        return std::find(statuses.begin(), statuses.end(), last["status"].get<std::string>()) !=
+               statuses.end();
+      },
+      deadline);
+  if (!reached) ADD_FAILURE() << "job " << id << " did not reach the expected status; last: " << last.dump();
+  return last;
+}
+
+}  // namespace stoss::test

@@ -1,0 +1,82 @@
+#pragma once
+/// @file Test support: a temporary directory, the real `stoss serve` binary on a free loopback port,
+/// scenes, and polling with a deadline.
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "server/http/httplib.hpp"
+
+namespace stoss::test {
+
+/// A fresh directory under the system temp dir, removed with everything in it.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+/// `stoss serve --listen 127.0.0.1:0 --data DATA ...` in a child process. The constructor returns once
+/// the server printed its port; the destructor sends SIGTERM and waits (SIGKILL after a deadline).
+class LiveServer {
+ public:
+  LiveServer(const std::filesystem::path& data, const std::vector<std::string>& extra_args = {});
+  ~LiveServer();
+  LiveServer(const LiveServer&) = delete;
+  LiveServer& operator=(const LiveServer&) = delete;
+
+  int port() const { return port_; }
+  pid_t pid() const { return pid_; }
+  /// A client for this server (with `token` as bearer token when given).
+  httplib::Client client(const std::string& token = "") const;
+  /// SIGKILL, as a crash would; the process is reaped.
+  void kill9();
+  /// SIGTERM and wait for the exit code.
+  int terminate();
+  /// True while the process runs.
+  bool alive() const;
+  /// What the server wrote to stdout and stderr.
+  std::string output() const;
+
+ private:
+  mutable pid_t pid_ = -1;        ///< -1 once reaped
+  mutable int exit_status_ = -1;  ///< waitpid status once reaped
+  int port_ = 0;
+  std::filesystem::path out_;
+};
+
+/// Calls `condition` until it is true or `deadline` passes; true if it became true.
+bool eventually(const std::function<bool()>& condition, std::chrono::milliseconds deadline);
+
+/// A box [0,1]³ of `divisions`³ hex8, density 2 (mass 2), SVK, moving with velocity `v` and spinning
+/// at `omega` about z; energy_momentum, `steps` steps of 0.01.
+nlohmann::json box_scene(int divisions, int steps, std::array<double, 3> v = {1, 0.5, 0}, double omega = 0);
+
+/// ½ m |v|² of box_scene's box (m = density × volume = 2).
+double box_kinetic_energy(std::array<double, 3> v);
+
+/// JSON body of a response (fails the test with the body when it is not JSON).
+nlohmann::json body_json(const httplib::Result& r);
+
+/// POST /v1/jobs with a JSON body; returns the result.
+httplib::Result submit(httplib::Client& c, const nlohmann::json& scene, const std::string& key = "");
+
+/// GET /v1/jobs/{id} as JSON.
+nlohmann::json job(httplib::Client& c, const std::string& id);
+
+/// Polls the job until its status is one of `statuses`; returns the last job JSON.
+nlohmann::json wait_for_status(httplib::Client& c, const std::string& id,
+                               const std::vector<std::string>& statuses,
+                               std::chrono::milliseconds deadline = std::chrono::seconds(120));
+
+}  // namespace stoss::test

@@ -1,0 +1,126 @@
+// api/openapi.yaml and the server agree: the system shall serve exactly the routes the spec describes,
+// each answering with a status code the spec documents for it. The test walks the spec.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <set>
+
+#include "server/http/routes.hpp"
+#include "tests/server/live_server.hpp"
+
+namespace stoss::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+/// One operation of the spec: method, path and its documented response codes (in spec order).
+struct Operation {
+  std::string method;
+  std::string path;
+  std::vector<int> codes;
+};
+
+/// Reads the operations under `paths:` (the file keeps to 2-space indentation: path, method, responses,
+/// code).
+std::vector<Operation> read_spec(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  const std::regex path_line(R"(^  (/\S*):\s*$)"), method_line(R"(^    (get|post|put|patch|delete):\s*$)"),
+      code_line(R"(^        '(\d{3})':.*$)"), top_level(R"(^\S.*$)");
+  std::vector<Operation> ops;
+  std::string line, path;
+  bool in_paths = false;
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (std::regex_match(line, top_level)) in_paths = line.rfind("paths:", 0) == 0;
+    if (!in_paths) continue;
+    if (std::regex_match(line, m, path_line)) path = m[1];
+    if (std::regex_match(line, m, method_line)) {
+      std::string method = m[1];
+      std::transform(method.begin(), method.end(), method.begin(), ::toupper);
+      ops.push_back({method, path, {}});
+    }
+    if (std::regex_match(line, m, code_line) && !ops.empty()) ops.back().codes.push_back(std::stoi(m[1]));
+  }
+  return ops;
+}
+
+const std::filesystem::path spec_file = std::filesystem::path(STOSS_SOURCE_DIR) / "api/openapi.yaml";
+
+TEST(OpenApi, TheSpecDescribesExactlyTheServersRoutes) {
+  std::set<std::pair<std::string, std::string>> spec, served;
+  for (const auto& op : read_spec(spec_file)) spec.insert({op.method, op.path});
+  for (const auto& r : server::http::routes()) served.insert({r.method, r.path});
+  EXPECT_EQ(spec.size(), 13u);
+  EXPECT_EQ(spec, served);
+}
+
+TEST(OpenApi, EveryOperationAnswersWithItsDocumentedSuccessCodeAndNeedsTheToken) {
+  TempDir dir;
+  std::ofstream(dir.path() / "token") << "walk-the-spec\n";
+  LiveServer server(dir.path() / "data", {"--workers", "1", "--token-file", (dir.path() / "token").string()});
+  auto c = server.client("walk-the-spec");
+  auto anonymous = server.client();
+
+  // Fixtures: two succeeded jobs (one to read, one to delete) and a long one to cancel.
+  auto make = [&](const nlohmann::json& scene) {
+    return nlohmann::json::parse(submit(c, scene)->body)["id"].get<std::string>();
+  };
+  const std::string done = make(box_scene(2, 10)), doomed = make(box_scene(2, 11));
+  ASSERT_EQ(wait_for_status(c, done, {"succeeded", "failed"})["status"], "succeeded");
+  ASSERT_EQ(wait_for_status(c, doomed, {"succeeded", "failed"})["status"], "succeeded");
+  const std::string running = make(box_scene(4, 100'000, {1, 0, 0}, 2.0));
+  const std::string scene = box_scene(2, 12).dump();
+
+  auto call = [&](httplib::Client& client, const Operation& op) -> httplib::Result {
+    std::string id = op.method == "DELETE"                          ? doomed
+                     : op.path.find("/cancel") != std::string::npos ? running
+                                                                    : done;
+    std::string path = std::regex_replace(op.path, std::regex(R"(\{id\})"), id);
+    if (op.method == "GET") return client.Get(path);
+    if (op.method == "DELETE") return client.Delete(path);
+    return client.Post(path, scene, "application/json");
+  };
+
+  const auto ops = read_spec(spec_file);
+  ASSERT_FALSE(ops.empty());
+  for (const auto& op : ops) {
+    SCOPED_TRACE(op.method + " " + op.path);
+    ASSERT_FALSE(op.codes.empty());
+    const bool public_route = op.path == "/healthz";
+    if (!public_route) {
+      auto refused = call(anonymous, op);
+      ASSERT_TRUE(refused);
+      EXPECT_EQ(refused->status, 401);
+      EXPECT_NE(std::find(op.codes.begin(), op.codes.end(), 401), op.codes.end()) << "401 is not documented";
+    }
+    auto r = call(c, op);
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, op.codes.front()) << r->body.substr(0, 300);
+  }
+}
+
+TEST(OpenApi, MethodsTheSpecDoesNotListAreUnknownRoutes) {
+  TempDir dir;
+  LiveServer server(dir.path() / "data", {"--workers", "0"});
+  auto c = server.client();
+  const auto ops = read_spec(spec_file);
+  std::set<std::pair<std::string, std::string>> listed;
+  for (const auto& op : ops) listed.insert({op.method, op.path});
+  for (const auto& op : ops)
+    for (const std::string method : {"GET", "POST", "DELETE", "PUT", "PATCH"}) {
+      if (listed.count({method, op.path})) continue;
+      const std::string path = std::regex_replace(op.path, std::regex(R"(\{id\})"), std::string(32, 'a'));
+      httplib::Request req;
+      req.method = method;
+      req.path = path;
+      auto r = c.send(req);
+      ASSERT_TRUE(r);
+      EXPECT_EQ(r->status, 404) << method << " " << path;
+      EXPECT_EQ(nlohmann::json::parse(r->body)["type"], "urn:stoss:problem:no-route")
+          << method << " " << path;
+    }
+}
+
+}  // namespace
+}  // namespace stoss::test
