@@ -6,6 +6,7 @@
 #include <memory>
 #include <sstream>
 
+#include "core/contact/contact.hpp"
 #include "core/fem/assembly.hpp"
 #include "core/time/integrator.hpp"
 
@@ -23,6 +24,7 @@ struct Problem {
   solve::SparseMatrix mass;
   std::unique_ptr<fem::ElasticityTerm> elasticity;
   std::unique_ptr<fem::GravityTerm> gravity;
+  std::vector<std::unique_ptr<contact::LagrangeContactTerm>> contact;  ///< one per pair; none without contact
   std::vector<char> fixed;
   double total_mass = 0;
   double length_scale = 1;
@@ -48,9 +50,9 @@ std::vector<char> fixed_dofs(const Model& m) {
 }
 
 Problem build_problem(const Model& m) {
-  if (!m.contact.empty())
-    throw std::invalid_argument("contact pairs are not supported by this build yet: remove /contact to run the scene");
   Problem p;
+  for (const model::ContactPair& pair : m.contact)
+    p.contact.push_back(contact::make_contact_term(m.mesh, pair, m.time.scheme));
   p.geometry = fem::precompute_mesh(m.mesh);
   std::vector<double> density;
   std::vector<fem::SaintVenantKirchhoff> material;
@@ -97,6 +99,11 @@ model::SeriesLayout series_layout(const Model& m) {
   l.series.push_back({"total_energy"});
   l.series.push_back({"linear_momentum", 3});
   l.series.push_back({"angular_momentum", 3});
+  if (!m.contact.empty()) {
+    l.series.push_back({"active_contacts", 1, true});
+    l.series.push_back({"max_penetration"});
+    l.series.push_back({"contact_energy_jump"});
+  }
   l.series.push_back({"newton_iterations", 1, true});
   l.series.push_back({"residual_norm"});
   l.series.push_back({"step_seconds"});
@@ -110,6 +117,26 @@ struct Balance {
   double momentum_scale = 0, angular_scale = 0;  ///< Σ|p_I|, Σ|x_I||p_I|: scales for relative drifts
   double total() const { return kinetic + strain + potential; }
 };
+
+/// The contact series of one step (service.md §3), summed or maximised over the pairs.
+struct ContactRow {
+  int active = 0;
+  double max_penetration = 0, own_face_penetration = 0, energy_jump = 0;
+};
+
+ContactRow contact_row(const Problem& p, const time::Integrator* integrator) {
+  ContactRow c;
+  for (const auto& term : p.contact) {
+    const contact::ContactReport& r = term->report();
+    c.active += r.active;
+    c.max_penetration = std::max(c.max_penetration, r.max_penetration);
+    c.own_face_penetration = std::max(c.own_face_penetration, r.max_own_face_penetration);
+    c.energy_jump += r.energy_jump;
+  }
+  // The velocity correction (4.12) restores (part of) the activation jump as kinetic energy.
+  if (integrator) c.energy_jump += integrator->velocity_correction_energy();
+  return c;
+}
 
 Balance balance(const Problem& p, const time::State& s) {
   Balance b;
@@ -127,8 +154,8 @@ Balance balance(const Problem& p, const time::State& s) {
   return b;
 }
 
-model::StepRow step_row(const time::State& s, const Balance& b, const model::SeriesLayout& layout,
-                        const solve::NewtonResult* newton, double step_seconds) {
+model::StepRow step_row(const time::State& s, const Balance& b, const ContactRow& c,
+                        const model::SeriesLayout& layout, const solve::NewtonResult* newton, double step_seconds) {
   model::StepRow row{s.step, s.t, {}};
   row.values.push_back(b.kinetic);
   row.values.push_back(b.strain);
@@ -136,6 +163,11 @@ model::StepRow step_row(const time::State& s, const Balance& b, const model::Ser
   row.values.push_back(b.total());
   for (int k = 0; k < 3; ++k) row.values.push_back(b.linear[k]);
   for (int k = 0; k < 3; ++k) row.values.push_back(b.angular[k]);
+  if (layout.index_of("active_contacts") >= 0) {
+    row.values.push_back(c.active);
+    row.values.push_back(c.max_penetration);
+    row.values.push_back(c.energy_jump);
+  }
   row.values.push_back(newton ? newton->iterations : 0);
   row.values.push_back(newton ? newton->residuals.back() : 0.0);
   row.values.push_back(step_seconds);
@@ -161,7 +193,14 @@ std::string failure_message(const time::State& s, double h, const solve::NewtonR
 
 bool frame_due(const Model& m, int step, int steps) { return step % m.output.every == 0 || step == steps; }
 
-model::Frame frame_of(const time::State& s) { return model::Frame{s.t, s.x, s.v, {}}; }
+/// Positions, velocities and, with contact, the nodal contact pressure (lagrange_term.hpp).
+model::Frame frame_of(const time::State& s, const Problem& p) {
+  model::Frame f{s.t, s.x, s.v, {}};
+  if (p.contact.empty()) return f;
+  f.contact_pressure = Eigen::VectorXd::Zero(s.x.size() / 3);
+  for (const auto& term : p.contact) term->contact_pressure(f.contact_pressure);
+  return f;
+}
 
 }  // namespace
 
@@ -170,8 +209,9 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
   Problem p = build_problem(m);
   std::vector<time::Term*> terms{p.elasticity.get()};
   if (p.gravity) terms.push_back(p.gravity.get());
+  for (const auto& c : p.contact) terms.push_back(c.get());
   time::Integrator integrator(p.mass, terms, p.fixed, time::make_scheme(m.time.scheme, m.time.alpha),
-                              solve::NewtonOptions{m.solver.tolerance, m.solver.max_iterations},
+                              solve::NewtonOptions{m.solver.tolerance, m.solver.max_iterations, 6, true, std::getenv("RC") ? std::atof(std::getenv("RC")) : 0.25},
                               p.length_scale, p.total_mass);
   time::State s;
   s.x = m.mesh.reference_positions();
@@ -183,8 +223,8 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
   const int steps = m.time.steps();
   observer.begin(m, layout);
   const Balance b0 = balance(p, s);
-  observer.step(step_row(s, b0, layout, nullptr, 0.0));
-  observer.frame(frame_of(s));
+  observer.step(step_row(s, b0, contact_row(p, nullptr), layout, nullptr, 0.0));
+  observer.frame(frame_of(s, p));
 
   model::Summary sum;
   sum.initial_energy = b0.total();
@@ -213,8 +253,11 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
     sum.newton_iterations += r.iterations;
     const Balance b = balance(p, s);
     update_drifts(sum, b0, b);
-    observer.step(step_row(s, b, layout, &r, seconds_since(t0)));
-    if (frame_due(m, n, steps)) observer.frame(frame_of(s));
+    const ContactRow c = contact_row(p, &integrator);
+    sum.max_penetration = std::max(sum.max_penetration, c.max_penetration);
+    sum.max_own_face_penetration = std::max(sum.max_own_face_penetration, c.own_face_penetration);
+    observer.step(step_row(s, b, c, layout, &r, seconds_since(t0)));
+    if (frame_due(m, n, steps)) observer.frame(frame_of(s, p));
   }
   return finish(true);
 }

@@ -47,7 +47,8 @@ struct Summary {
   double energy_drift = 0;           ///< max over steps |H_n − H_0| / |H_0|
   double linear_momentum_drift = 0;  ///< max |L_n − L_0| / max(|L_0|, m·v scale)
   double angular_momentum_drift = 0; ///< max |J_n − J_0| / max(|J_0|, ...)
-  double max_penetration = 0;        ///< only meaningful with contact
+  double max_penetration = 0;        ///< only meaningful with contact: series max_penetration, max over steps
+  double max_own_face_penetration = 0;  ///< with contact: active slave nodes below their own master face
   int newton_iterations = 0;         ///< total
   double newton_iterations_per_step = 0;
   double wall_seconds = 0;

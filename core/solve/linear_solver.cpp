@@ -11,6 +11,11 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 struct LinearSolver::Impl {
+  Impl() {
+    // No iterative refinement inside UMFPACK: Newton refines the solution itself, and refinement
+    // made each solve four times dearer (5.9 ms instead of 1.4 ms on the 4563-dof ball-on-plate system).
+    lu.umfpackControl()(UMFPACK_IRSTEP) = 0;
+  }
   Eigen::UmfPackLU<SparseMatrix> lu;
 };
 

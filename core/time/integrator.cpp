@@ -1,8 +1,31 @@
 #include "core/time/integrator.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 namespace stoss::time {
+namespace {
+
+/// Appends a later Newton solve of the same step to the step's record.
+void merge(solve::NewtonResult& total, const solve::NewtonResult& pass) {
+  total.converged = pass.converged;
+  total.iterations += pass.iterations;
+  total.backtracks += pass.backtracks;
+  total.residuals.insert(total.residuals.end(), pass.residuals.begin(), pass.residuals.end());
+  total.failure = pass.failure;
+}
+
+/// M with the rows and columns of fixed dofs replaced by identity rows (SPD for a consistent mass).
+solve::SparseMatrix free_mass(const solve::SparseMatrix& M, const std::vector<char>& fixed) {
+  solve::SparseMatrix out = M;
+  for (int c = 0; c < out.outerSize(); ++c)
+    for (solve::SparseMatrix::InnerIterator it(out, c); it; ++it)
+      if (fixed[c] || fixed[it.row()]) it.valueRef() = it.row() == c ? 1.0 : 0.0;
+  return out;
+}
+
+}  // namespace
 
 Integrator::Integrator(const solve::SparseMatrix& mass, std::vector<Term*> terms, std::vector<char> fixed,
                        std::unique_ptr<Scheme> scheme, solve::NewtonOptions options, double length_scale,
@@ -23,11 +46,13 @@ double Integrator::potential_energy(const Eigen::VectorXd& x) const {
 
 int Integrator::prepare_unknowns() {
   int offset = static_cast<int>(mass_.rows());
-  for (Term* t : terms_) {
-    t->set_auxiliary_offset(offset);
-    offset += t->auxiliary_count();
+  bool structure_changed = structure_generations_.size() != terms_.size();
+  for (size_t k = 0; k < terms_.size(); ++k) {
+    terms_[k]->set_auxiliary_offset(offset);
+    offset += terms_[k]->auxiliary_count();
+    structure_changed = structure_changed || structure_generations_[k] != terms_[k]->structure_generation();
   }
-  if (offset != auxiliary_layout_ || !pattern_.built()) rebuild_pattern(offset);
+  if (offset != auxiliary_layout_ || !pattern_.built() || structure_changed) rebuild_pattern(offset);
   return offset;
 }
 
@@ -36,8 +61,11 @@ void Integrator::rebuild_pattern(int n) {
   mass_block_ = pattern_.add_sparse(mass_);
   for (Term* t : terms_) t->register_blocks(pattern_);
   pattern_.build(n);
+  fixed_.resize(mass_.rows());
   fixed_.resize(n, 0);
   auxiliary_layout_ = n;
+  structure_generations_.clear();
+  for (const Term* t : terms_) structure_generations_.push_back(t->structure_generation());
 }
 
 void Integrator::initialize(State& s) {
@@ -60,9 +88,37 @@ void Integrator::initialize(State& s) {
   s.a = -lu.solve(R);
 }
 
-solve::NewtonResult Integrator::step(State& s, double h, const std::function<void(const std::string&)>& log) {
-  context_ = std::make_unique<StepContext>(StepContext{s.x, s.v, h, scheme_->force_rule(), scheme_->alpha()});
+Eigen::VectorXd Integrator::relayout(const Eigen::VectorXd& positions) {
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(prepare_unknowns());
+  z.head(positions.size()) = positions;
+  for (Term* t : terms_) t->initialize_auxiliaries(*context_, z);
+  return z;
+}
+
+solve::NewtonResult Integrator::solve_with_active_set(Eigen::VectorXd& z, const LogFunction& log) {
+  solve::NewtonResult total;
+  const Eigen::Index nx = state_->x.size();
+  for (passes_ = 1;; ++passes_) {
+    merge(total, solve::newton_solve(*this, z, pattern_, solver_, options_, log));
+    if (!total.converged) return total;
+    bool changed = false;
+    for (Term* t : terms_) changed = t->update_active_set(*context_, z) || changed;  // §3.5
+    if (!changed) return total;
+    if (passes_ == max_active_set_passes) {
+      total.converged = false;
+      total.failure = "the contact active set did not settle in " + std::to_string(passes_) + " passes";
+      return total;
+    }
+    z = relayout(z.head(nx));
+  }
+}
+
+solve::NewtonResult Integrator::step(State& s, double h, const LogFunction& log) {
+  context_ = std::make_unique<StepContext>(
+      StepContext{s.x, s.v, h, scheme_->force_rule(), scheme_->alpha(), log ? &log : nullptr});
   state_ = &s;
+  correction_energy_ = 0;
+  for (Term* t : terms_) t->prepare_step(*context_);
   const int n = prepare_unknowns();
   Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
   z.head(s.x.size()) = s.x + h * s.v;  // predictor
@@ -71,10 +127,15 @@ solve::NewtonResult Integrator::step(State& s, double h, const std::function<voi
   for (Term* t : terms_) t->begin_step(*context_, z);
   residual_scale_ = 2 * (mass_ * s.v).norm();
   scale_pending_ = true;
-  solve::NewtonResult result = solve::newton_solve(*this, z, pattern_, solver_, options_, log);
+  solve::NewtonResult result = solve_with_active_set(z, log);
+  if (std::getenv("STOSS_DEBUG") && log) log("DEBUG passes " + std::to_string(passes_) + " facts " + std::to_string(solver_.factorizations()) + " hist " + solve::format_history(result.residuals));
   if (result.converged) {
+    Eigen::VectorXd impulse = Eigen::VectorXd::Zero(s.x.size());
+    double jump = 0;
+    for (const Term* t : terms_) t->add_impact_impulse(*context_, z, impulse, jump);
     for (Term* t : terms_) t->end_step(*context_, z);
     scheme_->advance(s, h, z.head(s.x.size()));
+    if (impulse.squaredNorm() > 0) correct_velocity(s, std::move(impulse), jump);
     s.t += h;
     s.step += 1;
   }
@@ -97,20 +158,36 @@ void Integrator::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& R, solve::B
   if (scale_pending_) {
     // (2.3) has momentum units: scale by ‖2 M v_n‖, the predictor's force impulse, or a floor.
     const double floor = 1e-4 * total_mass_ * length_scale_ / h;
-    residual_scale_ = std::max({residual_scale_, R.norm(), floor});
+    residual_scale_ = std::max({residual_scale_, R.head(state_->x.size()).norm(), floor});
     scale_pending_ = false;
   }
 }
 
 double Integrator::residual_measure(const Eigen::VectorXd& R) const {
-  const Eigen::Index nx = state_->x.size();
-  const double position_rows = R.head(nx).norm() / residual_scale_;
-  const double auxiliary_rows = R.size() > nx ? R.tail(R.size() - nx).norm() / length_scale_ : 0.0;
-  return std::max(position_rows, auxiliary_rows);
+  double measure = R.head(state_->x.size()).norm() / residual_scale_;
+  for (const Term* t : terms_) measure = std::max(measure, t->auxiliary_residual_measure(R, scales()));
+  return measure;
 }
 
 double Integrator::increment_measure(const Eigen::VectorXd& dz) const {
-  return dz.head(state_->x.size()).norm() / length_scale_;
+  double measure = dz.head(state_->x.size()).norm() / length_scale_;
+  for (const Term* t : terms_) measure = std::max(measure, t->auxiliary_increment_measure(dz, scales()));
+  return measure;
+}
+
+void Integrator::correct_velocity(State& s, Eigen::VectorXd b, double energy_jump) {
+  if (!mass_solver_) {
+    mass_solver_ = std::make_unique<Eigen::SimplicialLDLT<solve::SparseMatrix>>(free_mass(mass_, fixed_));
+  }
+  for (Eigen::Index i = 0; i < b.size(); ++i)
+    if (fixed_[i]) b[i] = 0;
+  const Eigen::VectorXd u = mass_solver_->solve(b);  // u = M⁻¹ b (4.12)
+  const double a = b.dot(u), beta = b.dot(s.v);
+  if (!(a > 0)) return;
+  const double discriminant = std::max(beta * beta - 2 * a * energy_jump, 0.0);
+  const double gamma = (-beta - std::sqrt(discriminant)) / a;  // the root with γ < 0 (4.12)
+  s.v += gamma * u;
+  correction_energy_ = gamma * beta + 0.5 * gamma * gamma * a;
 }
 
 }  // namespace stoss::time

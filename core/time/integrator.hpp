@@ -1,6 +1,8 @@
 #pragma once
-/// @file One time step: the scheme's inertia plus every term, solved by Newton (formulation.md (2.3)).
+/// @file One time step: the scheme's inertia plus every term, solved by Newton inside the active-set
+/// loop of the contact terms (formulation.md (2.3), §3.5).
 
+#include <Eigen/SparseCholesky>
 #include <functional>
 #include <memory>
 #include <string>
@@ -15,28 +17,45 @@ namespace stoss::time {
 /// Turns the terms into one nonlinear system per step and solves it. It does not know which terms exist.
 class Integrator : private solve::NonlinearSystem {
  public:
+  /// Most Newton solves of one step while terms keep changing their auxiliary sets (§3.5).
+  static constexpr int max_active_set_passes = 20;
+
   /// `fixed` marks Dirichlet dofs (3 per node); `length_scale` and `total_mass` set the convergence scales.
   Integrator(const solve::SparseMatrix& mass, std::vector<Term*> terms, std::vector<char> fixed,
              std::unique_ptr<Scheme> scheme, solve::NewtonOptions options, double length_scale, double total_mass);
 
   /// Completes the initial state (HHT: M a_0 = f_ext − f_int(x_0)).
   void initialize(State& s);
-  /// Solves the step t → t + h. On convergence advances s and calls every term's end_step; otherwise
-  /// leaves s as it was. `log` receives solver events.
-  solve::NewtonResult step(State& s, double h, const std::function<void(const std::string&)>& log = {});
+  /// Solves the step t → t + h: Newton, repeated while a term changes its active set (at most
+  /// max_active_set_passes solves), then the velocity correction (4.12) if a term asks for it. On
+  /// convergence advances s and calls every term's end_step; otherwise leaves s as it was. The result
+  /// sums iterations and backtracks over the solves and lists every residual. `log` receives solver events.
+  solve::NewtonResult step(State& s, double h, const LogFunction& log = {});
 
   /// Σ of the terms' potential energies at x.
   double potential_energy(const Eigen::VectorXd& x) const;
   const Scheme& scheme() const { return *scheme_; }
   double linear_solver_seconds() const { return solver_.seconds(); }
+  /// Newton solves in the last step (1 + active-set changes).
+  int active_set_passes() const { return passes_; }
+  /// Kinetic energy added by the velocity correction (4.12) in the last step (0 if none).
+  double velocity_correction_energy() const { return correction_energy_; }
 
  private:
   void evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& R, solve::BlockPattern* A) override;
   double residual_measure(const Eigen::VectorXd& R) const override;
   double increment_measure(const Eigen::VectorXd& dz) const override;
-  /// Lays out the auxiliary unknowns and rebuilds the pattern when their number changed.
+  /// Lays out the auxiliary unknowns and rebuilds the pattern when their number or a term's
+  /// structure changed. Returns the number of unknowns.
   int prepare_unknowns();
   void rebuild_pattern(int n);
+  /// z for the current layout: positions from `positions`, auxiliaries from the terms.
+  Eigen::VectorXd relayout(const Eigen::VectorXd& positions);
+  /// Newton passes with active-set updates; false result if a solve fails or the set never settles.
+  solve::NewtonResult solve_with_active_set(Eigen::VectorXd& z, const LogFunction& log);
+  /// (4.12): v_{n+1} += γ M⁻¹b for the terms' impact impulse b, restoring their energy jump.
+  void correct_velocity(State& s, Eigen::VectorXd impulse, double energy_jump);
+  MeasureScales scales() const { return {residual_scale_, length_scale_}; }
 
   const solve::SparseMatrix& mass_;
   std::vector<Term*> terms_;
@@ -48,13 +67,17 @@ class Integrator : private solve::NonlinearSystem {
   solve::BlockPattern pattern_;
   solve::LinearSolver solver_;
   int mass_block_ = -1;
-  int auxiliary_layout_ = -1;  ///< total auxiliary count the pattern was built for
+  int auxiliary_layout_ = -1;               ///< total unknown count the pattern was built for
+  std::vector<int> structure_generations_;  ///< per term, at the last rebuild
+  std::unique_ptr<Eigen::SimplicialLDLT<solve::SparseMatrix>> mass_solver_;  ///< for (4.12), built on first use
 
   // The step being solved (valid inside step()).
   const State* state_ = nullptr;
   std::unique_ptr<StepContext> context_;
   double residual_scale_ = 0;
   bool scale_pending_ = false;
+  int passes_ = 0;
+  double correction_energy_ = 0;
 };
 
 }  // namespace stoss::time

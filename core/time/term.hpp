@@ -2,6 +2,7 @@
 /// @file One physical effect in the discrete equations of a step (architecture.md, "Term").
 
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 
 #include "core/solve/block_pattern.hpp"
@@ -15,18 +16,33 @@ enum class ForceRule {
   hht,                ///< (1+α) f(x_{n+1}) − α f(x_n)                        (2.11)
 };
 
+/// Receives solver events (a line each).
+using LogFunction = std::function<void(const std::string&)>;
+
 /// The step being solved.
 struct StepContext {
   const Eigen::VectorXd& x_n;  ///< positions at t_n (3 per node)
   const Eigen::VectorXd& v_n;  ///< velocities at t_n
   double h = 0;                ///< step size
   ForceRule rule = ForceRule::discrete_gradient;
-  double alpha = 0;            ///< HHT-α parameter (rule == hht)
+  double alpha = 0;                 ///< HHT-α parameter (rule == hht)
+  const LogFunction* log = nullptr;  ///< solver log of the run; may be null
+};
+
+/// Scales that make a term's rows and increments dimensionless (Integrator::residual_measure).
+struct MeasureScales {
+  double momentum = 1;  ///< scale of the position rows of (2.3): ‖2 M v_n‖, the predictor residual or a floor
+  double length = 1;    ///< model length (bounding-box diagonal)
 };
 
 /// A term adds h · f_alg (the scheme's algorithmic force, momentum units) to the position rows of the
 /// step residual, its own equations to the rows of its auxiliary unknowns (contact multipliers), and
 /// their derivatives with respect to the unknowns z = [x_{n+1}; auxiliaries] to the Jacobian.
+///
+/// Order of calls in a step (Integrator::step): prepare_step → layout (auxiliary_count,
+/// set_auxiliary_offset, register_blocks if the pattern changed) → begin_step → Newton (add) →
+/// update_active_set; while any term changed its set: layout → initialize_auxiliaries → Newton →
+/// update_active_set. Then add_impact_impulse and end_step.
 class Term {
  public:
   virtual ~Term() = default;
@@ -35,7 +51,11 @@ class Term {
   virtual double energy(const Eigen::VectorXd& x) const { return 0; }
   /// Registers the Jacobian blocks the term writes (called whenever the pattern is rebuilt).
   virtual void register_blocks(solve::BlockPattern& pattern) = 0;
-  /// Called once per step before Newton, with the predictor in z (cache what depends on x_n only).
+  /// Called once per step before the unknowns are laid out; a term may change its auxiliary set here
+  /// (contact: search, face switches at t_n).
+  virtual void prepare_step(const StepContext& step) {}
+  /// Called once per step before Newton, with the predictor in z (cache what depends on x_n only; a
+  /// term with auxiliaries writes their initial values).
   virtual void begin_step(const StepContext& step, Eigen::VectorXd& z) {}
   /// Adds the term's residual (and, if K is given, its Jacobian) at z.
   virtual void add(const StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
@@ -44,6 +64,25 @@ class Term {
   virtual int auxiliary_count() const { return 0; }
   /// Where the term's auxiliary unknowns start in z.
   virtual void set_auxiliary_offset(int offset) {}
+  /// Changes whenever the blocks the term registers change, even if auxiliary_count() does not
+  /// (contact: an element moved to another face). The integrator rebuilds the pattern on a change.
+  virtual int structure_generation() const { return 0; }
+  /// After a re-layout inside a step: writes the initial values of the auxiliaries into z, whose
+  /// positions hold the current iterate.
+  virtual void initialize_auxiliaries(const StepContext& step, Eigen::VectorXd& z) {}
+  /// After Newton converged with the current auxiliary set: updates the set from the solution z
+  /// (the contact active set, formulation.md §3.5). Returns true if it changed.
+  virtual bool update_active_set(const StepContext& step, const Eigen::VectorXd& z) { return false; }
+  /// Dimensionless size of the term's auxiliary rows in R (the largest over its groups of rows of
+  /// like units). Terms that own auxiliaries override it; converged when ≤ the Newton tolerance.
+  virtual double auxiliary_residual_measure(const Eigen::VectorXd& R, const MeasureScales& s) const { return 0; }
+  /// Dimensionless size of the term's auxiliary part of a Newton increment.
+  virtual double auxiliary_increment_measure(const Eigen::VectorXd& dz, const MeasureScales& s) const { return 0; }
+  /// After a converged step, before end_step: adds the term's impact impulse b (momentum units, 3 per
+  /// node) and its energy jump ΔH to be restored by the velocity correction (4.12); most terms add
+  /// nothing.
+  virtual void add_impact_impulse(const StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& b,
+                                  double& energy_jump) const {}
   /// After a converged step: commit history (friction slip, active sets).
   virtual void end_step(const StepContext& step, const Eigen::VectorXd& z) {}
 };

@@ -12,7 +12,9 @@ nlohmann::json links(const jobs::Job& job) {
   const std::string self = "/v1/jobs/" + job.id.str();
   nlohmann::json l = {{"self", self}, {"log", self + "/log"}};
   if (!jobs::is_terminal(job.status)) l["cancel"] = self + "/cancel";
-  if (job.status == jobs::Status::succeeded) {
+  if (job.status == jobs::Status::succeeded && job.kind == jobs::Kind::study) {
+    l["study"] = self + "/study";
+  } else if (job.status == jobs::Status::succeeded) {
     l["result"] = self + "/result";
     l["result_xdmf"] = self + "/result.xdmf";
     l["series"] = self + "/series";
@@ -24,6 +26,7 @@ nlohmann::json links(const jobs::Job& job) {
 
 nlohmann::json job_json(const jobs::Job& job) {
   nlohmann::json j = {{"id", job.id.str()},
+                      {"kind", jobs::to_string(job.kind)},
                       {"status", jobs::to_string(job.status)},
                       {"created", jobs::format_rfc3339(job.created)},
                       {"started", time_or_null(job.started)},
@@ -36,6 +39,7 @@ nlohmann::json job_json(const jobs::Job& job) {
                       {"links", links(job)}};
   if (job.error) j["error"] = *job.error;
   if (job.idempotency_key) j["idempotency_key"] = *job.idempotency_key;
+  if (job.study) j["study"] = *job.study;
   return j;
 }
 

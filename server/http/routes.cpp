@@ -9,7 +9,9 @@
 #include "server/http/job_json.hpp"
 #include "server/http/problem.hpp"
 #include "server/http/scene_check.hpp"
+#include "server/http/study_check.hpp"
 #include "server/jobs/sha256.hpp"
+#include "server/jobs/study_job.hpp"
 
 namespace stoss::server::http {
 
@@ -41,13 +43,22 @@ jobs::Job find_job(App& app, const Request& req) {
   return *job;
 }
 
-/// 409 unless the job succeeded (its result files exist only then).
-void require_succeeded(const jobs::Job& job) {
+/// 409 unless the job succeeded (its result files exist only then); `what` names them in the detail.
+void require_succeeded(const jobs::Job& job, const std::string& what = "result") {
   if (job.status == jobs::Status::succeeded) return;
   const std::string status = jobs::to_string(job.status);
-  const std::string why =
-      jobs::is_terminal(job.status) ? "; it has no result" : "; the result exists once it succeeded";
+  const std::string why = jobs::is_terminal(job.status) ? "; it has no " + what
+                                                        : "; the " + what + " exists once it succeeded";
   fail(409, "no-result", "Job has no result", "job " + job.id.str() + " is " + status + why);
+}
+
+/// 409 for a study job, which has a table instead of a result file; then 409 unless the job succeeded.
+void require_result_file(const jobs::Job& job) {
+  if (job.kind == jobs::Kind::study)
+    fail(409, "no-result", "Job has no result",
+         "job " + job.id.str() + " is a study job; a study job has no result file; see /v1/jobs/" + job.id.str() +
+             "/study");
+  require_succeeded(job);
 }
 
 std::optional<std::string> read_file(const std::filesystem::path& path) {
@@ -66,13 +77,8 @@ std::optional<std::string> idempotency_key(const Request& req) {
   return key;
 }
 
-void submit_job(App& app, const Request& req, Response& res) {
-  const auto key = idempotency_key(req);
-  const nlohmann::json scene = parse_json_body(req, app.limits);
-  const scene::Summary summary = check_scene(scene, app.limits);
-  jobs::NewJob job{key, jobs::sha256_hex(scene.dump()), scene, summary.effects, {}};
-  job.progress.steps = summary.steps;
-  job.progress.end = scene.contains("time") ? scene["time"].value("end", 0.0) : 0.0;
+/// Stores `job` (201, or 200 for a repeated Idempotency-Key with the same body) and wakes the workers.
+void queue_job(App& app, const jobs::NewJob& job, Response& res) {
   const jobs::CreateResult created = app.store.create(job, app.limits.max_queued);
   using Outcome = jobs::CreateResult::Outcome;
   switch (created.outcome) {
@@ -82,7 +88,7 @@ void submit_job(App& app, const Request& req, Response& res) {
                " jobs (max_queued); retry later");
     case Outcome::key_conflict:
       fail(422, "idempotency-key-reused", "Idempotency-Key reused",
-           "Idempotency-Key '" + *key + "' was used for job " + created.job->id.str() +
+           "Idempotency-Key '" + *job.idempotency_key + "' was used for job " + created.job->id.str() +
                " with a different body");
     case Outcome::existing:
       return send_json(res, 200, job_json(*created.job));
@@ -91,6 +97,34 @@ void submit_job(App& app, const Request& req, Response& res) {
       res.set_header("Location", "/v1/jobs/" + created.job->id.str());
       return send_json(res, 201, job_json(*created.job));
   }
+}
+
+void submit_job(App& app, const Request& req, Response& res) {
+  jobs::NewJob job;
+  job.idempotency_key = idempotency_key(req);
+  job.scene = parse_json_body(req, app.limits);
+  const scene::Summary summary = check_scene(job.scene, app.limits);
+  job.body_hash = jobs::sha256_hex(job.scene.dump());
+  job.effects = summary.effects;
+  job.progress.steps = summary.steps;
+  job.progress.end = job.scene.contains("time") ? job.scene["time"].value("end", 0.0) : 0.0;
+  queue_job(app, job, res);
+}
+
+/// A study is a job of kind "study": progress counts runs; its table is served by get_study.
+void submit_study(App& app, const Request& req, Response& res) {
+  jobs::NewJob job;
+  job.idempotency_key = idempotency_key(req);
+  const nlohmann::json body = parse_json_body(req, app.limits);
+  const StudyRequest study = check_study(body, app.limits);
+  job.kind = jobs::Kind::study;
+  job.body_hash = jobs::sha256_hex("study\n" + body.dump());  // never equal to a scene's hash
+  job.scene = study.scene;
+  job.study = jobs::study_params_json(study.options);
+  job.effects = study.summary.effects;
+  job.progress.steps = study.runs;
+  job.progress.end = study.scene["time"].value("end", 0.0);
+  queue_job(app, job, res);
 }
 
 /// 1 to `max_length` ASCII digits.
@@ -188,7 +222,7 @@ void stream_file(const Request& req, Response& res, const std::filesystem::path&
 
 void get_result(App& app, const Request& req, Response& res) {
   const jobs::Job job = find_job(app, req);
-  require_succeeded(job);
+  require_result_file(job);
   const auto path = app.files.result(job.id);
   std::error_code error;
   const auto size = std::filesystem::file_size(path, error);
@@ -208,7 +242,7 @@ void get_result(App& app, const Request& req, Response& res) {
 
 void get_result_xdmf(App& app, const Request& req, Response& res) {
   const jobs::Job job = find_job(app, req);
-  require_succeeded(job);
+  require_result_file(job);
   auto text = read_file(app.files.xdmf(job.id));
   if (!text)
     fail(500, "missing-result", "Result missing", "job " + job.id.str() + " succeeded but its XDMF is gone");
@@ -216,15 +250,39 @@ void get_result_xdmf(App& app, const Request& req, Response& res) {
   res.set_content(*text, "application/xml");
 }
 
+/// The `format` query parameter: `allowed[0]` when absent, 400 when not one of `allowed`.
+std::string format_param(const Request& req, const std::vector<std::string>& allowed) {
+  const std::string format = req.has_param("format") ? req.get_param_value("format") : allowed.front();
+  if (std::find(allowed.begin(), allowed.end(), format) != allowed.end()) return format;
+  std::string names;
+  for (const auto& name : allowed) names += (names.empty() ? "" : ", ") + name;
+  fail(400, "bad-parameter", "Bad parameter", "format must be one of " + names);
+}
+
 void get_series(App& app, const Request& req, Response& res) {
-  const std::string format = req.has_param("format") ? req.get_param_value("format") : "json";
-  if (format != "json" && format != "csv")
-    fail(400, "bad-parameter", "Bad parameter", "format must be json or csv");
+  const std::string format = format_param(req, {"json", "csv"});
   const jobs::Job job = find_job(app, req);
-  require_succeeded(job);
+  require_result_file(job);
   const auto path = app.files.result(job.id);
   if (format == "csv") return res.set_content(output::series_csv(path), "text/csv");
   res.set_content(dump(output::series_json(path)), json_type);
+}
+
+/// A study job's table: JSON as written (study::to_json), CSV or Markdown made from it.
+void get_study(App& app, const Request& req, Response& res) {
+  const std::string format = format_param(req, {"json", "csv", "markdown"});
+  const jobs::Job job = find_job(app, req);
+  if (job.kind != jobs::Kind::study)
+    fail(404, "not-a-study", "Not a study",
+         "job " + job.id.str() + " is a simulation job; only a study job (POST /v1/studies) has a study table");
+  require_succeeded(job, "study table");
+  const auto text = read_file(app.files.study(job.id));
+  if (!text)
+    fail(500, "missing-result", "Result missing", "job " + job.id.str() + " succeeded but its study table is gone");
+  if (format == "json") return res.set_content(*text, json_type);
+  const study::Result table = jobs::study_result_from_json(nlohmann::json::parse(*text));
+  if (format == "csv") return res.set_content(study::to_csv(table), "text/csv");
+  res.set_content(study::to_markdown(table), "text/markdown; charset=utf-8");
 }
 
 void get_log(App& app, const Request& req, Response& res) {
@@ -288,6 +346,8 @@ const std::vector<RouteEntry>& route_table() {
       {{"GET", "/v1/jobs/{id}/result.xdmf", true}, get_result_xdmf},
       {{"GET", "/v1/jobs/{id}/series", true}, get_series},
       {{"GET", "/v1/jobs/{id}/log", true}, get_log},
+      {{"GET", "/v1/jobs/{id}/study", true}, get_study},
+      {{"POST", "/v1/studies", true}, submit_study},
       {{"POST", "/v1/validate", true}, validate_scene},
       {{"GET", "/v1/schema/scene", true}, get_schema},
       {{"GET", "/healthz", false}, get_health},

@@ -28,6 +28,16 @@ bool is_terminal(Status s) {
   return s == Status::succeeded || s == Status::failed || s == Status::canceled;
 }
 
+std::string to_string(Kind k) {
+  return k == Kind::study ? "study" : "simulation";
+}
+
+std::optional<Kind> parse_kind(std::string_view text) {
+  if (text == "simulation") return Kind::simulation;
+  if (text == "study") return Kind::study;
+  return std::nullopt;
+}
+
 nlohmann::json to_json(const Progress& p) {
   return {{"step", p.step},
           {"steps", p.steps},

@@ -26,7 +26,15 @@ std::optional<Status> parse_status(std::string_view text);
 /// succeeded, failed and canceled: nothing will happen to the job any more.
 bool is_terminal(Status s);
 
-/// How far a run has come (service.md §2 `progress`).
+/// What a job runs: one simulation of its scene, or a study (a sweep of schemes × step sizes against a
+/// fine reference run, core/study).
+enum class Kind { simulation, study };
+
+std::string to_string(Kind k);
+/// The kind named `text`, or nullopt.
+std::optional<Kind> parse_kind(std::string_view text);
+
+/// How far a run has come (service.md §2 `progress`). For a study, `step`/`steps` count runs.
 struct Progress {
   int step = 0;                       ///< converged steps so far
   int steps = 0;                      ///< steps to reach `end`
@@ -42,6 +50,7 @@ Progress progress_from_json(const nlohmann::json& j);
 struct Job {
   std::int64_t seq = 0;  ///< insertion order (the list cursor); not shown as an id
   JobId id = JobId::random();
+  Kind kind = Kind::simulation;
   Status status = Status::queued;
   Millis created = 0;
   std::optional<Millis> started;  ///< start of the latest attempt
@@ -57,6 +66,9 @@ struct Job {
   Progress progress;
   std::optional<nlohmann::json> summary;  ///< set when the run ended (also for canceled runs)
   std::optional<std::string> error;       ///< set when failed
+  /// A study's parameters as accepted (steps, schemes, reference_step, defaults filled in); unset for a
+  /// simulation.
+  std::optional<nlohmann::json> study;
 };
 
 }  // namespace stoss::server::jobs

@@ -48,13 +48,19 @@ const std::vector<std::string> migrations = {
     R"sql(
     CREATE INDEX jobs_by_lease ON jobs (status, lease_expires_ms);
     )sql",
+    // 3: study jobs. Every job that existed before is a simulation.
+    R"sql(
+    ALTER TABLE jobs ADD COLUMN kind TEXT NOT NULL DEFAULT 'simulation'
+                     CHECK (kind IN ('simulation', 'study'));
+    ALTER TABLE jobs ADD COLUMN study TEXT;
+    )sql",
 };
 
 /// Every column but `scene` (scenes can be megabytes; only a worker needs one).
 const std::string job_columns =
     "seq, id, status, created_ms, started_ms, finished_ms, attempt, worker, lease_expires_ms, "
     "cancel_requested, idempotency_key, body_hash, effects, progress_step, progress_steps, progress_time, "
-    "progress_end, progress_eta, summary, error";
+    "progress_end, progress_eta, summary, error, kind, study";
 
 Status status_column(const Statement& s, int col) {
   auto status = parse_status(s.text(col));
@@ -90,7 +96,11 @@ Job read_job(const Statement& s, bool with_scene = false) {
                   s.optional_real(17)};
   job.summary = json_column(s, 18);
   job.error = s.optional_text(19);
-  if (with_scene) job.scene = nlohmann::json::parse(s.text(20));
+  auto kind = parse_kind(s.text(20));
+  if (!kind) throw sqlite::Error("job store: unknown kind '" + s.text(20) + "'");
+  job.kind = *kind;
+  job.study = json_column(s, 21);
+  if (with_scene) job.scene = nlohmann::json::parse(s.text(22));
   return job;
 }
 
@@ -214,7 +224,8 @@ CreateResult SqliteStore::create(const NewJob& job, int max_queued) {
   Statement insert(
       *c,
       "INSERT INTO jobs (id, status, created_ms, idempotency_key, body_hash, scene, effects, "
-      "progress_steps, progress_end) VALUES (?1, 'queued', ?2, ?3, ?4, ?5, ?6, ?7, ?8) RETURNING " +
+      "progress_steps, progress_end, kind, study) VALUES (?1, 'queued', ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)"
+      " RETURNING " +
           job_columns);
   insert.bind(1, JobId::random().str())
       .bind(2, impl_->clock.now())
@@ -223,7 +234,9 @@ CreateResult SqliteStore::create(const NewJob& job, int max_queued) {
       .bind(5, job.scene.dump())
       .bind(6, nlohmann::json(job.effects).dump())
       .bind(7, job.progress.steps)
-      .bind(8, job.progress.end);
+      .bind(8, job.progress.end)
+      .bind(9, to_string(job.kind))
+      .bind(10, job.study ? std::optional(job.study->dump()) : std::nullopt);
   insert.step();
   Job created = read_job(insert);
   insert.run();

@@ -12,13 +12,15 @@
 
 namespace stoss::server::jobs {
 
-/// What POST /v1/jobs asks the store to keep.
+/// What POST /v1/jobs (or POST /v1/studies) asks the store to keep.
 struct NewJob {
   std::optional<std::string> idempotency_key;
-  std::string body_hash;
+  std::string body_hash;  ///< of the whole request body: a key reused with another body is a conflict
   nlohmann::json scene;
   std::vector<std::string> effects;
   Progress progress;  ///< step 0 of `steps`
+  Kind kind = Kind::simulation;
+  std::optional<nlohmann::json> study;  ///< a study's parameters (set for Kind::study only)
 };
 
 struct CreateResult {

@@ -16,8 +16,13 @@ namespace {
 using Outcome = CreateResult::Outcome;
 
 NewJob new_job(const std::string& name, std::optional<std::string> key = std::nullopt) {
-  nlohmann::json scene = {{"name", name}};
-  return {key, sha256_hex(scene.dump()), scene, {"inertia", "elasticity"}, {0, 30, 0.0, 0.3, std::nullopt}};
+  NewJob job;
+  job.idempotency_key = std::move(key);
+  job.scene = {{"name", name}};
+  job.body_hash = sha256_hex(job.scene.dump());
+  job.effects = {"inertia", "elasticity"};
+  job.progress = {0, 30, 0.0, 0.3, std::nullopt};
+  return job;
 }
 
 class StoreTest : public ::testing::Test {
@@ -40,6 +45,22 @@ TEST_F(StoreTest, CreatesAQueuedJobAndReadsItBack) {
   EXPECT_EQ(job.progress.steps, 30);
   EXPECT_DOUBLE_EQ(job.progress.end, 0.3);
   EXPECT_FALSE(job.started);
+}
+
+TEST_F(StoreTest, KeepsTheKindAndTheStudyParameters) {
+  EXPECT_EQ(create("a").kind, Kind::simulation);
+  NewJob study = new_job("s");
+  study.kind = Kind::study;
+  study.study = nlohmann::json{{"steps", {0.04, 0.02}}, {"schemes", {"midpoint"}}, {"reference_step", 0.001}};
+  const JobId id = store.create(study, 10).job->id;
+  const Job read = *store.get(id);
+  EXPECT_EQ(read.kind, Kind::study);
+  EXPECT_EQ(read.study, study.study);
+  store.claim("w", 10'000);  // the older simulation "a"
+  const Job claimed = *store.claim("w", 10'000);
+  EXPECT_EQ(claimed.kind, Kind::study);
+  EXPECT_EQ((*claimed.study)["schemes"][0], "midpoint");
+  EXPECT_EQ(claimed.scene["name"], "s");
 }
 
 TEST_F(StoreTest, UnknownIdIsAbsent) {
@@ -198,7 +219,10 @@ TEST(StoreMigration, MigratesAVersionOneDatabase) {
   }
   SqliteStore store(dir.path() / "jobs.db", clock);
   EXPECT_EQ(store.schema_version(), SqliteStore::latest_schema_version());
-  EXPECT_TRUE(store.get(*JobId::parse("0123456789abcdef0123456789abcdef")));
+  const auto old = store.get(*JobId::parse("0123456789abcdef0123456789abcdef"));
+  ASSERT_TRUE(old);
+  EXPECT_EQ(old->kind, Kind::simulation);  // every job from before study jobs is a simulation
+  EXPECT_FALSE(old->study);
   sqlite::Connection c(dir.path() / "jobs.db", 1000);
   sqlite::Statement index(
       c, "SELECT count(*) FROM sqlite_master WHERE type = 'index' AND name = 'jobs_by_lease'");
