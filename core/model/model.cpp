@@ -14,6 +14,12 @@ std::string to_string(Scheme s) {
   return "unknown";
 }
 
+std::optional<Scheme> scheme_from_string(std::string_view name) {
+  for (Scheme s : {Scheme::energy_momentum, Scheme::midpoint, Scheme::hht})
+    if (to_string(s) == name) return s;
+  return std::nullopt;
+}
+
 int TimeSpec::steps() const {
   if (step <= 0 || end <= 0) return 0;
   // A step count within round-off of an integer is that integer (end = 1, step = 0.01 → 100).

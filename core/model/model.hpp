@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/mesh/mesh.hpp"
@@ -14,6 +15,8 @@ namespace stoss::model {
 
 enum class Scheme { midpoint, energy_momentum, hht };
 std::string to_string(Scheme s);
+/// The scheme named `name` (energy_momentum, midpoint, hht), or nullopt.
+std::optional<Scheme> scheme_from_string(std::string_view name);
 
 /// St. Venant–Kirchhoff parameters (formulation.md (1.4)–(1.5)).
 struct Material {

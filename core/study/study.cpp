@@ -22,31 +22,36 @@ struct Outcome {
   std::string failure;
 };
 
-Outcome run_once(model::Model m, model::Scheme scheme, double step) {
-  m.time.scheme = scheme;
-  m.time.step = step;
+Outcome run_once(model::Model m, const Run& run, const Options& options) {
+  m.time.scheme = run.scheme;
+  m.time.step = run.step;
   m.output.every = std::max(1, m.time.steps());
   FinalState last;
+  model::Observer* extra = options.observe_run ? options.observe_run(run) : nullptr;
+  model::ObserverList observers(extra ? std::vector<model::Observer*>{&last, extra}
+                                      : std::vector<model::Observer*>{&last});
   Outcome out;
   try {
-    out.summary = simulate(m, last);
+    out.summary = simulate(m, observers, options.cancel);
   } catch (const std::exception& e) {
     out.failure = e.what();
   }
   out.final_position = last.position;
+  if (options.run_finished) options.run_finished(run, out.summary, out.failure);
   return out;
 }
 
 double max_nodal_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  if (a.size() != b.size()) return NAN;
   double worst = 0;
   for (Eigen::Index I = 0; I < a.size() / 3; ++I) worst = std::max(worst, (a.segment<3>(3 * I) - b.segment<3>(3 * I)).norm());
   return worst;
 }
 
-Row row_of(const Outcome& o, model::Scheme scheme, double step, const Eigen::VectorXd& reference) {
+Row row_of(const Outcome& o, const Run& run, const Eigen::VectorXd& reference) {
   Row r;
-  r.scheme = model::to_string(scheme);
-  r.step = step;
+  r.scheme = model::to_string(run.scheme);
+  r.step = run.step;
   r.steps = o.summary.steps;
   r.completed = o.summary.completed && o.failure.empty();
   r.failure = o.failure;
@@ -59,20 +64,52 @@ Row row_of(const Outcome& o, model::Scheme scheme, double step, const Eigen::Vec
   return r;
 }
 
+bool canceled(const Options& options) { return options.cancel && options.cancel->load(); }
+
+double number_or_nan(const nlohmann::json& j, const char* key) {
+  auto it = j.find(key);
+  return it != j.end() && it->is_number() ? it->get<double>() : NAN;
+}
+
 }  // namespace
+
+double resolved_reference_step(const Options& options) {
+  if (options.reference_step > 0) return options.reference_step;
+  return *std::min_element(options.steps.begin(), options.steps.end()) / 32;
+}
+
+std::vector<Run> plan(const model::Model& model, const Options& options) {
+  const auto steps_to_end = [&](double h) {
+    model::TimeSpec t = model.time;
+    t.step = h;
+    return t.steps();
+  };
+  const double reference = resolved_reference_step(options);
+  std::vector<Run> runs{{options.reference_scheme, reference, true, steps_to_end(reference)}};
+  for (model::Scheme scheme : options.schemes)
+    for (double step : options.steps) runs.push_back({scheme, step, false, steps_to_end(step)});
+  return runs;
+}
 
 Result run(const model::Model& model, const Options& options) {
   if (options.steps.empty()) throw std::invalid_argument("study: no step sizes given");
   Result result;
-  result.reference_step = options.reference_step > 0
-                              ? options.reference_step
-                              : *std::min_element(options.steps.begin(), options.steps.end()) / 32;
-  const Outcome reference = run_once(model, options.reference_scheme, result.reference_step);
-  if (!reference.failure.empty()) throw SolverError("study: the reference run failed: " + reference.failure);
-  result.reference_wall_seconds = reference.summary.wall_seconds;
-  for (model::Scheme scheme : options.schemes)
-    for (double step : options.steps)
-      result.rows.push_back(row_of(run_once(model, scheme, step), scheme, step, reference.final_position));
+  result.reference_step = resolved_reference_step(options);
+  Eigen::VectorXd reference_position;
+  for (const Run& r : plan(model, options)) {
+    const Outcome o = run_once(model, r, options);
+    if (canceled(options)) {
+      result.canceled = true;
+      return result;
+    }
+    if (!r.reference) {
+      result.rows.push_back(row_of(o, r, reference_position));
+      continue;
+    }
+    if (!o.failure.empty()) throw SolverError("study: the reference run failed: " + o.failure);
+    reference_position = o.final_position;
+    result.reference_wall_seconds = o.summary.wall_seconds;
+  }
   return result;
 }
 
@@ -103,6 +140,28 @@ nlohmann::json to_json(const Result& result) {
   return {{"reference_step", result.reference_step},
           {"reference_wall_seconds", result.reference_wall_seconds},
           {"rows", rows}};
+}
+
+Result result_from_json(const nlohmann::json& table) {
+  Result result;
+  result.reference_step = number_or_nan(table, "reference_step");
+  result.reference_wall_seconds = number_or_nan(table, "reference_wall_seconds");
+  for (const auto& j : table.at("rows")) {
+    Row r;
+    r.scheme = j.value("scheme", "");
+    r.step = number_or_nan(j, "step");
+    r.steps = j.value("steps", 0);
+    r.completed = j.value("completed", false);
+    r.failure = j.value("failure", "");
+    r.displacement_error = number_or_nan(j, "displacement_error");
+    r.energy_error = number_or_nan(j, "energy_error");
+    r.momentum_error = number_or_nan(j, "momentum_error");
+    r.wall_seconds = number_or_nan(j, "wall_seconds");
+    r.newton_iterations = j.value("newton_iterations", 0);
+    r.newton_per_step = number_or_nan(j, "newton_per_step");
+    result.rows.push_back(r);
+  }
+  return result;
 }
 
 std::string to_markdown(const Result& result) {

@@ -2,19 +2,38 @@
 /// @file What accuracy costs in time: one scene run with several schemes and step sizes, each compared
 /// with a fine reference run.
 
+#include <atomic>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "core/model/model.hpp"
+#include "core/model/observer.hpp"
 
 namespace stoss::study {
+
+/// One run of a sweep: the reference first, then every scheme × step.
+struct Run {
+  model::Scheme scheme = model::Scheme::energy_momentum;
+  double step = 0;
+  bool reference = false;
+  int steps = 0;  ///< time steps to reach the scene's end
+};
+
+struct Row;
 
 struct Options {
   std::vector<model::Scheme> schemes{model::Scheme::energy_momentum, model::Scheme::midpoint, model::Scheme::hht};
   std::vector<double> steps;                                   ///< step sizes to sweep
   double reference_step = 0;                                   ///< 0: smallest step / 32
   model::Scheme reference_scheme = model::Scheme::energy_momentum;
+  /// Set from any thread to stop the sweep inside the run in progress.
+  const std::atomic<bool>* cancel = nullptr;
+  /// Before each run: an observer to attach to it (e.g. a job's progress), or nullptr.
+  std::function<model::Observer*(const Run&)> observe_run;
+  /// After each run, with its summary and, if it threw, the failure.
+  std::function<void(const Run&, const model::Summary&, const std::string& failure)> run_finished;
 };
 
 /// One run of the sweep.
@@ -33,10 +52,16 @@ struct Row {
 };
 
 struct Result {
+  bool canceled = false;            ///< stopped by Options::cancel; rows holds the runs done
   double reference_step = 0;
   double reference_wall_seconds = 0;
   std::vector<Row> rows;
 };
+
+/// The runs of a sweep of `model` in order, reference first (reference_step resolved).
+std::vector<Run> plan(const model::Model& model, const Options& options);
+/// The reference step options.reference_step resolves to (smallest step / 32 when 0).
+double resolved_reference_step(const Options& options);
 
 /// Runs the reference and then every scheme × step of `options` on `model` (its own scheme and step
 /// are replaced; everything else is kept). A run that fails is a row with completed = false.
@@ -44,6 +69,8 @@ Result run(const model::Model& model, const Options& options);
 
 std::string to_csv(const Result& result);
 nlohmann::json to_json(const Result& result);
+/// The inverse of to_json (a null error reads as NaN).
+Result result_from_json(const nlohmann::json& table);
 /// A Markdown table, as the README shows it.
 std::string to_markdown(const Result& result);
 

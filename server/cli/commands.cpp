@@ -80,9 +80,7 @@ std::vector<std::string> split_commas(const std::string& text) {
 }
 
 model::Scheme parse_scheme(const std::string& name) {
-  if (name == "energy_momentum") return model::Scheme::energy_momentum;
-  if (name == "midpoint") return model::Scheme::midpoint;
-  if (name == "hht") return model::Scheme::hht;
+  if (auto scheme = model::scheme_from_string(name)) return *scheme;
   throw std::invalid_argument("--schemes: unknown scheme \"" + name + "\" (energy_momentum, midpoint, hht)");
 }
 

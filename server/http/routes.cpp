@@ -47,8 +47,8 @@ jobs::Job find_job(App& app, const Request& req) {
 void require_succeeded(const jobs::Job& job, const std::string& what = "result") {
   if (job.status == jobs::Status::succeeded) return;
   const std::string status = jobs::to_string(job.status);
-  const std::string why = jobs::is_terminal(job.status) ? "; it has no " + what
-                                                        : "; the " + what + " exists once it succeeded";
+  const std::string why =
+      jobs::is_terminal(job.status) ? "; it has no " + what : "; the " + what + " exists once it succeeded";
   fail(409, "no-result", "Job has no result", "job " + job.id.str() + " is " + status + why);
 }
 
@@ -56,8 +56,8 @@ void require_succeeded(const jobs::Job& job, const std::string& what = "result")
 void require_result_file(const jobs::Job& job) {
   if (job.kind == jobs::Kind::study)
     fail(409, "no-result", "Job has no result",
-         "job " + job.id.str() + " is a study job; a study job has no result file; see /v1/jobs/" + job.id.str() +
-             "/study");
+         "job " + job.id.str() + " is a study job; a study job has no result file; see /v1/jobs/" +
+             job.id.str() + "/study");
   require_succeeded(job);
 }
 
@@ -123,7 +123,7 @@ void submit_study(App& app, const Request& req, Response& res) {
   job.study = jobs::study_params_json(study.options);
   job.effects = study.summary.effects;
   job.progress.steps = study.runs;
-  job.progress.end = study.scene["time"].value("end", 0.0);
+  job.progress.end = study.scene.value("time", nlohmann::json::object()).value("end", 0.0);
   queue_job(app, job, res);
 }
 
@@ -274,11 +274,13 @@ void get_study(App& app, const Request& req, Response& res) {
   const jobs::Job job = find_job(app, req);
   if (job.kind != jobs::Kind::study)
     fail(404, "not-a-study", "Not a study",
-         "job " + job.id.str() + " is a simulation job; only a study job (POST /v1/studies) has a study table");
+         "job " + job.id.str() +
+             " is a simulation job; only a study job (POST /v1/studies) has a study table");
   require_succeeded(job, "study table");
   const auto text = read_file(app.files.study(job.id));
   if (!text)
-    fail(500, "missing-result", "Result missing", "job " + job.id.str() + " succeeded but its study table is gone");
+    fail(500, "missing-result", "Result missing",
+         "job " + job.id.str() + " succeeded but its study table is gone");
   if (format == "json") return res.set_content(*text, json_type);
   const study::Result table = jobs::study_result_from_json(nlohmann::json::parse(*text));
   if (format == "csv") return res.set_content(study::to_csv(table), "text/csv");

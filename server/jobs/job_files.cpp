@@ -43,7 +43,8 @@ void JobFiles::write_study(const JobId& id, const std::string& text) const {
     std::ofstream out(study_partial(id), std::ios::binary | std::ios::trunc);
     out << text;
     out.flush();
-    if (!out) throw std::system_error(EIO, std::generic_category(), "cannot write " + study_partial(id).string());
+    if (!out)
+      throw std::system_error(EIO, std::generic_category(), "cannot write " + study_partial(id).string());
   }
   sync_to_disk(study_partial(id));
   std::filesystem::rename(study_partial(id), study(id));

@@ -1,6 +1,7 @@
 #pragma once
 /// @file JobFiles: the one place that turns a job into paths, DIR/jobs/<id>/{log.txt, result.h5,
-/// result.xdmf} for a simulation, DIR/jobs/<id>/{log.txt, study.json} for a study. Paths are built only from a JobId (validated hex), never from request text.
+/// result.xdmf} for a simulation, DIR/jobs/<id>/{log.txt, study.json} for a study. Paths are built only from
+/// a JobId (validated hex), never from request text.
 
 #include <filesystem>
 

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <fstream>
+#include <set>
 
 #include "tests/server/live_server.hpp"
 
@@ -132,7 +133,7 @@ TEST_F(BadInput, UnknownAndMalformedIdsAre404) {
   auto c = client();
   for (const std::string id : {"0123456789abcdef0123456789abcdef", "not-an-id", "%2e%2e%2f%2e%2e%2fjobs.db",
                                "0123456789ABCDEF0123456789ABCDEF"}) {
-    for (const std::string suffix : {"", "/result", "/result.xdmf", "/series", "/log"})
+    for (const std::string suffix : {"", "/result", "/result.xdmf", "/series", "/log", "/study"})
       EXPECT_EQ(problem(c.Get("/v1/jobs/" + id + suffix), 404)["status"], 404) << id << suffix;
     problem(c.Post("/v1/jobs/" + id + "/cancel"), 404);
     problem(c.Delete("/v1/jobs/" + id), 404);
@@ -162,6 +163,94 @@ TEST_F(BadInput, TheSameIdempotencyKeyReturnsTheSameJobAndRefusesAnotherBody) {
   EXPECT_EQ(p["type"], "urn:stoss:problem:idempotency-key-reused");
   httplib::Headers bad_key = {{"Idempotency-Key", std::string(300, 'k')}};
   problem(c.Post("/v1/jobs", bad_key, box_scene(2, 10).dump(), "application/json"), 400);
+}
+
+/// A study of one hex8 element spinning about z, to t = 0.2.
+nlohmann::json tiny_study() {
+  return study_body(box_scene(1, 20, {0, 0, 0}, 2.0), {0.04, 0.02}, {"energy_momentum", "midpoint"});
+}
+
+/// The pointers of a 422 problem's `errors`.
+std::set<std::string> error_pointers(const nlohmann::json& problem) {
+  std::set<std::string> pointers;
+  for (const auto& e : problem["errors"]) pointers.insert(e["pointer"].get<std::string>());
+  return pointers;
+}
+
+TEST_F(BadInput, AnInvalidStudyIs422WithThePointerOfEachError) {
+  auto c = client();
+  struct Case {
+    std::string what;
+    nlohmann::json body;
+    std::set<std::string> pointers;
+  };
+  nlohmann::json invalid_scene = tiny_study();
+  invalid_scene["scene"]["bodies"][0]["material"]["poisson_ratio"] = 0.5;
+  std::vector<Case> cases = {{"empty steps", tiny_study(), {"/steps"}},
+                             {"negative step", tiny_study(), {"/steps/1"}},
+                             {"unknown scheme", tiny_study(), {"/schemes/1"}},
+                             {"invalid scene", invalid_scene, {"/scene/bodies/0/material/poisson_ratio"}},
+                             {"no scene, bad reference, unknown member",
+                              {{"steps", {0.1}}, {"reference_step", -1}, {"step", 1}},
+                              {"/scene", "/reference_step", "/step"}},
+                             {"not an object", nlohmann::json::array({1, 2}), {""}}};
+  cases[0].body["steps"] = nlohmann::json::array();
+  cases[1].body["steps"] = {0.04, -0.01};
+  cases[2].body["schemes"] = {"midpoint", "newmark"};
+  const auto jobs_before = body_json(c.Get("/v1/jobs?limit=200"))["jobs"].size();
+  for (const auto& [what, body, pointers] : cases) {
+    const auto p = problem(submit_study(c, body), 422);
+    EXPECT_EQ(p["type"], "urn:stoss:problem:invalid-study") << what;
+    EXPECT_EQ(error_pointers(p), pointers) << what << ": " << p.dump();
+  }
+  const auto p = problem(submit_study(c, cases[2].body), 422);
+  EXPECT_EQ(p["errors"][0]["message"], "must be one of energy_momentum, midpoint, hht, got \"newmark\"");
+  EXPECT_EQ(body_json(c.Get("/v1/jobs?limit=200"))["jobs"].size(), jobs_before);  // nothing was queued
+}
+
+TEST_F(BadInput, AStudyWhoseFinestRunExceedsMaxStepsIs413NamingTheLimit) {
+  auto c = client();
+  nlohmann::json body = tiny_study();  // end 0.2: the reference of h = 0.02 / 32 has 320 steps
+  body["reference_step"] = 0.0001;     // 2000 steps, above --max-steps 1000
+  const auto p = problem(submit_study(c, body), 413);
+  EXPECT_EQ(p["type"], "urn:stoss:problem:limit-exceeded");
+  ASSERT_EQ(p["limits"].size(), 1u) << p.dump();
+  EXPECT_EQ(p["limits"][0]["name"], "max_steps");
+  EXPECT_EQ(p["limits"][0]["value"], 2000);
+  EXPECT_NE(p["detail"].get<std::string>().find("reference run"), std::string::npos) << p.dump();
+  body["scene"]["time"]["step"] = 1e-5;  // the scene's own step is replaced: not counted
+  body.erase("reference_step");
+  EXPECT_EQ(submit_study(c, body)->status, 201);
+}
+
+TEST_F(BadInput, AQueuedStudyCancelsAndItsTableIs409UntilItSucceeds) {
+  auto c = client();
+  auto r = submit_study(c, tiny_study(), "study-1");
+  ASSERT_EQ(r->status, 201) << r->body;
+  const auto created = nlohmann::json::parse(r->body);
+  const std::string id = created["id"];
+  EXPECT_EQ(created["kind"], "study");
+  EXPECT_EQ(created["status"], "queued");
+  EXPECT_EQ(body_json(submit_study(c, tiny_study(), "study-1"))["id"], id);  // 200, the same job
+  EXPECT_EQ(problem(submit(c, box_scene(1, 20, {0, 0, 0}, 2.0), "study-1"), 422)["type"],
+            "urn:stoss:problem:idempotency-key-reused");  // the same key with a scene body
+  EXPECT_EQ(problem(c.Get("/v1/jobs/" + id + "/study"), 409)["detail"],
+            "job " + id + " is queued; the study table exists once it succeeded");
+
+  auto canceled = c.Post("/v1/jobs/" + id + "/cancel");
+  ASSERT_EQ(canceled->status, 202);
+  EXPECT_EQ(nlohmann::json::parse(canceled->body)["status"], "canceled");
+  EXPECT_EQ(job(c, id)["status"], "canceled");
+  EXPECT_EQ(problem(c.Get("/v1/jobs/" + id + "/study"), 409)["detail"],
+            "job " + id + " is canceled; it has no study table");
+}
+
+TEST_F(BadInput, TheStudyOfASimulationJobIs404) {
+  auto c = client();
+  const std::string id = nlohmann::json::parse(submit(c, box_scene(2, 10))->body)["id"];
+  const auto p = problem(c.Get("/v1/jobs/" + id + "/study"), 404);
+  EXPECT_EQ(p["type"], "urn:stoss:problem:not-a-study");
+  EXPECT_EQ(job(c, id)["kind"], "simulation");
 }
 
 TEST_F(BadInput, BadListParametersAre400) {

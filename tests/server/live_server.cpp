@@ -174,6 +174,19 @@ httplib::Result submit(httplib::Client& c, const nlohmann::json& scene, const st
   return c.Post("/v1/jobs", headers, scene.dump(), "application/json");
 }
 
+nlohmann::json study_body(const nlohmann::json& scene, const std::vector<double>& steps,
+                          const std::vector<std::string>& schemes) {
+  nlohmann::json body = {{"scene", scene}, {"steps", steps}};
+  if (!schemes.empty()) body["schemes"] = schemes;
+  return body;
+}
+
+httplib::Result submit_study(httplib::Client& c, const nlohmann::json& body, const std::string& key) {
+  httplib::Headers headers;
+  if (!key.empty()) headers.emplace("Idempotency-Key", key);
+  return c.Post("/v1/studies", headers, body.dump(), "application/json");
+}
+
 nlohmann::json job(httplib::Client& c, const std::string& id) {
   return body_json(c.Get("/v1/jobs/" + id));
 }

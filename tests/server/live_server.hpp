@@ -71,6 +71,13 @@ nlohmann::json body_json(const httplib::Result& r);
 /// POST /v1/jobs with a JSON body; returns the result.
 httplib::Result submit(httplib::Client& c, const nlohmann::json& scene, const std::string& key = "");
 
+/// The body of POST /v1/studies: `scene` swept over `steps` with `schemes` (all three when empty).
+nlohmann::json study_body(const nlohmann::json& scene, const std::vector<double>& steps,
+                          const std::vector<std::string>& schemes = {});
+
+/// POST /v1/studies with a JSON body; returns the result.
+httplib::Result submit_study(httplib::Client& c, const nlohmann::json& body, const std::string& key = "");
+
 /// GET /v1/jobs/{id} as JSON.
 nlohmann::json job(httplib::Client& c, const std::string& id);
 

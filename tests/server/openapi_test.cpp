@@ -51,7 +51,7 @@ TEST(OpenApi, TheSpecDescribesExactlyTheServersRoutes) {
   std::set<std::pair<std::string, std::string>> spec, served;
   for (const auto& op : read_spec(spec_file)) spec.insert({op.method, op.path});
   for (const auto& r : server::http::routes()) served.insert({r.method, r.path});
-  EXPECT_EQ(spec.size(), 13u);
+  EXPECT_EQ(spec.size(), 15u);
   EXPECT_EQ(spec, served);
 }
 
@@ -62,24 +62,29 @@ TEST(OpenApi, EveryOperationAnswersWithItsDocumentedSuccessCodeAndNeedsTheToken)
   auto c = server.client("walk-the-spec");
   auto anonymous = server.client();
 
-  // Fixtures: two succeeded jobs (one to read, one to delete) and a long one to cancel.
+  // Fixtures: two succeeded jobs (one to read, one to delete), a succeeded study, and a long job to cancel.
   auto make = [&](const nlohmann::json& scene) {
     return nlohmann::json::parse(submit(c, scene)->body)["id"].get<std::string>();
   };
   const std::string done = make(box_scene(2, 10)), doomed = make(box_scene(2, 11));
-  ASSERT_EQ(wait_for_status(c, done, {"succeeded", "failed"})["status"], "succeeded");
-  ASSERT_EQ(wait_for_status(c, doomed, {"succeeded", "failed"})["status"], "succeeded");
+  const std::string study_request = study_body(box_scene(1, 10), {0.05}, {"midpoint"}).dump();
+  const std::string studied =
+      nlohmann::json::parse(submit_study(c, nlohmann::json::parse(study_request))->body)["id"];
+  for (const auto& id : {done, doomed, studied})
+    ASSERT_EQ(wait_for_status(c, id, {"succeeded", "failed"})["status"], "succeeded");
   const std::string running = make(box_scene(4, 100'000, {1, 0, 0}, 2.0));
   const std::string scene = box_scene(2, 12).dump();
 
   auto call = [&](httplib::Client& client, const Operation& op) -> httplib::Result {
+    const bool study = op.path.find("stud") != std::string::npos;
     std::string id = op.method == "DELETE"                          ? doomed
                      : op.path.find("/cancel") != std::string::npos ? running
+                     : study                                        ? studied
                                                                     : done;
     std::string path = std::regex_replace(op.path, std::regex(R"(\{id\})"), id);
     if (op.method == "GET") return client.Get(path);
     if (op.method == "DELETE") return client.Delete(path);
-    return client.Post(path, scene, "application/json");
+    return client.Post(path, study ? study_request : scene, "application/json");
   };
 
   const auto ops = read_spec(spec_file);

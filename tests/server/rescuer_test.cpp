@@ -21,7 +21,7 @@ class RescuerTest : public ::testing::Test {
 
   JobId queue_one() {
     nlohmann::json scene = {{"name", "x"}};
-    return store.create({std::nullopt, "hash", scene, {}, {}}, 100).job->id;
+    return store.create({std::nullopt, "hash", scene, {}, {}, Kind::simulation, std::nullopt}, 100).job->id;
   }
 };
 

@@ -58,7 +58,7 @@ class WorkerPoolTest : public ::testing::Test {
 
   JobId queue_one() {
     nlohmann::json scene = {{"name", "x"}};
-    return store.create({std::nullopt, "hash", scene, {}, {}}, 100).job->id;
+    return store.create({std::nullopt, "hash", scene, {}, {}, Kind::simulation, std::nullopt}, 100).job->id;
   }
   Status status(const JobId& id) { return store.get(id)->status; }
   bool reaches(const JobId& id, Status s) {
@@ -126,7 +126,9 @@ TEST_F(WorkerPoolTest, AWorkerThatLostItsLeaseReportsNothing) {
   SqliteStore fake_time_store(dir.path() / "other.db", manual);
   WorkerPool pool(fake_time_store, executor, {1, 10'000, 50, 50});
   nlohmann::json scene = {{"name", "x"}};
-  const JobId id = fake_time_store.create({std::nullopt, "hash", scene, {}, {}}, 100).job->id;
+  const JobId id =
+      fake_time_store.create({std::nullopt, "hash", scene, {}, {}, Kind::simulation, std::nullopt}, 100)
+          .job->id;
   pool.start();
   executor.wait_started(1);
   manual.advance(60'000);  // the lease runs out; the rescuer gives the job to someone else

@@ -1,0 +1,172 @@
+#include "server/http/study_check.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "server/http/scene_check.hpp"
+#include "server/jobs/study_job.hpp"
+
+namespace stoss::server::http {
+
+namespace {
+
+const char* const study_members[] = {"scene", "steps", "schemes", "reference_step"};
+
+void add(nlohmann::json& errors, const std::string& pointer, const std::string& message) {
+  errors.push_back({{"pointer", pointer}, {"message", message}});
+}
+
+/// The JSON pointer of member `name` of the root (RFC 6901 escapes).
+std::string member_pointer(const std::string& name) {
+  std::string out = "/";
+  for (char c : name) out += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
+  return out;
+}
+
+/// A value for a message: scalars as JSON, arrays and objects by their type (they may be large).
+std::string describe(const nlohmann::json& v) {
+  return v.is_structured() ? std::string("an ") + v.type_name() : dump(v);
+}
+
+bool positive_number(const nlohmann::json& v) {
+  return v.is_number() && std::isfinite(v.get<double>()) && v.get<double>() > 0;
+}
+
+std::string format_step(double h) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", h);
+  return text;
+}
+
+void check_members(const nlohmann::json& body, nlohmann::json& errors) {
+  for (const auto& [name, value] : body.items())
+    if (std::find(std::begin(study_members), std::end(study_members), name) == std::end(study_members))
+      add(errors, member_pointer(name), "is not a member of a study (scene, steps, schemes, reference_step)");
+}
+
+std::vector<double> check_steps(const nlohmann::json& body, nlohmann::json& errors) {
+  auto it = body.find("steps");
+  if (it == body.end()) {
+    add(errors, "/steps", "is required: a non-empty array of step sizes");
+    return {};
+  }
+  if (!it->is_array() || it->empty() || it->size() > max_study_steps) {
+    add(errors, "/steps",
+        "must be an array of 1 to " + std::to_string(max_study_steps) + " step sizes, got " +
+            (it->is_array() ? std::to_string(it->size()) + " items" : describe(*it)));
+    return {};
+  }
+  std::vector<double> steps;
+  for (std::size_t i = 0; i < it->size(); ++i) {
+    const auto& h = (*it)[i];
+    if (positive_number(h))
+      steps.push_back(h.get<double>());
+    else
+      add(errors, "/steps/" + std::to_string(i), "must be a positive number, got " + describe(h));
+  }
+  return steps;
+}
+
+std::vector<model::Scheme> check_schemes(const nlohmann::json& body, nlohmann::json& errors) {
+  auto it = body.find("schemes");
+  if (it == body.end()) return study::Options{}.schemes;
+  if (!it->is_array() || it->empty()) {
+    add(errors, "/schemes", "must be a non-empty array of scheme names, got " + describe(*it));
+    return {};
+  }
+  std::vector<model::Scheme> schemes;
+  for (std::size_t i = 0; i < it->size(); ++i) {
+    const auto& name = (*it)[i];
+    auto scheme = name.is_string() ? jobs::parse_scheme(name.get<std::string>()) : std::nullopt;
+    if (scheme)
+      schemes.push_back(*scheme);
+    else
+      add(errors, "/schemes/" + std::to_string(i),
+          "must be one of energy_momentum, midpoint, hht, got " + describe(name));
+  }
+  return schemes;
+}
+
+/// The reference step asked for; 0 when absent.
+double check_reference(const nlohmann::json& body, nlohmann::json& errors) {
+  auto it = body.find("reference_step");
+  if (it == body.end()) return 0;
+  if (positive_number(*it)) return it->get<double>();
+  add(errors, "/reference_step", "must be a positive number, got " + describe(*it));
+  return 0;
+}
+
+/// Checks the scene (its own step and frames aside); its 422 errors are added under /scene, a 413 is thrown.
+scene::Summary check_study_scene(const nlohmann::json& body, const Limits& limits, nlohmann::json& errors) {
+  if (!body.contains("scene")) {
+    add(errors, "/scene", "is required: the scene to study");
+    return {};
+  }
+  Limits relaxed = limits;
+  relaxed.max_steps = INT_MAX;
+  relaxed.max_frames = INT_MAX;
+  try {
+    return check_scene(body["scene"], relaxed);
+  } catch (const ProblemError& e) {
+    if (e.problem().status != 422) throw;
+    for (const auto& error : e.problem().extra.value("errors", nlohmann::json::array()))
+      add(errors, "/scene" + error.value("pointer", ""), error.value("message", ""));
+  }
+  return {};
+}
+
+Problem invalid_study(nlohmann::json errors) {
+  const std::size_t n = errors.size();
+  std::string detail = n == 1 ? "the study has 1 error" : "the study has " + std::to_string(n) + " errors";
+  detail += ", the first: " + errors[0].value("pointer", "") + ": " + errors[0].value("message", "");
+  return {422, "urn:stoss:problem:invalid-study", "Invalid study", detail, {{"errors", std::move(errors)}}};
+}
+
+/// 413 when the finest run of the study needs more than max_steps time steps.
+void check_run_limit(const study::Options& options, double end, const Limits& limits) {
+  const double finest_swept = *std::min_element(options.steps.begin(), options.steps.end());
+  const bool reference_finest = options.reference_step <= finest_swept;
+  const double finest = reference_finest ? options.reference_step : finest_swept;
+  const double steps = std::min(std::ceil(end / finest - 1e-9), 9e18);
+  if (steps <= limits.max_steps) return;
+  const long long value = static_cast<long long>(steps);
+  const std::string run = reference_finest ? "the reference run" : "the run";
+  throw ProblemError(Problem{
+      413,
+      "urn:stoss:problem:limit-exceeded",
+      "Study exceeds a server limit",
+      "the study's finest run (" + run + ", h = " + format_step(finest) + ") has " + std::to_string(value) +
+          " time steps, more than the server limit max_steps = " + std::to_string(limits.max_steps),
+      {{"limits", {{{"name", "max_steps"}, {"limit", limits.max_steps}, {"value", value}}}}}});
+}
+
+}  // namespace
+
+StudyRequest check_study(const nlohmann::json& body, const Limits& limits) {
+  if (!body.is_object()) {
+    nlohmann::json errors = nlohmann::json::array();
+    add(errors, "", "must be an object {\"scene\": {...}, \"steps\": [...]}, got " + describe(body));
+    throw ProblemError(invalid_study(std::move(errors)));
+  }
+  nlohmann::json errors = nlohmann::json::array();
+  check_members(body, errors);
+  StudyRequest request;
+  request.options.steps = check_steps(body, errors);
+  request.options.schemes = check_schemes(body, errors);
+  request.options.reference_step = check_reference(body, errors);
+  request.summary = check_study_scene(body, limits, errors);
+  if (!errors.empty()) throw ProblemError(invalid_study(std::move(errors)));
+  if (request.options.reference_step == 0)
+    request.options.reference_step =
+        *std::min_element(request.options.steps.begin(), request.options.steps.end()) / 32;
+  request.scene = body["scene"];
+  check_run_limit(request.options, request.scene.value("time", nlohmann::json::object()).value("end", 0.0),
+                  limits);
+  request.runs = jobs::study_run_count(request.options);
+  return request;
+}
+
+}  // namespace stoss::server::http
