@@ -16,7 +16,9 @@ namespace {
 using model::Model;
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 /// Everything a run builds from the model: only the terms the scene calls for.
 struct Problem {
@@ -29,7 +31,6 @@ struct Problem {
   double total_mass = 0;
   double length_scale = 1;
 };
-
 
 double bounding_box_diagonal(const mesh::Mesh& mesh) {
   Eigen::Vector3d lo = mesh.nodes.front(), hi = mesh.nodes.front();
@@ -63,7 +64,8 @@ Problem build_problem(const Model& m) {
   }
   p.mass = fem::assemble_mass(m.mesh, p.geometry, density);
   p.elasticity = std::make_unique<fem::ElasticityTerm>(m.mesh, p.geometry, std::move(material));
-  if (m.has_effect(model::effect::gravity)) p.gravity = std::make_unique<fem::GravityTerm>(p.mass, *m.gravity);
+  if (m.has_effect(model::effect::gravity))
+    p.gravity = std::make_unique<fem::GravityTerm>(p.mass, *m.gravity);
   p.fixed = fixed_dofs(m);
   p.total_mass = p.mass.sum() / 3;
   p.length_scale = bounding_box_diagonal(m.mesh);
@@ -85,7 +87,8 @@ Eigen::VectorXd initial_velocity(const Model& m, const Problem& p, const Eigen::
     }
     const Eigen::Vector3d center = spec.center.value_or(com / mass);
     for (int I = body.node_begin; I < body.node_end; ++I)
-      v.segment<3>(3 * I) = spec.initial_velocity + spec.initial_angular_velocity.cross(X.segment<3>(3 * I) - center);
+      v.segment<3>(3 * I) =
+          spec.initial_velocity + spec.initial_angular_velocity.cross(X.segment<3>(3 * I) - center);
   }
   for (Eigen::Index i = 0; i < v.size(); ++i)
     if (p.fixed[i]) v[i] = 0;
@@ -155,7 +158,8 @@ Balance balance(const Problem& p, const time::State& s) {
 }
 
 model::StepRow step_row(const time::State& s, const Balance& b, const ContactRow& c,
-                        const model::SeriesLayout& layout, const solve::NewtonResult* newton, double step_seconds) {
+                        const model::SeriesLayout& layout, const solve::NewtonResult* newton,
+                        double step_seconds) {
   model::StepRow row{s.step, s.t, {}};
   row.values.push_back(b.kinetic);
   row.values.push_back(b.strain);
@@ -178,9 +182,12 @@ model::StepRow step_row(const time::State& s, const Balance& b, const ContactRow
 void update_drifts(model::Summary& sum, const Balance& b0, const Balance& b) {
   const double H0 = std::abs(b0.total()) > 0 ? std::abs(b0.total()) : 1.0;
   sum.energy_drift = std::max(sum.energy_drift, std::abs(b.total() - b0.total()) / H0);
-  const double Ls = std::max(b0.linear.norm(), b0.momentum_scale), Js = std::max(b0.angular.norm(), b0.angular_scale);
-  if (Ls > 0) sum.linear_momentum_drift = std::max(sum.linear_momentum_drift, (b.linear - b0.linear).norm() / Ls);
-  if (Js > 0) sum.angular_momentum_drift = std::max(sum.angular_momentum_drift, (b.angular - b0.angular).norm() / Js);
+  const double Ls = std::max(b0.linear.norm(), b0.momentum_scale),
+               Js = std::max(b0.angular.norm(), b0.angular_scale);
+  if (Ls > 0)
+    sum.linear_momentum_drift = std::max(sum.linear_momentum_drift, (b.linear - b0.linear).norm() / Ls);
+  if (Js > 0)
+    sum.angular_momentum_drift = std::max(sum.angular_momentum_drift, (b.angular - b0.angular).norm() / Js);
 }
 
 std::string failure_message(const time::State& s, double h, const solve::NewtonResult& r) {
@@ -191,7 +198,20 @@ std::string failure_message(const time::State& s, double h, const solve::NewtonR
   return out.str();
 }
 
-bool frame_due(const Model& m, int step, int steps) { return step % m.output.every == 0 || step == steps; }
+/// Newton from the scene's solver settings. Factorisations are kept while they contract the residual
+/// by half per iteration (and reach the tolerance within the budget): on the contact scenes a
+/// refactorisation costs as much as ~20 reused solves (bench/contact_ball.cpp).
+solve::NewtonOptions newton_options(const Model& m) {
+  solve::NewtonOptions o;
+  o.tolerance = m.solver.tolerance;
+  o.max_iterations = m.solver.max_iterations;
+  o.reuse_contraction = 0.5;
+  return o;
+}
+
+bool frame_due(const Model& m, int step, int steps) {
+  return step % m.output.every == 0 || step == steps;
+}
 
 /// Positions, velocities and, with contact, the nodal contact pressure (lagrange_term.hpp).
 model::Frame frame_of(const time::State& s, const Problem& p) {
@@ -211,8 +231,7 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
   if (p.gravity) terms.push_back(p.gravity.get());
   for (const auto& c : p.contact) terms.push_back(c.get());
   time::Integrator integrator(p.mass, terms, p.fixed, time::make_scheme(m.time.scheme, m.time.alpha),
-                              solve::NewtonOptions{m.solver.tolerance, m.solver.max_iterations, 6, true, std::getenv("RC") ? std::atof(std::getenv("RC")) : 0.25},
-                              p.length_scale, p.total_mass);
+                              newton_options(m), p.length_scale, p.total_mass);
   time::State s;
   s.x = m.mesh.reference_positions();
   s.v = initial_velocity(m, p, s.x);

@@ -12,8 +12,8 @@ namespace stoss::model {
 /// One named time series (service.md §3 /series/<name>): `components` values per step.
 struct SeriesSpec {
   std::string name;
-  int components = 1;      ///< 1 → dataset [S], 3 → [S,3]
-  bool integer = false;    ///< stored as int32
+  int components = 1;    ///< 1 → dataset [S], 3 → [S,3]
+  bool integer = false;  ///< stored as int32
 };
 
 /// The series a run writes; only those of effects the scene calls for (service.md §3).
@@ -40,16 +40,16 @@ struct Frame {
 
 /// What a finished (or stopped) run reports: the job summary of service.md §2.
 struct Summary {
-  bool completed = false;            ///< false when canceled or failed
-  int steps = 0;                     ///< converged steps
+  bool completed = false;  ///< false when canceled or failed
+  int steps = 0;           ///< converged steps
   double end_time = 0;
   double initial_energy = 0;
-  double energy_drift = 0;           ///< max over steps |H_n − H_0| / |H_0|
-  double linear_momentum_drift = 0;  ///< max |L_n − L_0| / max(|L_0|, m·v scale)
-  double angular_momentum_drift = 0; ///< max |J_n − J_0| / max(|J_0|, ...)
-  double max_penetration = 0;        ///< only meaningful with contact: series max_penetration, max over steps
+  double energy_drift = 0;            ///< max over steps |H_n − H_0| / |H_0|
+  double linear_momentum_drift = 0;   ///< max |L_n − L_0| / max(|L_0|, m·v scale)
+  double angular_momentum_drift = 0;  ///< max |J_n − J_0| / max(|J_0|, ...)
+  double max_penetration = 0;  ///< only meaningful with contact: series max_penetration, max over steps
   double max_own_face_penetration = 0;  ///< with contact: active slave nodes below their own master face
-  int newton_iterations = 0;         ///< total
+  int newton_iterations = 0;            ///< total
   double newton_iterations_per_step = 0;
   double wall_seconds = 0;
   double linear_solver_seconds = 0;
@@ -75,11 +75,21 @@ class Observer {
 class ObserverList : public Observer {
  public:
   explicit ObserverList(std::vector<Observer*> observers) : observers_(std::move(observers)) {}
-  void begin(const Model& m, const SeriesLayout& l) override { for (auto* o : observers_) o->begin(m, l); }
-  void step(const StepRow& r) override { for (auto* o : observers_) o->step(r); }
-  void frame(const Frame& f) override { for (auto* o : observers_) o->frame(f); }
-  void log(const std::string& s) override { for (auto* o : observers_) o->log(s); }
-  void end(const Summary& s) override { for (auto* o : observers_) o->end(s); }
+  void begin(const Model& m, const SeriesLayout& l) override {
+    for (auto* o : observers_) o->begin(m, l);
+  }
+  void step(const StepRow& r) override {
+    for (auto* o : observers_) o->step(r);
+  }
+  void frame(const Frame& f) override {
+    for (auto* o : observers_) o->frame(f);
+  }
+  void log(const std::string& s) override {
+    for (auto* o : observers_) o->log(s);
+  }
+  void end(const Summary& s) override {
+    for (auto* o : observers_) o->end(s);
+  }
 
  private:
   std::vector<Observer*> observers_;

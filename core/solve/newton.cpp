@@ -8,6 +8,18 @@ namespace {
 
 bool acceptable(double trial, double current) { return std::isfinite(trial) && trial <= 10 * current + 1e-300; }
 
+/// Whether the factorisation that produced `trial` from `current` (iteration `it`) is worth keeping:
+/// it contracted the residual by at least reuse_contraction, at that rate the tolerance is reached
+/// within the iteration budget (one iteration to spare: the increment test lags the residual), and
+/// the budget still leaves a fresh Newton its few iterations should the rate slow down.
+bool keeps_contracting(double trial, double current, int it, const NewtonOptions& o) {
+  if (!(trial <= o.reuse_contraction * current)) return false;
+  if (trial <= o.tolerance) return true;
+  const int left = o.max_iterations - (it + 1);
+  const double needed = std::log(o.tolerance / trial) / std::log(trial / current);
+  return left > 4 && needed + 1 <= left;
+}
+
 /// A fresh Newton step that no longer halves a residual already near the tolerance, with an increment
 /// within it, has hit the round-off floor of the residual (as the CPP of formulation.md §3.2 does).
 bool stagnated_at_round_off(double trial, double current, double increment, double tolerance) {
@@ -67,9 +79,9 @@ NewtonResult newton_solve(NonlinearSystem& system, Eigen::VectorXd& z, BlockPatt
     Iterate trial{current.z - dz, Eigen::VectorXd(z.size()), 0};
     system.evaluate(trial.z, trial.R, nullptr);
     trial.r = system.residual_measure(trial.R);
-    if (!fresh && !(trial.r <= options.reuse_contraction * current.r)) {
-      refactor = true;  // the old factorisation no longer contracts well: redo this iteration fresh
-      continue;
+    if (!fresh && !keeps_contracting(trial.r, current.r, it, options)) {
+      refactor = true;  // the old factorisation no longer pays: refactorise at the better iterate
+      if (!(trial.r < current.r)) continue;
     }
     double scale = 1;
     for (int cut = 0; fresh && !acceptable(trial.r, current.r) && cut < options.max_backtracks; ++cut) {
@@ -90,7 +102,7 @@ NewtonResult newton_solve(NonlinearSystem& system, Eigen::VectorXd& z, BlockPatt
       if (log) log("newton: residual stagnated at " + format_history({trial.r}) + " (round-off), accepted");
       return result;
     }
-    if (trial.r > options.reuse_contraction * current.r) refactor = true;
+    if (fresh && !keeps_contracting(trial.r, current.r, it, options)) refactor = true;
     current = std::move(trial);
     result.residuals.push_back(current.r);
     if (!std::isfinite(current.r)) {

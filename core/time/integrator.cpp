@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 namespace stoss::time {
 namespace {
@@ -128,7 +127,6 @@ solve::NewtonResult Integrator::step(State& s, double h, const LogFunction& log)
   residual_scale_ = 2 * (mass_ * s.v).norm();
   scale_pending_ = true;
   solve::NewtonResult result = solve_with_active_set(z, log);
-  if (std::getenv("STOSS_DEBUG") && log) log("DEBUG passes " + std::to_string(passes_) + " facts " + std::to_string(solver_.factorizations()) + " hist " + solve::format_history(result.residuals));
   if (result.converged) {
     Eigen::VectorXd impulse = Eigen::VectorXd::Zero(s.x.size());
     double jump = 0;

@@ -22,14 +22,16 @@ class Integrator : private solve::NonlinearSystem {
 
   /// `fixed` marks Dirichlet dofs (3 per node); `length_scale` and `total_mass` set the convergence scales.
   Integrator(const solve::SparseMatrix& mass, std::vector<Term*> terms, std::vector<char> fixed,
-             std::unique_ptr<Scheme> scheme, solve::NewtonOptions options, double length_scale, double total_mass);
+             std::unique_ptr<Scheme> scheme, solve::NewtonOptions options, double length_scale,
+             double total_mass);
 
   /// Completes the initial state (HHT: M a_0 = f_ext − f_int(x_0)).
   void initialize(State& s);
   /// Solves the step t → t + h: Newton, repeated while a term changes its active set (at most
   /// max_active_set_passes solves), then the velocity correction (4.12) if a term asks for it. On
-  /// convergence advances s and calls every term's end_step; otherwise leaves s as it was. The result
-  /// sums iterations and backtracks over the solves and lists every residual. `log` receives solver events.
+  /// convergence advances s and calls every term's end_step; otherwise leaves s as it was (a term
+  /// forgets the abandoned step at its next prepare_step). The result sums iterations and backtracks
+  /// over the solves and lists every residual. `log` receives solver events.
   solve::NewtonResult step(State& s, double h, const LogFunction& log = {});
 
   /// Σ of the terms' potential energies at x.
@@ -69,7 +71,8 @@ class Integrator : private solve::NonlinearSystem {
   int mass_block_ = -1;
   int auxiliary_layout_ = -1;               ///< total unknown count the pattern was built for
   std::vector<int> structure_generations_;  ///< per term, at the last rebuild
-  std::unique_ptr<Eigen::SimplicialLDLT<solve::SparseMatrix>> mass_solver_;  ///< for (4.12), built on first use
+  std::unique_ptr<Eigen::SimplicialLDLT<solve::SparseMatrix>>
+      mass_solver_;  ///< for (4.12), built on first use
 
   // The step being solved (valid inside step()).
   const State* state_ = nullptr;

@@ -25,14 +25,14 @@ struct StepContext {
   const Eigen::VectorXd& v_n;  ///< velocities at t_n
   double h = 0;                ///< step size
   ForceRule rule = ForceRule::discrete_gradient;
-  double alpha = 0;                 ///< HHT-α parameter (rule == hht)
+  double alpha = 0;                  ///< HHT-α parameter (rule == hht)
   const LogFunction* log = nullptr;  ///< solver log of the run; may be null
 };
 
 /// Scales that make a term's rows and increments dimensionless (Integrator::residual_measure).
 struct MeasureScales {
   double momentum = 1;  ///< scale of the position rows of (2.3): ‖2 M v_n‖, the predictor residual or a floor
-  double length = 1;    ///< model length (bounding-box diagonal)
+  double length = 1;  ///< model length (bounding-box diagonal)
 };
 
 /// A term adds h · f_alg (the scheme's algorithmic force, momentum units) to the position rows of the
@@ -75,9 +75,13 @@ class Term {
   virtual bool update_active_set(const StepContext& step, const Eigen::VectorXd& z) { return false; }
   /// Dimensionless size of the term's auxiliary rows in R (the largest over its groups of rows of
   /// like units). Terms that own auxiliaries override it; converged when ≤ the Newton tolerance.
-  virtual double auxiliary_residual_measure(const Eigen::VectorXd& R, const MeasureScales& s) const { return 0; }
+  virtual double auxiliary_residual_measure(const Eigen::VectorXd& R, const MeasureScales& s) const {
+    return 0;
+  }
   /// Dimensionless size of the term's auxiliary part of a Newton increment.
-  virtual double auxiliary_increment_measure(const Eigen::VectorXd& dz, const MeasureScales& s) const { return 0; }
+  virtual double auxiliary_increment_measure(const Eigen::VectorXd& dz, const MeasureScales& s) const {
+    return 0;
+  }
   /// After a converged step, before end_step: adds the term's impact impulse b (momentum units, 3 per
   /// node) and its energy jump ΔH to be restored by the velocity correction (4.12); most terms add
   /// nothing.

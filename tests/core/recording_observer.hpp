@@ -1,8 +1,13 @@
 #pragma once
 // Test helper: keeps every series row and frame of a run in memory.
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "core/model/observer.hpp"
 
@@ -26,11 +31,40 @@ class RecordingObserver : public model::Observer {
   }
   bool has_series(const std::string& name) const { return layout.index_of(name) >= 0; }
 
+  /// max_n |v_n − v_0| / |v_0| of the 3-vector series `name` (a momentum).
+  double vector_drift(const std::string& name) const {
+    const std::vector<double> x = series(name, 0), y = series(name, 1), z = series(name, 2);
+    const Eigen::Vector3d first(x.front(), y.front(), z.front());
+    double worst = 0;
+    for (size_t n = 0; n < x.size(); ++n)
+      worst = std::max(worst, (Eigen::Vector3d(x[n], y[n], z[n]) - first).norm() / first.norm());
+    return worst;
+  }
+
+  /// Times of the first and last step with active contacts, {-1, -1} if none.
+  std::pair<double, double> contact_window() const {
+    const std::vector<double> active = series("active_contacts");
+    std::pair<double, double> window{-1, -1};
+    for (size_t n = 0; n < active.size(); ++n)
+      if (active[n] > 0) {
+        if (window.first < 0) window.first = rows[n].time;
+        window.second = rows[n].time;
+      }
+    return window;
+  }
+
   model::SeriesLayout layout;
   std::vector<model::StepRow> rows;
   std::vector<model::Frame> frames;
   std::vector<std::string> logs;
   model::Summary summary;
 };
+
+/// max_n |s_n − s_0| / scale over every step.
+inline double max_drift(const std::vector<double>& s, double scale) {
+  double worst = 0;
+  for (double v : s) worst = std::max(worst, std::abs(v - s.front()) / scale);
+  return worst;
+}
 
 }  // namespace stoss::testing

@@ -36,16 +36,10 @@ model::Model tumbling_bar(model::Scheme scheme, double h, int steps) {
   return m;
 }
 
-double max_relative_change(const std::vector<double>& s, double scale) {
-  double worst = 0;
-  for (double v : s) worst = std::max(worst, std::abs(v - s.front()) / scale);
-  return worst;
-}
-
 double momentum_error(const RecordingObserver& r, const std::string& name) {
   double worst = 0, scale = 0;
   for (int k = 0; k < 3; ++k) scale = std::max(scale, std::abs(r.series(name, k).front()));
-  for (int k = 0; k < 3; ++k) worst = std::max(worst, max_relative_change(r.series(name, k), scale));
+  for (int k = 0; k < 3; ++k) worst = std::max(worst, testing::max_drift(r.series(name, k), scale));
   return worst;
 }
 
@@ -54,13 +48,14 @@ TEST(Simulate, EnergyMomentumConservesEnergyAndMomentaOfATumblingBar) {
   const model::Summary s = simulate(tumbling_bar(model::Scheme::energy_momentum, 0.05, 200), r);
   ASSERT_TRUE(s.completed);
   const auto H = r.series("total_energy");
-  EXPECT_LT(max_relative_change(H, H.front()), 1e-10);
+  EXPECT_LT(testing::max_drift(H, H.front()), 1e-10);
   EXPECT_LT(momentum_error(r, "linear_momentum"), 1e-10);
   EXPECT_LT(momentum_error(r, "angular_momentum"), 1e-10);
-  EXPECT_GT(max_relative_change(r.series("strain_energy"), H.front()), 1e-3) << "the bar must deform";
-  // Iterations count solves with a reused factorisation too (NewtonOptions::reuse_factorization):
-  // a wrong tangent would stall the chord iterations and blow this bound.
-  EXPECT_LE(s.newton_iterations_per_step, 12.0);
+  EXPECT_GT(testing::max_drift(r.series("strain_energy"), H.front()), 1e-3) << "the bar must deform";
+  // Iterations count solves with a reused factorisation too (NewtonOptions::reuse_factorization; a
+  // factorisation is kept while it halves the residual, core/simulate.cpp): a wrong tangent would
+  // stall the chord iterations and blow this bound (measured: 13.6 with the exact tangent (2.9)).
+  EXPECT_LE(s.newton_iterations_per_step, 16.0);
 }
 
 TEST(Simulate, MidpointKeepsMomentaButNotEnergy) {
@@ -70,7 +65,7 @@ TEST(Simulate, MidpointKeepsMomentaButNotEnergy) {
   EXPECT_LT(momentum_error(mp, "linear_momentum"), 1e-10);
   EXPECT_LT(momentum_error(mp, "angular_momentum"), 1e-10);
   const auto Hm = mp.series("total_energy"), He = em.series("total_energy");
-  EXPECT_GT(max_relative_change(Hm, Hm.front()), 100 * max_relative_change(He, He.front()));
+  EXPECT_GT(testing::max_drift(Hm, Hm.front()), 100 * testing::max_drift(He, He.front()));
 }
 
 TEST(Simulate, HhtDissipatesAndConvergesOnTheSameBar) {
@@ -120,9 +115,90 @@ TEST(Simulate, DirichletNodesStayPutAndSeriesOfAbsentEffectsAreAbsent) {
   simulate(m, r);
   EXPECT_FALSE(r.has_series("potential_energy"));
   EXPECT_FALSE(r.has_series("active_contacts"));
+  EXPECT_FALSE(r.has_series("max_penetration"));
+  EXPECT_FALSE(r.has_series("contact_energy_jump"));
+  for (const model::Frame& f : r.frames)
+    EXPECT_EQ(f.contact_pressure.size(), 0) << "no contact, no pressure field";
   for (int node : m.mesh.surface_nodes("beam/xmin"))
     for (int k = 0; k < 3; ++k) EXPECT_EQ(r.frames.back().position[3 * node + k], m.mesh.nodes[node][k]);
-  EXPECT_GT(r.frames.back().position[3 * m.mesh.surface_nodes("beam/xmax")[0] + 2], 0.05) << "the free end moves";
+  EXPECT_GT(r.frames.back().position[3 * m.mesh.surface_nodes("beam/xmax")[0] + 2], 0.05)
+      << "the free end moves";
+}
+
+/// A unit cube (one hex8) dropping at speed 1 onto a plate clamped at its base (gap 0.05).
+model::Model cube_onto_clamped_plate(model::Scheme scheme) {
+  model::Model m;
+  m.mesh.add_body("plate", mesh::box({-1, -1, -0.3}, {1, 1, 0}, {2, 2, 1}));
+  m.mesh.add_body("cube", mesh::box({-0.4, -0.3, 0.05}, {0.2, 0.3, 0.65}, {1, 1, 1}));
+  model::BodySpec plate, cube;
+  plate.name = "plate";
+  plate.material = {"saint_venant_kirchhoff", 500, 0.3, 1};
+  cube.name = "cube";
+  cube.material = {"saint_venant_kirchhoff", 200, 0.3, 1};
+  cube.initial_velocity = {0.2, 0, -1};
+  m.bodies = {plate, cube};
+  m.boundary.push_back({"plate/bottom", {true, true, true}});
+  model::ContactPair pair;
+  pair.slave = "cube/bottom";
+  pair.master = "plate/top";
+  m.contact = {pair};
+  m.time = {scheme, 0.01, 0.4};
+  m.solver.tolerance = 1e-12;
+  m.output.every = 5;
+  m.effects = model::resolve_effects(m);
+  return m;
+}
+
+TEST(Simulate, ContactReportsItsSeriesPressureFramesAndBouncesWithoutEnergyLoss) {
+  const model::Model m = cube_onto_clamped_plate(model::Scheme::energy_momentum);
+  EXPECT_TRUE(m.has_effect(model::effect::contact_frictionless));
+  RecordingObserver r;
+  const model::Summary s = simulate(m, r);
+  ASSERT_TRUE(s.completed);
+  ASSERT_TRUE(r.has_series("active_contacts"));
+  ASSERT_TRUE(r.has_series("max_penetration"));
+  ASSERT_TRUE(r.has_series("contact_energy_jump"));
+  const auto active = r.series("active_contacts");
+  EXPECT_EQ(*std::max_element(active.begin(), active.end()), 4) << "all four bottom nodes land";
+  EXPECT_EQ(active.back(), 0) << "and the cube bounces off";
+  const auto H = r.series("total_energy");
+  EXPECT_LT(testing::max_drift(H, H.front()), 1e-9) << "persist + clamped plate: a conservative system";
+  const auto vz = [&](const model::Frame& f) {
+    double v = 0;
+    for (int I = m.mesh.bodies[1].node_begin; I < m.mesh.bodies[1].node_end; ++I)
+      v += f.velocity[3 * I + 2] / 8;
+    return v;
+  };
+  EXPECT_GT(vz(r.frames.back()), 0.5) << "moving up after the bounce";
+  bool pressed = false;
+  for (const model::Frame& f : r.frames) {
+    ASSERT_EQ(f.contact_pressure.size(), m.mesh.node_count());
+    EXPECT_GE(f.contact_pressure.minCoeff(), 0);
+    pressed = pressed || f.contact_pressure.maxCoeff() > 0;
+  }
+  EXPECT_TRUE(pressed);
+  EXPECT_LT(s.max_penetration, 1e-9);
+  EXPECT_LT(s.max_own_face_penetration, 1e-9);
+}
+
+TEST(Simulate, MidpointContactRunsTheSameBounce) {
+  RecordingObserver r;
+  ASSERT_TRUE(simulate(cube_onto_clamped_plate(model::Scheme::midpoint), r).completed);
+  const auto active = r.series("active_contacts");
+  EXPECT_EQ(*std::max_element(active.begin(), active.end()), 4);
+  EXPECT_EQ(active.back(), 0);
+}
+
+TEST(Simulate, ContactWithHhtIsRejectedNamingThePairAndTheScheme) {
+  RecordingObserver r;
+  try {
+    simulate(cube_onto_clamped_plate(model::Scheme::hht), r);
+    FAIL() << "contact + hht is not implemented";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("cube/bottom"), std::string::npos) << what;
+    EXPECT_NE(what.find("hht"), std::string::npos) << what;
+  }
 }
 
 TEST(Simulate, CancelStopsBeforeTheNextStep) {

@@ -11,31 +11,13 @@
 namespace stoss {
 namespace {
 
+using testing::max_drift;
 using testing::RecordingObserver;
 
 model::Model example(const std::string& name, model::Scheme scheme) {
   model::Model m = scene::load_file(std::string(STOSS_SOURCE_DIR) + "/api/examples/" + name);
   m.time.scheme = scheme;
   return m;
-}
-
-/// max_n |s_n − s_0| / scale over every step.
-double max_drift(const std::vector<double>& s, double scale) {
-  double worst = 0;
-  for (double v : s) worst = std::max(worst, std::abs(v - s.front()) / scale);
-  return worst;
-}
-
-double vector_drift(const RecordingObserver& r, const std::string& name) {
-  Eigen::Vector3d first;
-  for (int k = 0; k < 3; ++k) first[k] = r.series(name, k).front();
-  double worst = 0;
-  for (size_t n = 0; n < r.rows.size(); ++n) {
-    Eigen::Vector3d d;
-    for (int k = 0; k < 3; ++k) d[k] = r.series(name, k)[n] - first[k];
-    worst = std::max(worst, d.norm() / first.norm());
-  }
-  return worst;
 }
 
 struct SchemeRun {
@@ -45,8 +27,8 @@ struct SchemeRun {
     EXPECT_TRUE(simulate(m, r).completed);
     const auto H = r.series("total_energy");
     energy_error = max_drift(H, std::abs(H.front()));
-    linear_error = vector_drift(r, "linear_momentum");
-    angular_error = vector_drift(r, "angular_momentum");
+    linear_error = r.vector_drift("linear_momentum");
+    angular_error = r.vector_drift("angular_momentum");
   }
 };
 

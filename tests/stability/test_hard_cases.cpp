@@ -123,8 +123,9 @@ TEST_P(HardCases, OtherSchemesAreRecorded) {
                     s.energy_drift, std::max(s.linear_momentum_drift, s.angular_momentum_drift),
                     s.newton_iterations_per_step);
       outcome = text;
-      if (scheme == model::Scheme::midpoint)  // §2.2: midpoint keeps momenta whenever it converges
+      if (scheme == model::Scheme::midpoint) {  // §2.2: midpoint keeps momenta whenever it converges
         EXPECT_LT(std::max(s.linear_momentum_drift, s.angular_momentum_drift), c.momentum_bound) << c.name;
+      }
     } catch (const std::exception& e) {
       outcome = "failed at step " + std::to_string(r.rows.size()) + ": " + std::string(e.what()).substr(0, 80);
     }

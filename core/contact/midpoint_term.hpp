@@ -1,0 +1,29 @@
+#pragma once
+/// @file Frictionless Lagrange NTS contact for the implicit midpoint rule (formulation.md §4.2, seed
+/// eqs 50–52): one multiplier per active element after x_{n+1} in z.
+
+#include "core/contact/lagrange_term.hpp"
+
+namespace stoss::contact {
+
+/// The contact term of the midpoint scheme: h λ N_s(x_m) in the momentum rows, g_N(x_{n+1}) − f_3 = 0.
+/// Conserves both momenta, not energy (§4.2).
+/// @note Measures: the constraint row is divided by the face size; the multiplier increment is not
+///       measured (the rows it enters are).
+class MidpointContactTerm final : public LagrangeContactTerm {
+ public:
+  using LagrangeContactTerm::LagrangeContactTerm;
+  void add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+           solve::BlockPattern* K) const override;
+  double auxiliary_residual_measure(const Eigen::VectorXd& R, const time::MeasureScales& s) const override;
+
+ protected:
+  int unknowns_per_element() const override { return 1; }
+  void write_auxiliaries(const ContactElement& e, const Eigen::VectorXd& z_x, int offset,
+                         Eigen::VectorXd& z) const override;
+  void read_auxiliaries(ContactElement& e, const Eigen::VectorXd& z, int offset) const override;
+  /// (g_N(x_n) − f_3, 0, …): the analogue of g(π_n).
+  Vector6 start_residual(const ContactElement& e, const Eigen::VectorXd& x_n) const override;
+};
+
+}  // namespace stoss::contact

@@ -1,0 +1,134 @@
+// The system shall run the seed's example (formulation.md §7, api/examples/hollow_ball_plate.json): a
+// 432-element hollow ball hits a free plate, with the mixed energy–momentum contact (energy exact per
+// step except across a face switch, whose jump is reported and obeys (4.11); both momenta; no
+// penetration of a node's own face) and with the midpoint rule (completes, momenta; energy recorded).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "../core/recording_observer.hpp"
+#include "core/scene/scene.hpp"
+#include "core/simulate.hpp"
+
+namespace stoss {
+namespace {
+
+using testing::RecordingObserver;
+
+model::Model ball_on_plate(model::Scheme scheme) {
+  model::Model m = scene::load_file(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json");
+  m.time.scheme = scheme;
+  return m;
+}
+
+/// Each scheme's run happens once; the tests below assert several things on it.
+const RecordingObserver& run(model::Scheme scheme) {
+  static std::map<model::Scheme, RecordingObserver> runs;
+  auto [it, fresh] = runs.try_emplace(scheme);
+  if (fresh) simulate(ball_on_plate(scheme), it->second);
+  return it->second;
+}
+
+constexpr double ball_radius = 1.0, master_face_size = 0.25;
+
+TEST(HollowBallPlate, ModelIsTheSeedScene) {
+  const model::Model m = ball_on_plate(model::Scheme::energy_momentum);
+  EXPECT_EQ(m.mesh.node_count(), 654 + 867);
+  EXPECT_EQ(m.mesh.element_count(), 432 + 512);
+  EXPECT_EQ(m.mesh.surface_nodes("ball/outer").size(), 218u);
+  EXPECT_EQ(m.mesh.surface("plate/top").size(), 256u);
+  EXPECT_EQ(m.time.steps(), 100);
+  EXPECT_TRUE(m.has_effect(model::effect::contact_frictionless));
+  EXPECT_EQ(m.contact.at(0).impact, model::ImpactMode::persist);
+}
+
+TEST(HollowBallPlate, EnergyMomentumConservesEnergyExceptTheReportedFaceSwitchJump) {
+  const RecordingObserver& r = run(model::Scheme::energy_momentum);
+  ASSERT_TRUE(r.summary.completed);
+  ASSERT_EQ(r.summary.steps, 100);
+  const auto H = r.series("total_energy"), jump = r.series("contact_energy_jump");
+  const double H0 = H.front();
+  EXPECT_NEAR(H0, 1.98376, 5e-6) << "H_0 = m_b (§7)";
+  int switch_steps = 0;
+  double total_jump = 0, worst_plain = 0, worst_identity = 0;
+  for (size_t n = 1; n < H.size(); ++n) {
+    const double dH = (H[n] - H[n - 1]) / H0, reported = jump[n] / H0;
+    worst_identity = std::max(worst_identity, std::abs(dH - reported));  // (4.11) every step
+    if (std::abs(reported) > 1e-8) {
+      ++switch_steps;
+      total_jump += reported;
+    } else {
+      worst_plain = std::max(worst_plain, std::abs(dH));
+    }
+  }
+  EXPECT_LT(worst_plain, 1e-8) << "steps without a face switch, impacts and releases included";
+  EXPECT_LT(worst_identity, 1e-8) << "ΔH = Σ λ·g(π_n) (4.11), also across the switch";
+  EXPECT_GE(switch_steps, 1) << "the pole node slides onto the next face (prototype: one switch, +4.2e-3 H0)";
+  EXPECT_LT(std::abs(H.back() - H0) / H0, 1e-2);
+  EXPECT_NEAR((H.back() - H0) / H0, total_jump, 1e-8);
+  std::printf("EM: %d switch step(s), jump %+.3e H0, max |ΔH|/H0 elsewhere %.1e, max |ΔH − (4.11)|/H0 %.1e\n",
+              switch_steps, total_jump, worst_plain, worst_identity);
+  RecordProperty("switch_jump", std::to_string(total_jump));
+}
+
+TEST(HollowBallPlate, EnergyMomentumConservesBothMomentaOfTheFreeSystem) {
+  const RecordingObserver& r = run(model::Scheme::energy_momentum);
+  EXPECT_LT(r.vector_drift("linear_momentum"), 1e-10);
+  EXPECT_LT(r.vector_drift("angular_momentum"), 1e-10);
+  EXPECT_NEAR(r.series("linear_momentum", 1).front(), 1.98376, 5e-6);
+  EXPECT_NEAR(r.series("angular_momentum", 0).front(), -2.57888, 5e-6);
+}
+
+TEST(HollowBallPlate, EnergyMomentumImpactsAndReleasesInsideTheRun) {
+  const RecordingObserver& r = run(model::Scheme::energy_momentum);
+  const auto active = r.series("active_contacts");
+  const auto [first, last] = r.contact_window();
+  EXPECT_NEAR(first, 0.31, 0.015) << "initial gap 0.3 at speed 1";
+  EXPECT_GT(last, 0.6);
+  EXPECT_LT(last, 0.9) << "the ball leaves the plate before t = 1 (prototype: 0.76)";
+  EXPECT_EQ(active.back(), 0);
+}
+
+TEST(HollowBallPlate, EnergyMomentumNeverPenetratesTheOwnFaceAndBarelyAnyFace) {
+  const RecordingObserver& r = run(model::Scheme::energy_momentum);
+  EXPECT_LT(r.summary.max_own_face_penetration, 1e-8 * ball_radius);
+  const auto pen = r.series("max_penetration");
+  const double worst = *std::max_element(pen.begin(), pen.end());
+  EXPECT_LT(worst, 0.01 * master_face_size) << "against the closest face, whichever (prototype: 1.1e-3)";
+  EXPECT_DOUBLE_EQ(worst, r.summary.max_penetration);
+  std::printf("EM: penetration own face %.1e, any face %.1e, Newton its/step %.2f\n",
+              r.summary.max_own_face_penetration, worst, r.summary.newton_iterations_per_step);
+}
+
+TEST(HollowBallPlate, ContactPressureFramesAreNonNegativeAndOnlyOnTheBallSurface) {
+  const RecordingObserver& r = run(model::Scheme::energy_momentum);
+  const model::Model m = ball_on_plate(model::Scheme::energy_momentum);
+  const std::vector<int> slaves = m.mesh.surface_nodes("ball/outer");
+  double largest = 0;
+  for (const model::Frame& f : r.frames) {
+    ASSERT_EQ(f.contact_pressure.size(), m.mesh.node_count());
+    EXPECT_GE(f.contact_pressure.minCoeff(), 0.0);
+    for (int I = 0; I < m.mesh.node_count(); ++I)
+      if (!std::binary_search(slaves.begin(), slaves.end(), I)) {
+        EXPECT_EQ(f.contact_pressure[I], 0.0);
+      }
+    largest = std::max(largest, f.contact_pressure.maxCoeff());
+  }
+  EXPECT_GT(largest, 0) << "a frame inside the contact shows the pole's pressure";
+}
+
+TEST(HollowBallPlate, MidpointCompletesWithMomentaAndRecordsItsEnergyError) {
+  const RecordingObserver& r = run(model::Scheme::midpoint);
+  ASSERT_TRUE(r.summary.completed);
+  EXPECT_LT(r.vector_drift("linear_momentum"), 1e-10);
+  EXPECT_LT(r.vector_drift("angular_momentum"), 1e-10);
+  const auto active = r.series("active_contacts");
+  EXPECT_GT(*std::max_element(active.begin(), active.end()), 0);
+  EXPECT_LT(r.summary.max_own_face_penetration, 1e-8 * ball_radius);
+  RecordProperty("midpoint_energy_error", std::to_string(r.summary.energy_drift));
+  std::printf("midpoint: max |H − H0|/H0 = %.3e, penetration any face %.1e, Newton its/step %.2f\n",
+              r.summary.energy_drift, r.summary.max_penetration, r.summary.newton_iterations_per_step);
+}
+
+}  // namespace
+}  // namespace stoss
