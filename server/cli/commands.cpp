@@ -25,10 +25,13 @@ std::string join(const std::vector<std::string>& items) {
   return out;
 }
 
-void print_summary(const model::Summary& s) {
+void print_summary(const model::Model& m, const model::Summary& s) {
   std::printf("steps %d, t = %.6g\n", s.steps, s.end_time);
   std::printf("energy drift %.3e (relative, max over steps)\n", s.energy_drift);
   std::printf("momentum drift: linear %.3e, angular %.3e\n", s.linear_momentum_drift, s.angular_momentum_drift);
+  if (!m.contact.empty())
+    std::printf("max penetration %.3e (closest master face), %.3e (own face)\n", s.max_penetration,
+                s.max_own_face_penetration);
   std::printf("newton iterations %d (%.2f per step)\n", s.newton_iterations, s.newton_iterations_per_step);
   std::printf("wall %.3f s (linear solver %.3f s)\n", s.wall_seconds, s.linear_solver_seconds);
 }
@@ -54,7 +57,7 @@ int run_command(const std::vector<std::string>& args) {
     ProgressObserver progress;
     model::ObserverList observers({&writer, &progress});
     const model::Summary summary = simulate(model, observers);
-    print_summary(summary);
+    print_summary(model, summary);
     std::printf("result: %s/result.h5\n", out_dir.c_str());
     return success;
   } catch (const scene::SceneError& e) {

@@ -1,0 +1,111 @@
+// The command line: the system shall validate scenes (effects and counts, or every error by JSON
+// pointer; exit 2), run them into DIR/result.h5 + result.xdmf with a summary (exit 0), and on a solver
+// failure name the step and time, exit 1 and leave only result.incomplete.h5 (issue: foundation, CLI).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/output/result_reader.hpp"
+#include "tests/server/live_server.hpp"
+
+namespace stoss {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Command {
+  int exit_code = -1;
+  std::string output;  ///< stdout and stderr
+};
+
+Command stoss(const std::string& args) {
+  const std::string line = std::string(STOSS_BINARY) + " " + args + " 2>&1";
+  FILE* pipe = popen(line.c_str(), "r");
+  Command c;
+  char buffer[4096];
+  while (size_t n = fread(buffer, 1, sizeof buffer, pipe)) c.output.append(buffer, n);
+  const int status = pclose(pipe);
+  c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+  return c;
+}
+
+nlohmann::json bar_scene() {
+  std::ifstream in(std::string(STOSS_SOURCE_DIR) + "/api/examples/tumbling_bar.json");
+  nlohmann::json scene = nlohmann::json::parse(in);
+  scene["time"]["end"] = 0.2;  // 4 steps
+  return scene;
+}
+
+std::string write(const test::TempDir& dir, const nlohmann::json& scene) {
+  const fs::path path = dir.path() / "scene.json";
+  std::ofstream(path) << scene.dump(2);
+  return path.string();
+}
+
+TEST(Cli, ValidatePrintsEffectsCountsAndSteps) {
+  const Command c = stoss("validate " + std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json");
+  EXPECT_EQ(c.exit_code, 0) << c.output;
+  EXPECT_NE(c.output.find("effects: inertia elasticity contact_frictionless"), std::string::npos) << c.output;
+  EXPECT_NE(c.output.find("nodes 1521, elements 944, dofs 4563"), std::string::npos) << c.output;
+  EXPECT_NE(c.output.find("steps 100"), std::string::npos) << c.output;
+}
+
+TEST(Cli, ValidateNamesEveryErrorByPointerAndExits2) {
+  test::TempDir dir;
+  nlohmann::json scene = bar_scene();
+  scene["bodies"][0]["material"]["poisson_ratio"] = 0.5;
+  scene["time"]["step"] = -1;
+  const Command c = stoss("validate " + write(dir, scene));
+  EXPECT_EQ(c.exit_code, 2);
+  EXPECT_NE(c.output.find("/bodies/0/material/poisson_ratio"), std::string::npos) << c.output;
+  EXPECT_NE(c.output.find("/time/step"), std::string::npos) << c.output;
+}
+
+TEST(Cli, RunWritesACompleteResultAndPrintsTheSummary) {
+  test::TempDir dir;
+  const Command c = stoss("run " + write(dir, bar_scene()) + " -o " + (dir.path() / "out").string());
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  EXPECT_NE(c.output.find("steps 4, t = 0.2"), std::string::npos) << c.output;
+  EXPECT_NE(c.output.find("energy drift"), std::string::npos) << c.output;
+  EXPECT_EQ(c.output.find("max penetration"), std::string::npos) << "no contact, no penetration line";
+  EXPECT_TRUE(fs::exists(dir.path() / "out/result.xdmf"));
+  const output::ResultFile result = output::ResultFile::open(dir.path() / "out/result.h5");
+  EXPECT_EQ(result.attribute_double("complete"), 1);
+  EXPECT_EQ(result.series("time").rows(), 5) << "t0 and every step";
+}
+
+TEST(Cli, ContactRunsReportPenetration) {
+  test::TempDir dir;
+  const Command c = stoss("run " + std::string(STOSS_SOURCE_DIR) + "/api/examples/colliding_bars.json -o " +
+                          (dir.path() / "out").string());
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const size_t at = c.output.find("max penetration ");
+  ASSERT_NE(at, std::string::npos) << c.output;
+  EXPECT_LT(std::stod(c.output.substr(at + 16)), 1e-3 * 0.1) << "below 0.1 % of the 0.1 face size";
+}
+
+TEST(Cli, SolverFailureNamesTheStepExits1AndLeavesOnlyAnIncompleteResult) {
+  test::TempDir dir;
+  nlohmann::json scene = bar_scene();
+  scene["solver"] = {{"tolerance", 1e-14}, {"max_iterations", 1}};  // one iteration cannot reach 1e-14
+  const Command c = stoss("run " + write(dir, scene) + " -o " + (dir.path() / "out").string());
+  EXPECT_EQ(c.exit_code, 1) << c.output;
+  EXPECT_NE(c.output.find("step 1"), std::string::npos) << c.output;
+  EXPECT_NE(c.output.find("t = "), std::string::npos) << c.output;
+  EXPECT_FALSE(fs::exists(dir.path() / "out/result.h5"));
+  const output::ResultFile partial = output::ResultFile::open(dir.path() / "out/result.incomplete.h5");
+  EXPECT_EQ(partial.attribute_double("complete"), 0);
+}
+
+TEST(Cli, UnknownCommandAndMissingSceneAreUsageErrors) {
+  EXPECT_EQ(stoss("frobnicate").exit_code, 2);
+  const Command c = stoss("run /nonexistent/scene.json");
+  EXPECT_EQ(c.exit_code, 2);
+  EXPECT_NE(c.output.find("/nonexistent/scene.json"), std::string::npos) << c.output;
+}
+
+}  // namespace
+}  // namespace stoss
