@@ -51,11 +51,13 @@ void LagrangeContactTerm::switch_face_if_needed(ContactElement& e, const time::S
   const FaceProjection next = best_face(x_s, broad_.candidates(e.slave), surfaces_, step.x_n, e.face);
   if (!next.found()) return;  // no neighbour accepts x_n: stay on the (consistently extended) face
   const Projection& p = next.projection;
-  const double f3 = impact() == model::ImpactMode::persist ? std::min(std::max(p.gap, 0.0), e.f3) : 0.0;
+  const bool keep = pair_.switch_gap == model::SwitchGap::keep;
+  const double clamped = impact() == model::ImpactMode::persist ? std::min(std::max(p.gap, 0.0), e.f3) : 0.0;
+  const double f3 = keep ? p.gap : clamped;  // §3.4: clamp never freezes a penetration; keep is energy-exact
   e.face = next.face;
   e.d_n = e.d = p.frame.normal;
   e.xi_n = e.xi = p.xi;
-  e.f3 = f3;  // §3.4: never freeze a penetration, never raise the target
+  e.f3 = f3;
   e.jump = true;
   ++report_.switches;
   ++generation_;

@@ -44,6 +44,11 @@ struct Boundary {
 enum class Enforcement { lagrange, penalty };
 enum class ImpactMode { persist, exact, velocity_correction };
 enum class NormalTraction { discrete_derivative, midpoint };
+/// Gap target of an active element that moves to another master face (formulation.md §3.4).
+enum class SwitchGap {
+  clamp,  ///< f_3 := min(max(g_N^new(x_n), 0), f_3^old): no frozen penetration; the step may jump in energy
+  keep,   ///< f_3 := g_N^new(x_n): energy exact; the node may stay below the new face (≤ kink × ε_sw × ℓ/2)
+};
 
 /// One contact pair (formulation.md §3–5). Slave nodes against master faces.
 struct ContactPair {
@@ -53,6 +58,7 @@ struct ContactPair {
   double friction = 0;                 ///< Coulomb μ; > 0 makes the pair frictional (penalty)
   ImpactMode impact = ImpactMode::persist;
   double switch_hysteresis = 0.05;     ///< ε_sw of §3.4
+  SwitchGap switch_gap = SwitchGap::clamp;
   std::optional<double> normal_stiffness;      ///< ε_N; unset: 10 E ℓ (§5.1)
   std::optional<double> tangential_stiffness;  ///< ε_T; unset: 10 E ℓ
   NormalTraction normal_traction = NormalTraction::discrete_derivative;

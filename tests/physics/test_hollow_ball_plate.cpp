@@ -117,6 +117,25 @@ TEST(HollowBallPlate, ContactPressureFramesAreNonNegativeAndOnlyOnTheBallSurface
   EXPECT_GT(largest, 0) << "a frame inside the contact shows the pole's pressure";
 }
 
+TEST(HollowBallPlate, KeepingTheGapAtAFaceSwitchMakesTheWholeRunEnergyExact) {
+  model::Model m = ball_on_plate(model::Scheme::energy_momentum);
+  m.contact.at(0).switch_gap = model::SwitchGap::keep;
+  RecordingObserver r;
+  ASSERT_TRUE(simulate(m, r).completed);
+  const auto H = r.series("total_energy");
+  double worst_step = 0;
+  for (size_t n = 1; n < H.size(); ++n) worst_step = std::max(worst_step, std::abs(H[n] - H[n - 1]) / H[0]);
+  EXPECT_LT(worst_step, 1e-8) << "the switch step included (§3.4, switch_gap keep)";
+  EXPECT_LT(r.summary.energy_drift, 1e-9);
+  EXPECT_LT(r.vector_drift("linear_momentum"), 1e-10);
+  EXPECT_LT(r.vector_drift("angular_momentum"), 1e-10);
+  EXPECT_GT(r.summary.max_own_face_penetration, 1e-6) << "the kept gap: the node stays below its new face";
+  EXPECT_LT(r.summary.max_own_face_penetration, 0.01 * master_face_size);
+  EXPECT_LT(r.summary.max_penetration, 0.01 * master_face_size);
+  std::printf("keep: energy drift %.2e, own-face penetration %.2e\n", r.summary.energy_drift,
+              r.summary.max_own_face_penetration);
+}
+
 TEST(HollowBallPlate, MidpointCompletesWithMomentaAndRecordsItsEnergyError) {
   const RecordingObserver& r = run(model::Scheme::midpoint);
   ASSERT_TRUE(r.summary.completed);

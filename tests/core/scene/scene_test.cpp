@@ -138,6 +138,7 @@ TEST(SceneLoad, ContactBoundaryAndTimeOptionsReachTheModel) {
                        {"friction", 0.2},
                        {"impact", "velocity_correction"},
                        {"switch_hysteresis", 0.1},
+                       {"switch_gap", "keep"},
                        {"normal_stiffness", 2.5e4},
                        {"normal_traction", "midpoint"}}};
   scene["boundary"] = {{{"surface", "plate/bottom"}, {"fix", "zx"}}};
@@ -152,6 +153,7 @@ TEST(SceneLoad, ContactBoundaryAndTimeOptionsReachTheModel) {
   EXPECT_EQ(c.friction, 0.2);
   EXPECT_EQ(c.impact, model::ImpactMode::velocity_correction);
   EXPECT_EQ(c.switch_hysteresis, 0.1);
+  EXPECT_EQ(c.switch_gap, model::SwitchGap::keep);
   EXPECT_EQ(c.normal_stiffness, 2.5e4);
   EXPECT_FALSE(c.tangential_stiffness.has_value());
   EXPECT_EQ(c.normal_traction, model::NormalTraction::midpoint);
@@ -393,6 +395,7 @@ TEST(SceneSchema, DefaultsAgreeWithTheValidator) {
   const std::vector<Path> rich_paths{
       {"time", "alpha"},     {"contact", "enforcement"},       {"contact", "friction"},
       {"contact", "impact"}, {"contact", "switch_hysteresis"}, {"contact", "normal_traction"},
+      {"contact", "switch_gap"},
       {"boundary", "fix"}};
   auto expect_default = [&](const json& filled, const Path& path) {
     const std::string where = json(path).dump();

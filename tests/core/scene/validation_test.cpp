@@ -206,6 +206,8 @@ INSTANTIATE_TEST_SUITE_P(Rules, SceneRule, ::testing::Values(
             R"(must be one of persist, exact, velocity_correction, got "bounce")"},
   Violation{"switch hysteresis", {{"/contact/0/switch_hysteresis", -0.05}}, "/contact/0/switch_hysteresis",
             "must be >= 0, got -0.05"},
+  Violation{"switch gap rule", {{"/contact/0/switch_gap", "snap"}}, "/contact/0/switch_gap",
+            R"(must be one of clamp, keep, got "snap")"},
   Violation{"normal stiffness", {{"/contact/0/normal_stiffness", 0}}, "/contact/0/normal_stiffness",
             "must be > 0, got 0"},
   Violation{"tangential stiffness", {{"/contact/0/tangential_stiffness", -1}}, "/contact/0/tangential_stiffness",
