@@ -290,6 +290,18 @@ void check_output(json& o, const std::string& p, Checker& c) {
   integer_field(o, "every", p, Presence::or_default(1), at_least(1), c);
 }
 
+/// Rules between a contact pair and the time scheme (after both were checked and defaulted): the
+/// velocity correction (4.12) restores the identity (4.11) of the mixed energy–momentum form only.
+void check_contact_scheme(const json& scene, Checker& c) {
+  const json& contact = scene["contact"];
+  const json& scheme = scene["time"]["scheme"];
+  if (!contact.is_array() || !scheme.is_string() || scheme == "energy_momentum") return;
+  for (size_t i = 0; i < contact.size(); ++i)
+    if (contact[i].is_object() && contact[i].value("impact", "") == "velocity_correction")
+      c.fail(child(child(child("", "contact"), i), "impact"),
+             "\"velocity_correction\" needs time.scheme \"energy_momentum\", got " + shown(scheme));
+}
+
 void check_format(const json& format, const std::string& p, Checker& c) {
   if (format != "stoss-scene/1") c.fail(p, "must be \"stoss-scene/1\", got " + shown(format));
 }
@@ -314,6 +326,7 @@ void check_scene(json& scene, Checker& c) {
     check_solver(*s, "/solver", c);
   if (json* o = member(scene, "output", "", Presence::or_default(json::object()), c))
     check_output(*o, "/output", c);
+  if (scene.contains("time") && scene["time"].is_object()) check_contact_scheme(scene, c);
 }
 
 }  // namespace stoss::scene::detail

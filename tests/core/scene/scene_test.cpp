@@ -136,7 +136,7 @@ TEST(SceneLoad, ContactBoundaryAndTimeOptionsReachTheModel) {
   scene["contact"] = {{{"slave", "ball/outer"},
                        {"master", "plate/top"},
                        {"friction", 0.2},
-                       {"impact", "velocity_correction"},
+                       {"impact", "exact"},
                        {"switch_hysteresis", 0.1},
                        {"switch_gap", "keep"},
                        {"normal_stiffness", 2.5e4},
@@ -151,7 +151,7 @@ TEST(SceneLoad, ContactBoundaryAndTimeOptionsReachTheModel) {
   EXPECT_EQ(c.master, "plate/top");
   EXPECT_EQ(c.enforcement, model::Enforcement::penalty);  // the default when friction > 0
   EXPECT_EQ(c.friction, 0.2);
-  EXPECT_EQ(c.impact, model::ImpactMode::velocity_correction);
+  EXPECT_EQ(c.impact, model::ImpactMode::exact);
   EXPECT_EQ(c.switch_hysteresis, 0.1);
   EXPECT_EQ(c.switch_gap, model::SwitchGap::keep);
   EXPECT_EQ(c.normal_stiffness, 2.5e4);
