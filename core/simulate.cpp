@@ -9,6 +9,7 @@
 #include "core/contact/contact.hpp"
 #include "core/fem/assembly.hpp"
 #include "core/time/integrator.hpp"
+#include "core/time/step_reduction.hpp"
 
 namespace stoss {
 namespace {
@@ -26,7 +27,7 @@ struct Problem {
   solve::SparseMatrix mass;
   std::unique_ptr<fem::ElasticityTerm> elasticity;
   std::unique_ptr<fem::GravityTerm> gravity;
-  std::vector<std::unique_ptr<contact::LagrangeContactTerm>> contact;  ///< one per pair; none without contact
+  std::vector<std::unique_ptr<contact::ContactTerm>> contact;  ///< one per pair; none without contact
   std::vector<char> fixed;
   double total_mass = 0;
   double length_scale = 1;
@@ -53,7 +54,7 @@ std::vector<char> fixed_dofs(const Model& m) {
 Problem build_problem(const Model& m) {
   Problem p;
   for (const model::ContactPair& pair : m.contact)
-    p.contact.push_back(contact::make_contact_term(m.mesh, pair, m.time.scheme));
+    p.contact.push_back(contact::make_pair_term(m, pair));
   p.geometry = fem::precompute_mesh(m.mesh);
   std::vector<double> density;
   std::vector<fem::SaintVenantKirchhoff> material;
@@ -100,32 +101,47 @@ model::SeriesLayout series_layout(const Model& m) {
   l.series = {{"kinetic_energy"}, {"strain_energy"}};
   if (m.has_effect(model::effect::gravity)) l.series.push_back({"potential_energy"});
   l.series.push_back({"total_energy"});
+  if (m.has_effect(model::effect::contact_frictional))
+    l.series.push_back({"dissipated_energy"});  // §5.2 item 7
   l.series.push_back({"linear_momentum", 3});
   l.series.push_back({"angular_momentum", 3});
   if (!m.contact.empty()) {
     l.series.push_back({"active_contacts", 1, true});
     l.series.push_back({"max_penetration"});
     l.series.push_back({"contact_energy_jump"});
+    if (m.has_effect(model::effect::contact_frictional)) l.series.push_back({"slipping_contacts", 1, true});
   }
   l.series.push_back({"newton_iterations", 1, true});
   l.series.push_back({"residual_norm"});
   l.series.push_back({"step_seconds"});
+  l.series.push_back({"substeps", 1, true});  // automatic step reduction: 1, or the substeps taken
   return l;
 }
 
-/// Energies and momenta (1.10)–(1.11) of a state.
+/// Energies and momenta (1.10)–(1.11) of a state; `contact` is the penalty energy Σ W_N + W_T (5.1),
+/// `dissipated` the Coulomb work D so far (§5.2 item 7).
 struct Balance {
-  double kinetic = 0, strain = 0, potential = 0;
+  double kinetic = 0, strain = 0, potential = 0, contact = 0, dissipated = 0;
   Eigen::Vector3d linear = Eigen::Vector3d::Zero(), angular = Eigen::Vector3d::Zero();
   double momentum_scale = 0, angular_scale = 0;  ///< Σ|p_I|, Σ|x_I||p_I|: scales for relative drifts
-  double total() const { return kinetic + strain + potential; }
+  double total() const { return kinetic + strain + potential + contact; }  // H of (5.4)
 };
 
 /// The contact series of one step (service.md §3), summed or maximised over the pairs.
 struct ContactRow {
-  int active = 0;
+  int active = 0, slipping = 0;
   double max_penetration = 0, own_face_penetration = 0, energy_jump = 0;
 };
+
+/// Folds the contact row of one substep into the step's: the last active count, the worst
+/// penetrations, the sum of the jumps.
+void add_substep(ContactRow& step, const ContactRow& sub) {
+  step.active = sub.active;
+  step.max_penetration = std::max(step.max_penetration, sub.max_penetration);
+  step.own_face_penetration = std::max(step.own_face_penetration, sub.own_face_penetration);
+  step.energy_jump += sub.energy_jump;
+  step.slipping += sub.slipping;
+}
 
 ContactRow contact_row(const Problem& p, const time::Integrator* integrator) {
   ContactRow c;
@@ -135,6 +151,7 @@ ContactRow contact_row(const Problem& p, const time::Integrator* integrator) {
     c.max_penetration = std::max(c.max_penetration, r.max_penetration);
     c.own_face_penetration = std::max(c.own_face_penetration, r.max_own_face_penetration);
     c.energy_jump += r.energy_jump;
+    c.slipping += r.slipping;
   }
   // The velocity correction (4.12) restores (part of) the activation jump as kinetic energy.
   if (integrator) c.energy_jump += integrator->velocity_correction_energy();
@@ -147,6 +164,10 @@ Balance balance(const Problem& p, const time::State& s) {
   b.kinetic = 0.5 * s.v.dot(momentum);
   b.strain = p.elasticity->energy(s.x);
   if (p.gravity) b.potential = p.gravity->energy(s.x);
+  for (const auto& term : p.contact) {
+    b.contact += term->energy(s.x);
+    b.dissipated += term->dissipated_energy();
+  }
   for (Eigen::Index I = 0; I < s.x.size() / 3; ++I) {
     const Eigen::Vector3d pI = momentum.segment<3>(3 * I), xI = s.x.segment<3>(3 * I);
     b.linear += pI;
@@ -158,23 +179,26 @@ Balance balance(const Problem& p, const time::State& s) {
 }
 
 model::StepRow step_row(const time::State& s, const Balance& b, const ContactRow& c,
-                        const model::SeriesLayout& layout, const solve::NewtonResult* newton,
+                        const model::SeriesLayout& layout, const time::ReducedStep* newton,
                         double step_seconds) {
   model::StepRow row{s.step, s.t, {}};
   row.values.push_back(b.kinetic);
   row.values.push_back(b.strain);
   if (layout.index_of("potential_energy") >= 0) row.values.push_back(b.potential);
   row.values.push_back(b.total());
+  if (layout.index_of("dissipated_energy") >= 0) row.values.push_back(b.dissipated);
   for (int k = 0; k < 3; ++k) row.values.push_back(b.linear[k]);
   for (int k = 0; k < 3; ++k) row.values.push_back(b.angular[k]);
   if (layout.index_of("active_contacts") >= 0) {
     row.values.push_back(c.active);
     row.values.push_back(c.max_penetration);
     row.values.push_back(c.energy_jump);
+    if (layout.index_of("slipping_contacts") >= 0) row.values.push_back(c.slipping);
   }
   row.values.push_back(newton ? newton->iterations : 0);
   row.values.push_back(newton ? newton->residuals.back() : 0.0);
   row.values.push_back(step_seconds);
+  row.values.push_back(newton ? newton->substeps : 1);
   return row;
 }
 
@@ -190,13 +214,16 @@ void update_drifts(model::Summary& sum, const Balance& b0, const Balance& b) {
     sum.angular_momentum_drift = std::max(sum.angular_momentum_drift, (b.angular - b0.angular).norm() / Js);
 }
 
-std::string failure_message(const time::State& s, double h, const solve::NewtonResult& r) {
+std::string failure_message(int step, double t, double h, const time::ReducedStep& r) {
   std::ostringstream out;
-  out << "step " << s.step + 1 << " (t = " << s.t << " → " << s.t + h << ") did not converge: " << r.failure
+  out << "step " << step + 1 << " (t = " << t << " → " << t + h << ") did not converge: " << r.failure
       << "; residual history: " << solve::format_history(r.residuals)
       << ". Hint: reduce time.step, or check the material and initial velocities.";
   return out.str();
 }
+
+/// Most halvings of a step whose Newton solve fails (time/step_reduction.hpp): substeps down to h/16.
+constexpr int max_step_halvings = 4;
 
 /// Newton from the scene's solver settings. Factorisations are kept while they contract the residual
 /// by half per iteration (and reach the tolerance within the budget): on the contact scenes a
@@ -206,6 +233,10 @@ solve::NewtonOptions newton_options(const Model& m) {
   o.tolerance = m.solver.tolerance;
   o.max_iterations = m.solver.max_iterations;
   o.reuse_contraction = 0.5;
+  const bool penalty = std::any_of(m.contact.begin(), m.contact.end(), [](const model::ContactPair& c) {
+    return c.enforcement == model::Enforcement::penalty;
+  });
+  if (penalty) o.max_residual_growth = 1;  // line search: penalty and the return map are non-smooth (§5.2)
   return o;
 }
 
@@ -262,9 +293,13 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
     if (cancel && cancel->load()) return finish(false);
     const double h = std::min(m.time.step, m.time.end - s.t);
     const auto t0 = Clock::now();
-    const solve::NewtonResult r = integrator.step(s, h, log);
+    const int step0 = s.step;
+    const double time0 = s.t;
+    ContactRow c;
+    const time::ReducedStep r = time::step_with_reduction(integrator, s, h, max_step_halvings, log,
+                                                          [&] { add_substep(c, contact_row(p, &integrator)); });
     if (!r.converged) {
-      const std::string message = failure_message(s, h, r);
+      const std::string message = failure_message(step0, time0, h, r);
       observer.log(message);
       finish(false);
       throw SolverError(message);
@@ -272,7 +307,6 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
     sum.newton_iterations += r.iterations;
     const Balance b = balance(p, s);
     update_drifts(sum, b0, b);
-    const ContactRow c = contact_row(p, &integrator);
     sum.max_penetration = std::max(sum.max_penetration, c.max_penetration);
     sum.max_own_face_penetration = std::max(sum.max_own_face_penetration, c.own_face_penetration);
     observer.step(step_row(s, b, c, layout, &r, seconds_since(t0)));

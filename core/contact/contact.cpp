@@ -2,8 +2,10 @@
 
 #include <stdexcept>
 
+#include "core/contact/hht_term.hpp"
 #include "core/contact/midpoint_term.hpp"
 #include "core/contact/mixed_term.hpp"
+#include "core/contact/penalty_term.hpp"
 
 namespace stoss::contact {
 namespace {
@@ -12,24 +14,42 @@ void check_supported(const model::ContactPair& pair, model::Scheme scheme) {
   const std::string which = "contact pair " + pair.slave + " / " + pair.master + ": ";
   if (pair.enforcement != model::Enforcement::lagrange || pair.friction > 0)
     throw std::invalid_argument(which +
-                                "penalty enforcement and friction are not implemented yet; use "
-                                "enforcement \"lagrange\" with friction 0");
-  if (scheme == model::Scheme::hht)
-    throw std::invalid_argument(which +
-                                "contact is not implemented for the hht scheme; use energy_momentum "
-                                "or midpoint");
-  if (scheme == model::Scheme::midpoint && pair.impact == model::ImpactMode::velocity_correction)
+                                "make_contact_term builds frictionless Lagrange terms only; friction > 0 "
+                                "needs enforcement \"penalty\" (make_pair_term)");
+  if (scheme != model::Scheme::energy_momentum && pair.impact == model::ImpactMode::velocity_correction)
     throw std::invalid_argument(which +
                                 "impact \"velocity_correction\" needs the energy_momentum scheme; use "
-                                "\"persist\" or \"exact\" with midpoint");
+                                "\"persist\" or \"exact\" with " + model::to_string(scheme));
+}
+
+std::string pair_label(const model::ContactPair& pair) {
+  return "contact pair " + pair.slave + " / " + pair.master + ": ";
+}
+
+/// Young's modulus of the body that owns the master surface ("body/surface").
+double master_youngs_modulus(const model::Model& m, const model::ContactPair& pair) {
+  const std::string body = pair.master.substr(0, pair.master.find('/'));
+  for (const model::BodySpec& b : m.bodies)
+    if (b.name == body) return b.material.youngs_modulus;
+  throw std::invalid_argument(pair_label(pair) + "no body named \"" + body + "\"");
 }
 
 }  // namespace
+
+std::unique_ptr<ContactTerm> make_pair_term(const model::Model& m, const model::ContactPair& pair) {
+  if (pair.enforcement != model::Enforcement::penalty) return make_contact_term(m.mesh, pair, m.time.scheme);
+  if (m.time.scheme == model::Scheme::hht)
+    throw std::invalid_argument(pair_label(pair) +
+                                "penalty contact is not implemented for the hht scheme; use energy_momentum "
+                                "or midpoint");
+  return std::make_unique<PenaltyContactTerm>(m.mesh, pair, master_youngs_modulus(m, pair));
+}
 
 std::unique_ptr<LagrangeContactTerm> make_contact_term(const mesh::Mesh& mesh, const model::ContactPair& pair,
                                                        model::Scheme scheme) {
   check_supported(pair, scheme);
   if (scheme == model::Scheme::energy_momentum) return std::make_unique<MixedContactTerm>(mesh, pair);
+  if (scheme == model::Scheme::hht) return std::make_unique<HhtContactTerm>(mesh, pair);  // (2.11)
   return std::make_unique<MidpointContactTerm>(mesh, pair);
 }
 

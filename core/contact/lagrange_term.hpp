@@ -10,6 +10,7 @@
 
 #include "core/contact/assignment.hpp"
 #include "core/contact/broad_phase.hpp"
+#include "core/contact/contact_term.hpp"
 #include "core/contact/surface.hpp"
 #include "core/contact/types.hpp"
 #include "core/model/model.hpp"
@@ -31,23 +32,6 @@ struct ContactElement {
   int block = -1;                    ///< Jacobian block id
 };
 
-/// What a pair reports after each converged step.
-/// @note max_penetration is measured against the closest master face that accepts the node (§3.4,
-///       whichever face it is, active or not); max_own_face_penetration only for active nodes, against
-///       the face they are assigned to (it stays at the Newton tolerance, §3.4).
-/// @note energy_jump = Σ_s λ_s·g_s(π_n) over the elements activated or moved to another face in the
-///       step: the energy change of the step by (4.11) with the mixed form (the other elements satisfy
-///       g(π_n) = 0 to the Newton tolerance), exactly 0 in steps without either; with the midpoint
-///       form Σ λ_1 (g_N(x_n) − f_3), an analogue without that identity.
-struct ContactReport {
-  int active = 0;
-  double max_penetration = 0;
-  double max_own_face_penetration = 0;
-  double energy_jump = 0;
-  int activations = 0, releases = 0, switches = 0;
-  int unassigned = 0;  ///< near slave nodes level with the surface that no face accepts (NTS blind spot)
-};
-
 /// The active-set bookkeeping of §3.5 and the search of §3.4 around an element kernel.
 /// @note A step that is abandoned (prepare_step again without end_step) is forgotten: the next
 ///       prepare_step starts from the elements of the last converged step.
@@ -55,7 +39,7 @@ struct ContactReport {
 ///       hysteresis ε_sw of the pair. Activation: a near slave node whose best face at x_{n+1} shows
 ///       g_N < −1e-10 × face size; release: λ_1 > 0. A node that would toggle a second time in one
 ///       step stays active (logged), so the loop ends.
-class LagrangeContactTerm : public time::Term {
+class LagrangeContactTerm : public ContactTerm {
  public:
   LagrangeContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair);
   std::string name() const override { return "contact " + pair_.slave + " on " + pair_.master; }
@@ -70,11 +54,11 @@ class LagrangeContactTerm : public time::Term {
   void end_step(const time::StepContext& step, const Eigen::VectorXd& z) override;
 
   /// The last converged step's report.
-  const ContactReport& report() const { return report_; }
+  const ContactReport& report() const override { return report_; }
   /// Sets p_I = max(−λ_1, 0) / A_I at the active slave nodes (A_I: tributary area, surface.hpp): the
   /// normal contact force of the element spread over the node's share of the slave surface. Force per
   /// area; other entries untouched.
-  void contact_pressure(Eigen::VectorXd& p) const;
+  void contact_pressure(Eigen::VectorXd& p) const override;
   const std::vector<ContactElement>& elements() const { return elements_; }
   const PairSurfaces& surfaces() const { return surfaces_; }
 

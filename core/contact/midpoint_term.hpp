@@ -7,10 +7,10 @@
 namespace stoss::contact {
 
 /// The contact term of the midpoint scheme: h λ N_s(x_m) in the momentum rows, g_N(x_{n+1}) − f_3 = 0.
-/// Conserves both momenta, not energy (§4.2).
+/// Conserves both momenta, not energy (§4.2). HhtContactTerm reuses its multiplier bookkeeping.
 /// @note Measures: the constraint row is divided by the face size; the multiplier increment is not
 ///       measured (the rows it enters are).
-class MidpointContactTerm final : public LagrangeContactTerm {
+class MidpointContactTerm : public LagrangeContactTerm {
  public:
   using LagrangeContactTerm::LagrangeContactTerm;
   void add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,

@@ -40,6 +40,9 @@ std::vector<std::string> resolve_effects(const Model& m) {
                                       [](const ContactPair& c) { return c.friction > 0; });
   if (frictionless) out.push_back(effect::contact_frictionless);
   if (frictional) out.push_back(effect::contact_frictional);
+  for (const ContactPair& c : m.contact)  // which pairs: "contact_frictional:<slave>,<master>"
+    if (c.friction > 0)
+      out.push_back(std::string(effect::contact_frictional) + ":" + c.slave + "," + c.master);
   return out;
 }
 

@@ -108,7 +108,8 @@ struct Model {
   int dof_count() const { return 3 * mesh.node_count(); }
 };
 
-/// Resolves the effect list from what the model contains (service.md §1).
+/// Resolves the effect list from what the model contains (service.md §1); each frictional pair adds
+/// "contact_frictional:<slave>,<master>" after "contact_frictional".
 std::vector<std::string> resolve_effects(const Model& m);
 
 }  // namespace stoss::model

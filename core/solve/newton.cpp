@@ -6,7 +6,9 @@
 namespace stoss::solve {
 namespace {
 
-bool acceptable(double trial, double current) { return std::isfinite(trial) && trial <= 10 * current + 1e-300; }
+bool acceptable(double trial, double current, double growth) {
+  return std::isfinite(trial) && trial <= growth * current + 1e-300;
+}
 
 /// Whether the factorisation that produced `trial` from `current` (iteration `it`) is worth keeping:
 /// it contracted the residual by at least reuse_contraction, at that rate the tolerance is reached
@@ -84,7 +86,9 @@ NewtonResult newton_solve(NonlinearSystem& system, Eigen::VectorXd& z, BlockPatt
       if (!(trial.r < current.r)) continue;
     }
     double scale = 1;
-    for (int cut = 0; fresh && !acceptable(trial.r, current.r) && cut < options.max_backtracks; ++cut) {
+    for (int cut = 0; fresh && !acceptable(trial.r, current.r, options.max_residual_growth) &&
+                      cut < options.max_backtracks;
+         ++cut) {
       scale *= 0.5;
       ++result.backtracks;
       if (log)

@@ -26,7 +26,11 @@ class NonlinearSystem {
 struct NewtonOptions {
   double tolerance = 1e-10;
   int max_iterations = 25;
-  int max_backtracks = 6;  ///< halvings of a step whose residual is not finite or grew tenfold
+  int max_backtracks = 6;  ///< halvings of a step whose residual is not finite or grew too much
+  /// A fresh step is halved (at most max_backtracks times) while its residual exceeds this factor times
+  /// the current one: 10 tolerates the transient growth of smooth problems; 1 makes it a backtracking
+  /// line search on the residual for non-smooth ones (penalty contact and the return map, §5.2).
+  double max_residual_growth = 10;
   /// Keep the last factorisation (across iterations and steps) while it contracts the residual by at
   /// least `reuse_contraction` per iteration; refactorise with a fresh Jacobian otherwise.
   bool reuse_factorization = true;

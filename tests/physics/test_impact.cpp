@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "../core/recording_observer.hpp"
+#include "b7_scene.hpp"
 #include "core/mesh/generators.hpp"
 #include "core/simulate.hpp"
 
@@ -15,28 +16,9 @@ namespace {
 using testing::RecordingObserver;
 
 model::Model cube_on_plate(model::ImpactMode impact, model::Scheme scheme, double tolerance) {
-  model::Model m;
-  m.mesh.add_body("plate", mesh::box({-1, -1, -0.4}, {1, 1, 0}, {1, 1, 1}));
-  m.mesh.add_body("cube", mesh::box({-0.3, -0.3, 0.2}, {0.3, 0.3, 0.8}, {1, 1, 1}));
-  model::BodySpec plate, cube;
-  plate.name = "plate";
-  plate.material = {"saint_venant_kirchhoff", 300, 0.3, 1};
-  cube.name = "cube";
-  cube.material = {"saint_venant_kirchhoff", 200, 0.3, 1};
-  cube.initial_velocity = {0.3, 0.1, -1.0};
-  cube.initial_angular_velocity = {0.6, -0.9, 0.4};
-  cube.center = Eigen::Vector3d(0, 0, 0.5);
-  m.bodies = {plate, cube};
   model::ContactPair pair;
-  pair.slave = "cube/bottom";
-  pair.master = "plate/top";
   pair.impact = impact;
-  m.contact = {pair};
-  m.time = {scheme, 0.01, 1.5};
-  m.solver.tolerance = tolerance;
-  m.output.every = 50;
-  m.effects = model::resolve_effects(m);
-  return m;
+  return testing::b7_cube_on_free_plate(scheme, pair, tolerance);
 }
 
 /// One run and what the B7 checks need from it.

@@ -10,6 +10,7 @@
 #include <functional>
 
 #include "../core/recording_observer.hpp"
+#include "outcomes.hpp"
 #include "core/scene/scene.hpp"
 #include "core/simulate.hpp"
 
@@ -112,28 +113,14 @@ TEST_P(HardCases, EnergyMomentumStaysStableAndConserving) {
 /// midpoint and hht on the same case: outcome recorded, not asserted (only midpoint's momenta are).
 TEST_P(HardCases, OtherSchemesAreRecorded) {
   const HardCase& c = GetParam();
-  std::ofstream report(std::string(STOSS_BINARY_DIR) + "/stability_outcomes.md", std::ios::app);
   for (model::Scheme scheme : {model::Scheme::midpoint, model::Scheme::hht}) {
-    RecordingObserver r;
-    std::string outcome;
-    try {
-      const model::Summary s = simulate(load(c, scheme), r);
-      char text[160];
-      std::snprintf(text, sizeof text, "completed; energy %.2e, momentum %.2e, %.1f Newton its/step",
-                    s.energy_drift, std::max(s.linear_momentum_drift, s.angular_momentum_drift),
-                    s.newton_iterations_per_step);
-      outcome = text;
-      if (scheme == model::Scheme::midpoint) {  // §2.2: midpoint keeps momenta whenever it converges
-        EXPECT_LT(std::max(s.linear_momentum_drift, s.angular_momentum_drift), c.momentum_bound) << c.name;
-      }
-    } catch (const std::exception& e) {
-      outcome = "failed at step " + std::to_string(r.rows.size()) + ": " + std::string(e.what()).substr(0, 80);
+    model::Summary s;
+    const std::string outcome = testing::outcome_of(load(c, scheme), 0, &s);
+    if (scheme == model::Scheme::midpoint && s.completed) {  // §2.2: midpoint keeps momenta whenever it converges
+      EXPECT_LT(std::max(s.linear_momentum_drift, s.angular_momentum_drift), c.momentum_bound) << c.name;
     }
-    report << "| " << c.name << " | " << model::to_string(scheme) << " | " << outcome << " |\n";
-    RecordProperty(model::to_string(scheme), outcome);
-    std::printf("%s / %s: %s\n", c.name.c_str(), model::to_string(scheme).c_str(), outcome.c_str());
+    EXPECT_TRUE(testing::record_outcome(c.name, scheme, outcome)) << "could not write stability_outcomes.md";
   }
-  EXPECT_TRUE(report.good()) << "could not write stability_outcomes.md";
 }
 
 INSTANTIATE_TEST_SUITE_P(Stability, HardCases, ::testing::ValuesIn(cases()),

@@ -211,7 +211,16 @@ TEST(SceneEffects, FrictionlessAndFrictionalContact) {
   scene["contact"] = {{{"slave", "ball/outer"}, {"master", "plate/top"}}};
   EXPECT_EQ(effects_of(scene), (Effects{"inertia", "elasticity", "contact_frictionless"}));
   scene["contact"][0]["friction"] = 0.2;
-  EXPECT_EQ(effects_of(scene), (Effects{"inertia", "elasticity", "contact_frictional"}));
+  EXPECT_EQ(effects_of(scene), (Effects{"inertia", "elasticity", "contact_frictional",
+                                        "contact_frictional:ball/outer,plate/top"}));
+}
+
+TEST(SceneEffects, TheEffectListNamesEachFrictionalPair) {
+  json scene = with_plate(minimal_scene());
+  scene["contact"] = {{{"slave", "ball/outer"}, {"master", "plate/top"}},
+                      {{"slave", "plate/top"}, {"master", "ball/outer"}, {"friction", 0.3}}};
+  EXPECT_EQ(effects_of(scene), (Effects{"inertia", "elasticity", "contact_frictionless", "contact_frictional",
+                                        "contact_frictional:plate/top,ball/outer"}));
 }
 
 // ------------------------------------------------------------------------------- files, examples
