@@ -177,14 +177,14 @@ void fill_closed_step(PenaltyResult& out, const GapVariations& mid, const Normal
                 + 0.5 * contracted_xi_hessian(f, out.at_m.gap, mid, tangential.value);  // t_α ∂D_α
   const Eigen::Vector2d contravariant = f.metric_inv * tangential.value;
   out.history_after.traction = contravariant[0] * f.tau1 + contravariant[1] * f.tau2;  // §5.2 item 7
-  out.normal_energy = normal_penalty_energy(p.normal_stiffness, out.at_1.gap);         // (5.1)
+  out.normal_energy = normal_penalty_energy(p.normal_stiffness, out.at_1.gap - p.gap_offset);  // (5.1)
   out.tangential_energy = tangential_penalty_energy(tangential.value, f.metric_inv, p.tangential_stiffness);
   out.slip_work = tangential.slip ? tangential.value.dot(tangential.slip_increment) : 0.0;  // §5.2 item 7
 }
 
-PenaltyResult open_result(PenaltyResult out, double normal_stiffness) {
-  if (out.at_1.converged) out.normal_energy = normal_penalty_energy(normal_stiffness, out.at_1.gap);  // (5.1)
-  return out;
+PenaltyResult open_result(PenaltyResult out, const PenaltyParameters& p) {
+  if (out.at_1.converged) out.normal_energy = normal_penalty_energy(p.normal_stiffness, out.at_1.gap - p.gap_offset);
+  return out;  // (5.1)
 }
 
 }  // namespace
@@ -211,16 +211,17 @@ PenaltyResult penalty_element(const Vector15& x_n, const Vector15& x_1, const Fr
   out.at_m = project(0.5 * (x_n + x_1), xi_start);
   out.at_1 = project(x_1, xi_start);
   if (!(out.at_n.converged && out.at_m.converged && out.at_1.converged))
-    return open_result(out, p.normal_stiffness);
+    return open_result(out, p);
 
   const GapVariations mid = gap_variations(out.at_m.frame, out.at_m.gap);  // (3.6)–(3.9) at x_m
   const Vector15 Ns_1 = gap_gradient(out.at_1.frame);                      // (3.6) at x_{n+1}
   const NormalTraction normal =
       p.normal_rule == NormalRule::midpoint
-          ? midpoint_normal_traction(p.normal_stiffness, out.at_m.gap, mid.Ns)
-          : discrete_derivative_normal_traction(p.normal_stiffness, out.at_n.gap, out.at_m.gap, out.at_1.gap,
+          ? midpoint_normal_traction(p.normal_stiffness, out.at_m.gap - p.gap_offset, mid.Ns)
+          : discrete_derivative_normal_traction(p.normal_stiffness, out.at_n.gap - p.gap_offset,
+                                                out.at_m.gap - p.gap_offset, out.at_1.gap - p.gap_offset,
                                                 mid.Ns, Ns_1, face_size(x_n));
-  if (!(normal.value < 0)) return open_result(out, p.normal_stiffness);  // open: reset t_T (§5.2 item 7)
+  if (!(normal.value < 0)) return open_result(out, p);  // open: reset t_T (§5.2 item 7)
 
   const HalfGradients half = half_gradients(out.at_m.frame, mid);
   const Matrix2x15 D_1 = xi_gradient(out.at_1.frame, out.at_1.gap);  // (3.7) at x_{n+1}

@@ -31,6 +31,9 @@ struct PenaltyParameters {
   double tangential_stiffness = 0;  ///< ε_T ≥ 0; 0 switches the tangential traction off
   double friction = 0;              ///< Coulomb μ ≥ 0
   NormalRule normal_rule = NormalRule::discrete_derivative;
+  /// Constant c with W_N = W_N(g_N − c) and t_N from g_N − c: the gap kept at a face switch
+  /// (switch_gap "keep", §3.4). Geometry (N_s, D_α, the reported gaps) uses the true g_N.
+  double gap_offset = 0;
 };
 
 /// Friction history of one element: the spatial tangential traction t_{T,n} (§5.2 item 3).

@@ -50,8 +50,10 @@ PenaltyResult PenaltyContactTerm::evaluate(const PenaltyContact& c, const Eigen:
                                            const Eigen::VectorXd& x_1) const {
   const int node = surfaces_.slave_nodes[c.slave];
   const mesh::Quad& face = surfaces_.faces[c.face];
+  PenaltyParameters p = params_;
+  p.gap_offset = c.gap_offset;
   PenaltyResult r = penalty_element(element_positions(node, face, x_n), element_positions(node, face, x_1),
-                                    c.history, params_, c.xi_n);  // §5.2
+                                    c.history, p, c.xi_n);  // §5.2
   if (r.closed && params_.tangential_stiffness > 0) ++return_maps_;
   return r;
 }
@@ -91,7 +93,8 @@ void PenaltyContactTerm::prepare_step(const time::StepContext& step) {
     c.face = face_for(i, step, c.xi_n);
     if (c.face < 0) continue;
     c.history = committed_[i].history;  // spatial t_{T,n}: carried across a face switch (§5.2 item 3)
-    if (committed_[i].face >= 0 && c.face != committed_[i].face) count_switch(i, c.face, step.x_n);
+    c.gap_offset = committed_[i].gap_offset;
+    if (committed_[i].face >= 0 && c.face != committed_[i].face) c.gap_offset = switch_face(i, c.face, step.x_n);
     next.push_back(c);
   }
   if (same_structure(next, contacts_)) {
@@ -102,15 +105,19 @@ void PenaltyContactTerm::prepare_step(const time::StepContext& step) {
   contacts_ = std::move(next);
 }
 
-void PenaltyContactTerm::count_switch(int slave, int face, const Eigen::VectorXd& x_n) {
+double PenaltyContactTerm::switch_face(int slave, int face, const Eigen::VectorXd& x_n) {
   const Eigen::Vector3d x_s = x_n.segment<3>(3 * surfaces_.slave_nodes[slave]);
   const PenaltyNodeState& last = committed_[slave];
   const Projection before = project_on(x_s, last.face, surfaces_, x_n, last.xi).projection;
   const Projection after = project_on(x_s, face, surfaces_, x_n).projection;
   ++switches_;
-  if (before.converged && after.converged)  // W_N(x_n) is measured against the new face from now on (5.1)
-    switch_jump_ += normal_penalty_energy(params_.normal_stiffness, after.gap) -
-                    normal_penalty_energy(params_.normal_stiffness, before.gap);
+  if (!(before.converged && after.converged)) return 0;
+  const double kept = before.gap - last.gap_offset;  // the gap W_N(x_n) was measured with (5.1)
+  double offset = 0;                                 // clamp: the new face's true gap from now on
+  if (pair_.switch_gap == model::SwitchGap::keep) offset = kept < 0 ? after.gap - kept : std::min(after.gap, 0.0);
+  switch_jump_ += normal_penalty_energy(params_.normal_stiffness, after.gap - offset) -
+                  normal_penalty_energy(params_.normal_stiffness, kept);
+  return offset;
 }
 
 void PenaltyContactTerm::register_blocks(solve::BlockPattern& pattern) {
@@ -143,6 +150,8 @@ void PenaltyContactTerm::end_step(const time::StepContext& step, const Eigen::Ve
     node.face = c.face;
     node.xi = r.at_1.converged ? r.at_1.xi : c.xi_n;
     node.history = r.history_after;  // committed only now; reset when the contact opened (§5.2 item 7)
+    const bool clear = r.at_1.converged && r.at_1.gap >= 0 && r.at_1.gap - c.gap_offset >= 0;
+    node.gap_offset = clear ? 0.0 : c.gap_offset;  // W_N = 0 with or without it: clearing changes nothing
     if (r.at_1.converged) report_.max_penetration = std::max(report_.max_penetration, -r.at_1.gap);
     if (!r.closed) continue;
     ++report_.active;
@@ -170,8 +179,9 @@ double PenaltyContactTerm::energy(const Eigen::VectorXd& x) const {
     const PenaltyNodeState& node = committed_[i];
     const FaceProjection p = node.face >= 0 ? project_on(x_s, node.face, surfaces_, x, node.xi)
                                             : best_face(x_s, near.candidates(i), surfaces_, x);
+    const double offset = node.face >= 0 ? node.gap_offset : 0.0;
     if (p.found() && p.projection.converged)
-      W += normal_penalty_energy(params_.normal_stiffness, p.projection.gap);  // W_N (5.1)
+      W += normal_penalty_energy(params_.normal_stiffness, p.projection.gap - offset);  // W_N (5.1)
   }
   return W;
 }

@@ -23,6 +23,7 @@ struct PenaltyContact {
   int face = -1;                                   ///< index into PairSurfaces::faces
   Eigen::Vector2d xi_n = Eigen::Vector2d::Zero();  ///< CPP start: ξ of the last step, else of x_n
   FrictionHistory history;                         ///< t_{T,n} (§5.2 item 3)
+  double gap_offset = 0;                           ///< kept gap of a switch_gap "keep" pair (§3.4)
   int block = -1;                                  ///< Jacobian block id
 };
 
@@ -31,14 +32,17 @@ struct PenaltyNodeState {
   int face = -1;                                 ///< face of the last step; −1: not near the master
   Eigen::Vector2d xi = Eigen::Vector2d::Zero();  ///< ξ_{n+1} on that face
   FrictionHistory history;                       ///< t_{T,n+1}; zero once the contact opened
+  double gap_offset = 0;                         ///< kept gap; cleared once the node is clear of both faces
 };
 
 /// Penalty contact (5.1)–(5.3) of one pair.
 /// @note Face per step: a node near the master keeps last step's face until |ξ_n|_∞ > 1 + ε_sw, then
 ///       moves to the best face at x_n (§3.4); a node new to the master gets its best face at x_n.
 ///       The history (a spatial vector) carries across a switch (§5.2 item 3). The report's
-///       energy_jump is the change of Σ W_N(x_n) a switch causes (the penetration is measured against
-///       the new face from then on); switches counts them.
+///       energy_jump is the change of Σ W_N(x_n) a switch causes; switches counts them. switch_gap
+///       "clamp": the penetration is measured against the new face from then on (W_N may jump);
+///       "keep": W_N continues from the old face's value through a constant gap offset (no jump), which
+///       is cleared once the node is clear of the new face with and without the offset.
 /// @note Friction μ = 0 passes ε_T = 0 to the element: no tangential traction and no return mapping
 ///       (return_map_evaluations() stays 0).
 /// @note energy(x) = Σ W_N(g_N(x)) + Σ |t_{T}|²/(2ε_T) (5.1), with the committed history: the penalty
@@ -74,7 +78,8 @@ class PenaltyContactTerm : public ContactTerm {
   PenaltyResult evaluate(const PenaltyContact& c, const Eigen::VectorXd& x_n,
                          const Eigen::VectorXd& x_1) const;
   int face_for(int slave, const time::StepContext& step, Eigen::Vector2d& xi) const;
-  void count_switch(int slave, int face, const Eigen::VectorXd& x_n);
+  /// Counts a switch of `slave` to `face` at x_n, adds its W_N jump, returns the new gap offset.
+  double switch_face(int slave, int face, const Eigen::VectorXd& x_n);
   void log(const time::StepContext& step, const std::string& line) const;
 
   model::ContactPair pair_;

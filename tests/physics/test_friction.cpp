@@ -319,6 +319,26 @@ TEST(FrictionBallPlate, RunsToTheEndKeepsEnergyBeforeImpactAndNeverGainsAfter) {
   RecordProperty("largest_energy_rise_per_step", std::to_string(rise));
 }
 
+TEST(FrictionBallPlate, KeepingTheGapAtAFaceSwitchMakesHPlusDExact) {
+  model::Model m =
+      scene::load_file(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate_friction.json");
+  m.contact.at(0).switch_gap = model::SwitchGap::keep;
+  RecordingObserver r;
+  ASSERT_TRUE(simulate(m, r).completed);
+  const auto H = r.series("total_energy"), D = r.series("dissipated_energy"), jump = r.series("contact_energy_jump");
+  double rise_with_D = -1e300, largest_jump = 0;
+  for (size_t n = 1; n < H.size(); ++n) {
+    rise_with_D = std::max(rise_with_D, (H[n] - H[n - 1] + D[n] - D[n - 1]) / H[0]);
+    largest_jump = std::max(largest_jump, std::abs(jump[n]) / H[0]);
+  }
+  EXPECT_LT(rise_with_D, 1e-8) << "H + D never rises, the switch step included (switch_gap keep, §3.4)";
+  EXPECT_LT(largest_jump, 1e-14) << "W_N continues across the switch";
+  EXPECT_GT(D.back(), 0);
+  EXPECT_LT(r.summary.max_penetration, 0.01 * ball_face_size);
+  std::printf("ball μ = 0.2, switch_gap keep: largest rise of H + D per step %+.2e H0, penetration %.2e\n",
+              rise_with_D, r.summary.max_penetration);
+}
+
 TEST(FrictionBallPlate, FrictionSpinsTheBall) {
   const RecordingObserver& r = ball_run();
   const model::Model m =
