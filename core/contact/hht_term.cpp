@@ -8,21 +8,11 @@ void HhtContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z
                          solve::BlockPattern* K) const {
   for (const auto& [dofs, force] : previous_force_)
     for (int i = 0; i < 15; ++i) R[dofs[i]] -= step.alpha * step.h * force[i];  // −α h λ_n N_s(x_n) (2.11)
-  Eigen::Matrix<double, 16, 16> block;
   for (size_t k = 0; k < elements_.size(); ++k) {
     const ContactElement& e = elements_[k];
     const int o = element_offset(static_cast<int>(k));
     const Vector15 x_1 = element_positions(slave_node(e), face_of(e), z);
-    const HhtElementResult r = hht_element(x_1, z[o], e.f3, step.h, step.alpha, e.xi);  // (2.11)
-    const std::array<int, 15> dofs = element_dofs(slave_node(e), face_of(e));
-    for (int i = 0; i < 15; ++i) R[dofs[i]] += r.Rx[i];
-    R[o] += r.Rl;
-    if (!K) continue;
-    block.setZero();
-    block.topLeftCorner<15, 15>() = r.Kxx;
-    block.topRightCorner<15, 1>() = r.Kxl;
-    block.bottomLeftCorner<1, 15>() = r.Klx;
-    K->scatter(e.block, block);
+    scatter(e, o, hht_element(x_1, z[o], e.f3, step.h, step.alpha, e.xi), R, K);  // (2.11)
   }
 }
 

@@ -9,22 +9,12 @@ namespace stoss::contact {
 
 void MidpointContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
                               solve::BlockPattern* K) const {
-  Eigen::Matrix<double, 16, 16> block;
   for (size_t k = 0; k < elements_.size(); ++k) {
     const ContactElement& e = elements_[k];
     const int o = element_offset(static_cast<int>(k));
     const Vector15 x_n = element_positions(slave_node(e), face_of(e), step.x_n);
     const Vector15 x_1 = element_positions(slave_node(e), face_of(e), z);
-    const MidpointResult r = midpoint_element(x_n, x_1, z[o], e.f3, step.h, e.xi);  // (4.2)
-    const std::array<int, 15> dofs = element_dofs(slave_node(e), face_of(e));
-    for (int i = 0; i < 15; ++i) R[dofs[i]] += r.Rx[i];
-    R[o] += r.Rl;
-    if (!K) continue;
-    block.setZero();
-    block.topLeftCorner<15, 15>() = r.Kxx;
-    block.topRightCorner<15, 1>() = r.Kxl;
-    block.bottomLeftCorner<1, 15>() = r.Klx;
-    K->scatter(e.block, block);
+    scatter(e, o, midpoint_element(x_n, x_1, z[o], e.f3, step.h, e.xi), R, K);  // (4.2)
   }
 }
 

@@ -2,7 +2,10 @@
 /// @file Frictionless Lagrange NTS contact for the implicit midpoint rule (formulation.md §4.2, seed
 /// eqs 50–52): one multiplier per active element after x_{n+1} in z.
 
+#include <array>
+
 #include "core/contact/lagrange_term.hpp"
+#include "core/contact/surface.hpp"
 
 namespace stoss::contact {
 
@@ -24,6 +27,22 @@ class MidpointContactTerm : public LagrangeContactTerm {
   void read_auxiliaries(ContactElement& e, const Eigen::VectorXd& z, int offset) const override;
   /// (g_N(x_n) − f_3, 0, …): the analogue of g(π_n).
   Vector6 start_residual(const ContactElement& e, const Eigen::VectorXd& x_n) const override;
+
+  /// Adds one element's rows (Rx to its 15 dofs, Rl to its multiplier row at `offset`) and, if K is
+  /// given, its 16 × 16 block [Kxx Kxl; Klx 0]. Result: MidpointResult or HhtElementResult.
+  template <class Result>
+  void scatter(const ContactElement& e, int offset, const Result& r, Eigen::VectorXd& R,
+               solve::BlockPattern* K) const {
+    const std::array<int, 15> dofs = element_dofs(slave_node(e), face_of(e));
+    for (int i = 0; i < 15; ++i) R[dofs[i]] += r.Rx[i];
+    R[offset] += r.Rl;
+    if (!K) return;
+    Eigen::Matrix<double, 16, 16> block = Eigen::Matrix<double, 16, 16>::Zero();
+    block.topLeftCorner<15, 15>() = r.Kxx;
+    block.topRightCorner<15, 1>() = r.Kxl;
+    block.bottomLeftCorner<1, 15>() = r.Klx;
+    K->scatter(e.block, block);
+  }
 };
 
 }  // namespace stoss::contact
