@@ -4,7 +4,14 @@
 /// (penalty_term.hpp) terms implement it.
 
 #include <Eigen/Core>
+#include <string>
+#include <utility>
+#include <vector>
 
+#include "core/contact/broad_phase.hpp"
+#include "core/contact/surface.hpp"
+#include "core/mesh/mesh.hpp"
+#include "core/model/model.hpp"
 #include "core/time/term.hpp"
 
 namespace stoss::contact {
@@ -28,17 +35,39 @@ struct ContactReport {
   int slipping = 0;    ///< closed penalty contacts on the Coulomb cone (5.3) in the step; 0 if frictionless
 };
 
-/// A contact pair as a time::Term, with what the run reports of it.
+/// A contact pair as a time::Term, with what the run reports of it: the pair, its surfaces and broad
+/// phase, the last converged step's report and nodal pressures (what every enforcement shares).
 class ContactTerm : public time::Term {
  public:
+  /// Collects the pair's surfaces (surface.hpp: throws naming a missing or empty surface).
+  ContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair);
+  std::string name() const override { return "contact " + pair_.slave + " on " + pair_.master; }
   /// The last converged step's report.
-  virtual const ContactReport& report() const = 0;
-  /// Sets p_I (force per area) at the slave nodes in contact in the last converged step; other
-  /// entries untouched.
-  virtual void contact_pressure(Eigen::VectorXd& p) const = 0;
+  const ContactReport& report() const { return report_; }
+  /// Sets p_I (force per area: the node's normal contact force over its tributary area A_I,
+  /// surface.hpp) at the slave nodes in contact in the last converged step; other entries untouched.
+  void contact_pressure(Eigen::VectorXd& p) const;
   /// Coulomb work D = Σ t_{n+1}·Δξ_p accumulated over the converged steps (§5.2 item 7, ≥ 0); 0 for
   /// frictionless pairs.
   virtual double dissipated_energy() const { return 0; }
+  const PairSurfaces& surfaces() const { return surfaces_; }
+
+ protected:
+  /// Sends "<name>: <line>" to the run's solver log, if any.
+  void log(const time::StepContext& step, const std::string& line) const;
+  /// Records the normal contact force (≥ 0) of slave `slave` (index into surfaces_.slave_nodes) as a
+  /// pressure for contact_pressure().
+  void add_pressure(int slave, double force) {
+    pressure_.emplace_back(surfaces_.slave_nodes[slave], force / surfaces_.tributary_area[slave]);
+  }
+  /// v in the log's "%.3e" format.
+  static std::string scientific(double v);
+
+  model::ContactPair pair_;
+  PairSurfaces surfaces_;
+  BroadPhase broad_;
+  ContactReport report_;
+  std::vector<std::pair<int, double>> pressure_;  ///< (node, pressure) of the last converged step
 };
 
 }  // namespace stoss::contact

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 namespace stoss::contact {
 namespace {
@@ -10,24 +9,14 @@ namespace {
 /// Activation threshold of §3.5: tol_g = 1e-10 × face size.
 constexpr double activation_gap = 1e-10;
 
-std::string number(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3e", v);
-  return buffer;
-}
-
 }  // namespace
 
 LagrangeContactTerm::LagrangeContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair)
-    : pair_(pair), surfaces_(pair_surfaces(mesh, pair.slave, pair.master)) {
+    : ContactTerm(mesh, pair) {
   element_of_.assign(surfaces_.slave_nodes.size(), -1);
   start_of_ = element_of_;
   toggles_.assign(surfaces_.slave_nodes.size(), 0);
   released_now_.assign(surfaces_.slave_nodes.size(), 0);
-}
-
-void LagrangeContactTerm::log(const time::StepContext& step, const std::string& line) const {
-  if (step.log && *step.log) (*step.log)(name() + ": " + line);
 }
 
 void LagrangeContactTerm::register_blocks(solve::BlockPattern& pattern) {
@@ -121,7 +110,7 @@ bool LagrangeContactTerm::release_tensile(const time::StepContext& step, const E
     } else if (toggles_[e.slave] > 0) {
       kept.push_back(e);  // anti-cycling (§3.5): a second change in this step is refused
       log(step, "slave node " + std::to_string(slave_node(e)) + " kept active with tensile λ_1 = " +
-                    number(e.lambda[0]) + " (it already changed state in this step)");
+                    scientific(e.lambda[0]) + " (it already changed state in this step)");
     } else {
       ++toggles_[e.slave];
       released_now_[e.slave] = 1;
@@ -167,8 +156,7 @@ void LagrangeContactTerm::end_step(const time::StepContext& step, const Eigen::V
     ContactElement& e = elements_[k];
     read_auxiliaries(e, z, element_offset(static_cast<int>(k)));
     if (e.jump) report_.energy_jump += e.lambda.dot(e.g_n);  // (4.11); g(π_n) ≈ 0 for the others
-    const double force = std::max(-e.lambda[0], 0.0);
-    pressure_.emplace_back(slave_node(e), force / surfaces_.tributary_area[e.slave]);
+    add_pressure(e.slave, std::max(-e.lambda[0], 0.0));  // λ_1 ≤ 0 in compression (§0)
   }
   report_.active = static_cast<int>(elements_.size());
   committed_ = elements_;
@@ -200,10 +188,6 @@ void LagrangeContactTerm::measure_penetration(const Eigen::VectorXd& x) {
       }
     }
   }
-}
-
-void LagrangeContactTerm::contact_pressure(Eigen::VectorXd& p) const {
-  for (const auto& [node, value] : pressure_) p[node] = value;
 }
 
 }  // namespace stoss::contact

@@ -42,7 +42,6 @@ struct ContactElement {
 class LagrangeContactTerm : public ContactTerm {
  public:
   LagrangeContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair);
-  std::string name() const override { return "contact " + pair_.slave + " on " + pair_.master; }
   void register_blocks(solve::BlockPattern& pattern) override;
   void prepare_step(const time::StepContext& step) override;
   void begin_step(const time::StepContext& step, Eigen::VectorXd& z) override;
@@ -53,14 +52,7 @@ class LagrangeContactTerm : public ContactTerm {
   bool update_active_set(const time::StepContext& step, const Eigen::VectorXd& z) override;
   void end_step(const time::StepContext& step, const Eigen::VectorXd& z) override;
 
-  /// The last converged step's report.
-  const ContactReport& report() const override { return report_; }
-  /// Sets p_I = max(−λ_1, 0) / A_I at the active slave nodes (A_I: tributary area, surface.hpp): the
-  /// normal contact force of the element spread over the node's share of the slave surface. Force per
-  /// area; other entries untouched.
-  void contact_pressure(Eigen::VectorXd& p) const override;
   const std::vector<ContactElement>& elements() const { return elements_; }
-  const PairSurfaces& surfaces() const { return surfaces_; }
 
  protected:
   /// Auxiliary unknowns of one element (mixed: 11, midpoint: 1).
@@ -91,11 +83,7 @@ class LagrangeContactTerm : public ContactTerm {
   bool activate_penetrating(const time::StepContext& step, const Eigen::VectorXd& z);
   void reindex();
   void measure_penetration(const Eigen::VectorXd& x);
-  void log(const time::StepContext& step, const std::string& line) const;
 
-  model::ContactPair pair_;
-  PairSurfaces surfaces_;
-  BroadPhase broad_;
   std::vector<ContactElement> start_;      ///< elements at the start of the step (after switches)
   std::vector<ContactElement> committed_;  ///< elements at the end of the last converged step
   bool in_step_ = false;                   ///< prepare_step called, end_step not yet
@@ -105,8 +93,6 @@ class LagrangeContactTerm : public ContactTerm {
   std::vector<char> released_now_;         ///< per slave: released in the current pass
   int offset_ = 0;
   int generation_ = 0;
-  ContactReport report_;
-  std::vector<std::pair<int, double>> pressure_;  ///< (node, pressure) of the last step
 };
 
 }  // namespace stoss::contact

@@ -2,18 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "core/contact/assignment.hpp"
 
 namespace stoss::contact {
 namespace {
-
-std::string number(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3e", v);
-  return buffer;
-}
 
 PenaltyParameters parameters_of(const model::ContactPair& pair, double default_stiffness) {
   PenaltyParameters p;
@@ -37,13 +30,9 @@ bool same_structure(const std::vector<PenaltyContact>& a, const std::vector<Pena
 
 PenaltyContactTerm::PenaltyContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair,
                                        double master_youngs_modulus)
-    : pair_(pair), surfaces_(pair_surfaces(mesh, pair.slave, pair.master)) {
+    : ContactTerm(mesh, pair) {
   params_ = parameters_of(pair, penalty_default_stiffness(master_youngs_modulus, surfaces_.mean_face_size));
   committed_.assign(surfaces_.slave_nodes.size(), PenaltyNodeState{});
-}
-
-void PenaltyContactTerm::log(const time::StepContext& step, const std::string& line) const {
-  if (step.log && *step.log) (*step.log)(name() + ": " + line);
 }
 
 PenaltyResult PenaltyContactTerm::evaluate(const PenaltyContact& c, const Eigen::VectorXd& x_n,
@@ -78,9 +67,9 @@ void PenaltyContactTerm::prepare_step(const time::StepContext& step) {
   if (!announced_) {
     announced_ = true;
     log(step,
-        "penalty ε_N = " + number(params_.normal_stiffness) +
-            (params_.friction > 0 ? ", ε_T = " + number(params_.tangential_stiffness) +
-                                        ", Coulomb μ = " + number(params_.friction)
+        "penalty ε_N = " + scientific(params_.normal_stiffness) +
+            (params_.friction > 0 ? ", ε_T = " + scientific(params_.tangential_stiffness) +
+                                        ", Coulomb μ = " + scientific(params_.friction)
                                   : ", frictionless (μ = 0): no tangential traction, no return mapping"));
   }
   broad_.update(surfaces_, step.x_n, step.x_n + step.h * step.v_n);
@@ -157,8 +146,7 @@ void PenaltyContactTerm::end_step(const time::StepContext& step, const Eigen::Ve
     ++report_.active;
     report_.slipping += r.slip;
     last_slip_work_ += r.slip_work;  // D += t_{n+1}·Δξ_p (§5.2 item 7)
-    pressure_.emplace_back(surfaces_.slave_nodes[c.slave],
-                           -r.normal_traction / surfaces_.tributary_area[c.slave]);
+    add_pressure(c.slave, -r.normal_traction);  // t_N ≤ 0 (5.1)
   }
   report_.max_own_face_penetration = report_.max_penetration;
   report_.switches = switches_;
@@ -184,10 +172,6 @@ double PenaltyContactTerm::energy(const Eigen::VectorXd& x) const {
       W += normal_penalty_energy(params_.normal_stiffness, p.projection.gap - offset);  // W_N (5.1)
   }
   return W;
-}
-
-void PenaltyContactTerm::contact_pressure(Eigen::VectorXd& p) const {
-  for (const auto& [node, value] : pressure_) p[node] = value;
 }
 
 }  // namespace stoss::contact

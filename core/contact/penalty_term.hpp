@@ -51,7 +51,6 @@ class PenaltyContactTerm : public ContactTerm {
  public:
   /// `master_youngs_modulus` sets the default stiffnesses 10 E ℓ (§5.1) of the unset ones.
   PenaltyContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair, double master_youngs_modulus);
-  std::string name() const override { return "contact " + pair_.slave + " on " + pair_.master; }
   double energy(const Eigen::VectorXd& x) const override;
   void register_blocks(solve::BlockPattern& pattern) override;
   void prepare_step(const time::StepContext& step) override;
@@ -60,15 +59,11 @@ class PenaltyContactTerm : public ContactTerm {
   int structure_generation() const override { return generation_; }
   void end_step(const time::StepContext& step, const Eigen::VectorXd& z) override;
 
-  const ContactReport& report() const override { return report_; }
-  /// p_I = |t_N| / A_I at the closed contacts of the last step (A_I: tributary area, surface.hpp).
-  void contact_pressure(Eigen::VectorXd& p) const override;
   double dissipated_energy() const override { return dissipated_; }
 
   const PenaltyParameters& parameters() const { return params_; }
   const std::vector<PenaltyContact>& contacts() const { return contacts_; }
   const std::vector<PenaltyNodeState>& node_states() const { return committed_; }
-  const PairSurfaces& surfaces() const { return surfaces_; }
   /// Closed elements that went through the Coulomb return mapping (5.3), over all evaluations.
   long return_map_evaluations() const { return return_maps_; }
   /// Slip work t_{n+1}·Δξ_p of the last converged step (0 when every contact stuck).
@@ -80,22 +75,16 @@ class PenaltyContactTerm : public ContactTerm {
   int face_for(int slave, const time::StepContext& step, Eigen::Vector2d& xi) const;
   /// Counts a switch of `slave` to `face` at x_n, adds its W_N jump, returns the new gap offset.
   double switch_face(int slave, int face, const Eigen::VectorXd& x_n);
-  void log(const time::StepContext& step, const std::string& line) const;
 
-  model::ContactPair pair_;
-  PairSurfaces surfaces_;
   PenaltyParameters params_;
-  BroadPhase broad_;
   std::vector<PenaltyContact> contacts_;     ///< elements of the current step
   std::vector<PenaltyNodeState> committed_;  ///< per slave node, after the last converged step
   int generation_ = 0;
   int switches_ = 0;        ///< face switches at the start of the current step
   double switch_jump_ = 0;  ///< Σ W_N(new face) − W_N(old face) at x_n over them
   bool announced_ = false;
-  ContactReport report_;
   double dissipated_ = 0, last_slip_work_ = 0;
   mutable long return_maps_ = 0;
-  std::vector<std::pair<int, double>> pressure_;  ///< (node, pressure) of the last step
 };
 
 }  // namespace stoss::contact

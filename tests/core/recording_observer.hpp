@@ -41,6 +41,14 @@ class RecordingObserver : public model::Observer {
     return worst;
   }
 
+  /// Whether every value of every recorded row is finite (no NaN, no inf).
+  bool all_finite() const {
+    for (const auto& row : rows)
+      for (double v : row.values)
+        if (!std::isfinite(v)) return false;
+    return true;
+  }
+
   /// Times of the first and last step with active contacts, {-1, -1} if none.
   std::pair<double, double> contact_window() const {
     const std::vector<double> active = series("active_contacts");

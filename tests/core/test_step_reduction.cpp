@@ -36,13 +36,6 @@ model::Model fast_stiff_bar(double h, int steps, int max_iterations) {
   return m;
 }
 
-bool finite(const RecordingObserver& r) {
-  for (const auto& row : r.rows)
-    for (double v : row.values)
-      if (!std::isfinite(v)) return false;
-  return true;
-}
-
 TEST(StepReduction, AFailingStepIsSolvedInSubstepsAndRecorded) {
   const int budget = 6;  // measured: 8 converges every full step, 6 needs 2–3 substeps, 3 is hopeless
   RecordingObserver r;
@@ -64,7 +57,7 @@ TEST(StepReduction, AFailingStepIsSolvedInSubstepsAndRecorded) {
   EXPECT_LT(r.vector_drift("angular_momentum"), 1e-10);
   EXPECT_EQ(r.rows.size(), 21u) << "one row per step, whatever its substeps";
   EXPECT_NEAR(r.rows.back().time, 1.0, 1e-12);
-  EXPECT_TRUE(finite(r));
+  EXPECT_TRUE(r.all_finite());
   std::printf("budget %d: max substeps %.0f, %d steps reduced\n", budget, most,
               int(std::count_if(substeps.begin(), substeps.end(), [](double k) { return k > 1; })));
 }
@@ -82,7 +75,7 @@ TEST(StepReduction, AHopelessRunFailsNamingStepAndTimeWithoutNaN) {
     EXPECT_NE(what.find("residual history"), std::string::npos) << what;
   }
   EXPECT_FALSE(r.summary.completed);
-  EXPECT_TRUE(finite(r));
+  EXPECT_TRUE(r.all_finite());
 }
 
 }  // namespace

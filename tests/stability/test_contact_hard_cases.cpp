@@ -103,13 +103,6 @@ model::Model load(const ContactCase& c, model::Scheme scheme) {
   return scene::load(s);
 }
 
-bool all_finite(const RecordingObserver& r) {
-  for (const auto& row : r.rows)
-    for (double v : row.values)
-      if (!std::isfinite(v)) return false;
-  return true;
-}
-
 /// Contact episodes: steps where active_contacts goes from 0 to > 0.
 int impacts(const RecordingObserver& r) {
   const auto active = r.series("active_contacts");
@@ -136,7 +129,7 @@ TEST_P(ContactHardCases, EnergyMomentumStaysStableAndConserving) {
   model::Summary s;
   ASSERT_NO_THROW(s = simulate(load(c, model::Scheme::energy_momentum), r)) << c.name;
   ASSERT_TRUE(s.completed);
-  EXPECT_TRUE(all_finite(r));
+  EXPECT_TRUE(r.all_finite());
   const auto substeps = r.series("substeps");
   EXPECT_EQ(*std::max_element(substeps.begin(), substeps.end()), 1) << "every step converged at full size";
   EXPECT_GE(impacts(r), c.min_impacts);

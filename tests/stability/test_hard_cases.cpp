@@ -36,13 +36,6 @@ model::Model load(const HardCase& c, model::Scheme scheme) {
   return m;
 }
 
-bool all_finite(const RecordingObserver& r) {
-  for (const auto& row : r.rows)
-    for (double v : row.values)
-      if (!std::isfinite(v)) return false;
-  return true;
-}
-
 /// Largest relative stretch |x_I − x_c| / |X_I − X_c| − 1 of the outer nodes over all frames.
 double max_radial_stretch(const model::Model& m, const RecordingObserver& r) {
   const auto outer = m.mesh.surface_nodes(m.mesh.bodies[0].name + "/outer");
@@ -102,7 +95,7 @@ TEST_P(HardCases, EnergyMomentumStaysStableAndConserving) {
   model::Summary s;
   ASSERT_NO_THROW(s = simulate(m, r)) << c.name;
   ASSERT_TRUE(s.completed);
-  EXPECT_TRUE(all_finite(r));
+  EXPECT_TRUE(r.all_finite());
   // Summary drifts are relative to max(|L_0|, Σ_I |p_I|): a pure spin has L_0 = 0.
   EXPECT_LT(s.energy_drift, c.energy_bound);
   EXPECT_LT(s.linear_momentum_drift, c.momentum_bound);
