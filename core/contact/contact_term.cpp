@@ -1,6 +1,10 @@
 #include "core/contact/contact_term.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+
+#include "core/contact/assignment.hpp"
 
 namespace stoss::contact {
 
@@ -13,6 +17,28 @@ void ContactTerm::contact_pressure(Eigen::VectorXd& p) const {
 
 void ContactTerm::log(const time::StepContext& step, const std::string& line) const {
   if (step.log && *step.log) (*step.log)(name() + ": " + line);
+}
+
+void ContactTerm::measure_closest_penetration(const time::StepContext& step, const Eigen::VectorXd& x) {
+  for (int i : broad_.near_slaves()) {
+    const Eigen::Vector3d x_s = x.segment<3>(3 * surfaces_.slave_nodes[i]);
+    const FaceProjection best = best_face(x_s, broad_.candidates(i), surfaces_, x);
+    if (best.found()) {
+      report_.max_penetration = std::max(report_.max_penetration, -best.projection.gap);
+      continue;
+    }
+    for (int f : broad_.candidates(i)) {  // level with the surface, yet no face accepts it
+      const Projection p = project_on(x_s, f, surfaces_, x).projection;
+      if (p.converged && std::abs(p.gap) < NarrowPhase::max_depth_ratio * surfaces_.face_size[f]) {
+        ++report_.unassigned;
+        break;
+      }
+    }
+  }
+  if (report_.unassigned > 0)
+    log(step, std::to_string(report_.unassigned) +
+                  " slave node(s) level with the master surface project onto no face (NTS blind spot, §3.4): "
+                  "no contact element for them; refine the master mesh");
 }
 
 std::string ContactTerm::scientific(double v) {

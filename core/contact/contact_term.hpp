@@ -60,6 +60,10 @@ class ContactTerm : public time::Term {
   void add_pressure(int slave, double force) {
     pressure_.emplace_back(surfaces_.slave_nodes[slave], force / surfaces_.tributary_area[slave]);
   }
+  /// Sets the report's max_penetration and unassigned at x (§3.4): every near slave node (broad_)
+  /// against the closest master face that accepts it, whichever it is; a node level with the surface
+  /// that no face accepts counts as unassigned (the NTS blind spot) and is logged.
+  void measure_closest_penetration(const time::StepContext& step, const Eigen::VectorXd& x);
   /// v in the log's "%.3e" format.
   static std::string scientific(double v);
 

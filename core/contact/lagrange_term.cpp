@@ -161,33 +161,12 @@ void LagrangeContactTerm::end_step(const time::StepContext& step, const Eigen::V
   report_.active = static_cast<int>(elements_.size());
   committed_ = elements_;
   in_step_ = false;
-  measure_penetration(x);
-  if (report_.unassigned > 0)
-    log(step, std::to_string(report_.unassigned) +
-                  " slave node(s) level with the master surface project onto no face (NTS blind spot, §3.4): "
-                  "no contact element for them; refine the master mesh");
-}
-
-void LagrangeContactTerm::measure_penetration(const Eigen::VectorXd& x) {
-  for (const ContactElement& e : elements_) {
+  for (const ContactElement& e : elements_) {  // §3.4: stays at the Newton tolerance
     const FaceProjection own = project_on(position(e, x), e.face, surfaces_, x, e.xi);
     report_.max_own_face_penetration = std::max(report_.max_own_face_penetration, -own.projection.gap);
   }
-  for (int i : broad_.near_slaves()) {
-    const Eigen::Vector3d x_s = x.segment<3>(3 * surfaces_.slave_nodes[i]);
-    const FaceProjection best = best_face(x_s, broad_.candidates(i), surfaces_, x);
-    if (best.found()) {
-      report_.max_penetration = std::max(report_.max_penetration, -best.projection.gap);
-      continue;
-    }
-    for (int f : broad_.candidates(i)) {  // level with the surface, yet no face accepts it
-      const Projection p = project_on(x_s, f, surfaces_, x).projection;
-      if (p.converged && std::abs(p.gap) < NarrowPhase::max_depth_ratio * surfaces_.face_size[f]) {
-        ++report_.unassigned;
-        break;
-      }
-    }
-  }
+  measure_closest_penetration(step, x);
 }
+
 
 }  // namespace stoss::contact

@@ -82,7 +82,6 @@ class LagrangeContactTerm : public ContactTerm {
   bool release_tensile(const time::StepContext& step, const Eigen::VectorXd& z);
   bool activate_penetrating(const time::StepContext& step, const Eigen::VectorXd& z);
   void reindex();
-  void measure_penetration(const Eigen::VectorXd& x);
 
   std::vector<ContactElement> start_;      ///< elements at the start of the step (after switches)
   std::vector<ContactElement> committed_;  ///< elements at the end of the last converged step

@@ -141,14 +141,14 @@ void PenaltyContactTerm::end_step(const time::StepContext& step, const Eigen::Ve
     node.history = r.history_after;  // committed only now; reset when the contact opened (§5.2 item 7)
     const bool clear = r.at_1.converged && r.at_1.gap >= 0 && r.at_1.gap - c.gap_offset >= 0;
     node.gap_offset = clear ? 0.0 : c.gap_offset;  // W_N = 0 with or without it: clearing changes nothing
-    if (r.at_1.converged) report_.max_penetration = std::max(report_.max_penetration, -r.at_1.gap);
+    if (r.at_1.converged) report_.max_own_face_penetration = std::max(report_.max_own_face_penetration, -r.at_1.gap);
     if (!r.closed) continue;
     ++report_.active;
     report_.slipping += r.slip;
     last_slip_work_ += r.slip_work;  // D += t_{n+1}·Δξ_p (§5.2 item 7)
     add_pressure(c.slave, -r.normal_traction);  // t_N ≤ 0 (5.1)
   }
-  report_.max_own_face_penetration = report_.max_penetration;
+  measure_closest_penetration(step, x);
   report_.switches = switches_;
   report_.energy_jump = switch_jump_;
   committed_ = std::move(next);
