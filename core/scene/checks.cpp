@@ -98,6 +98,10 @@ std::optional<long long> integer(json& value, const std::string& pointer, const 
     return std::nullopt;
   }
   if (!number(value, pointer, range, checker)) return std::nullopt;
+  if (std::abs(value.get<double>()) > 2147483647.0) {  // every integer of the model is an int
+    checker.fail(pointer, "must fit a 32-bit integer (at most 2147483647), got " + shown(value));
+    return std::nullopt;
+  }
   const auto x = static_cast<long long>(value.get<double>());
   value = x;
   return x;
