@@ -1,0 +1,105 @@
+#include "core/mesh/mesh_file.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cctype>
+#include <numbers>
+
+namespace stoss::mesh {
+
+namespace {
+
+std::string located(const std::string& file, long line, const std::string& message) {
+  return file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + message;
+}
+
+std::string upper(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+}  // namespace
+
+MeshFileError::MeshFileError(std::string f, long l, const std::string& message)
+    : std::runtime_error(located(f, l, message)), file(std::move(f)), line(l) {}
+
+std::string ImportedMesh::where_element(int element) const {
+  const long line = element_lines.at(element);
+  return located(file, line, "element " + std::to_string(element_ids.at(element)));
+}
+
+ImportedMesh read_mesh_file(const std::filesystem::path& path, const std::string& shown_name) {
+  const std::string ext = lower_extension(path);
+  if (ext == ".msh") return read_gmsh(path, shown_name);
+  if (ext == ".inp") return read_abaqus(path, shown_name);
+  throw MeshFileError(shown_name.empty() ? path.string() : shown_name, 0,
+                      "unknown mesh file type '" + ext + "' (Stoss reads Gmsh .msh 4.1 and Abaqus/CalculiX .inp)");
+}
+
+Eigen::Vector3d Transform::apply(const Eigen::Vector3d& x) const {
+  const double radians = degrees * std::numbers::pi / 180;
+  const Eigen::Vector3d scaled = scale.cwiseProduct(x);
+  if (degrees == 0 || axis.norm() == 0) return translate + scaled;
+  return translate + Eigen::AngleAxisd(radians, axis.normalized()) * scaled;
+}
+
+Selection select_body(const ImportedMesh& mesh, const std::optional<std::string>& element_set,
+                      const Transform& transform) {
+  if (mesh.hex8.empty()) throw MeshFileError(mesh.file, 0, "has no 8-node hexahedra");
+  Selection out;
+  if (element_set) {
+    auto it = mesh.element_sets.find(*element_set);
+    for (auto other = mesh.element_sets.begin(); it == mesh.element_sets.end() && other != mesh.element_sets.end(); ++other)
+      if (upper(other->first) == upper(*element_set)) it = other;  // Abaqus names ignore case
+    if (it == mesh.element_sets.end()) {
+      std::string known;
+      for (const auto& [name, ignored] : mesh.element_sets) known += (known.empty() ? "" : ", ") + name;
+      throw MeshFileError(mesh.file, 0,
+                          "has no element set '" + *element_set + "' (it has " + (known.empty() ? "none" : known) +
+                              ")");
+    }
+    if (it->second.empty()) throw MeshFileError(mesh.file, 0, "element set '" + it->first + "' is empty");
+    out.elements = it->second;
+  } else {
+    out.elements.resize(mesh.hex8.size());
+    for (size_t e = 0; e < mesh.hex8.size(); ++e) out.elements[e] = static_cast<int>(e);
+  }
+  std::vector<int> local_node(mesh.nodes.size(), -1);
+  std::vector<int> local_element(mesh.hex8.size(), -1);
+  for (int e : out.elements)
+    for (int n : mesh.hex8[e]) local_node[n] = 0;
+  int next = 0;
+  for (size_t n = 0; n < mesh.nodes.size(); ++n)
+    if (local_node[n] == 0) {
+      local_node[n] = next++;
+      out.body.nodes.push_back(transform.apply(mesh.nodes[n]));
+    }
+  for (size_t i = 0; i < out.elements.size(); ++i) {
+    const int e = out.elements[i];
+    local_element[e] = static_cast<int>(i);
+    Hex h;
+    for (int k = 0; k < 8; ++k) h[k] = local_node[mesh.hex8[e][k]];
+    out.body.hex8.push_back(h);
+  }
+  for (const auto& [name, faces] : mesh.surfaces) {
+    std::vector<Quad> quads;
+    for (const ElementFace& f : faces)
+      if (local_element[f.element] >= 0) quads.push_back(hex_faces(out.body.hex8[local_element[f.element]])[f.face]);
+    if (quads.empty())
+      out.empty_surfaces.push_back(name);
+    else
+      out.body.surfaces[name] = std::move(quads);
+  }
+  if (!out.body.surfaces.contains("boundary") &&
+      std::find(out.empty_surfaces.begin(), out.empty_surfaces.end(), "boundary") == out.empty_surfaces.end())
+    out.body.surfaces["boundary"] = boundary_faces(out.body.hex8);
+  return out;
+}
+
+}  // namespace stoss::mesh
