@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/mesh/generators.hpp"
+#include "core/scene/file_mesh.hpp"
 
 namespace stoss::scene::detail {
 namespace {
@@ -86,7 +87,8 @@ double min_jacobian_determinant(const std::vector<Eigen::Vector3d>& nodes, const
   return *std::min_element(det.begin(), det.end());
 }
 
-mesh::BodyMesh body_mesh(const json& m) {
+mesh::BodyMesh body_mesh(const json& m, const std::optional<std::filesystem::path>& mesh_directory) {
+  if (m.contains("file")) return file_body_mesh(m, mesh_directory);
   if (m.contains("box")) {
     const json& b = m["box"];
     return mesh::box(vector3(b["min"]), vector3(b["max"]), b["divisions"].get<std::array<int, 3>>());
@@ -100,12 +102,12 @@ mesh::BodyMesh body_mesh(const json& m) {
   return inline_mesh(m);
 }
 
-model::Model build_model(const json& scene) {
+model::Model build_model(const json& scene, const std::optional<std::filesystem::path>& mesh_directory) {
   model::Model m;
   m.name = scene["name"].get<std::string>();
   m.scene = scene;
   for (const json& b : scene["bodies"]) {
-    m.mesh.add_body(b["name"].get<std::string>(), body_mesh(b["mesh"]));
+    m.mesh.add_body(b["name"].get<std::string>(), body_mesh(b["mesh"], mesh_directory));
     m.bodies.push_back(body_spec(b));
   }
   for (const json& e : scene["boundary"]) m.boundary.push_back(boundary(e));

@@ -1,7 +1,9 @@
 #pragma once
 /// @file Validated scene JSON (defaults filled in) → Model.
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <vector>
 
 #include "core/mesh/mesh.hpp"
@@ -14,9 +16,12 @@ double min_jacobian_determinant(const std::vector<Eigen::Vector3d>& nodes, const
 
 /// The body mesh a validated `mesh` member describes (box, hollow_sphere or inline). An inline mesh
 /// gets the surface "boundary" (all boundary faces) unless it names one itself.
-mesh::BodyMesh body_mesh(const nlohmann::json& mesh);
+/// A file mesh ("file") is read relative to mesh_directory (see file_mesh.hpp).
+mesh::BodyMesh body_mesh(const nlohmann::json& mesh,
+                         const std::optional<std::filesystem::path>& mesh_directory = std::nullopt);
 
 /// The Model of a validated scene; model.scene = `scene`, bodies added to the mesh in order.
-model::Model build_model(const nlohmann::json& scene);
+model::Model build_model(const nlohmann::json& scene,
+                         const std::optional<std::filesystem::path>& mesh_directory = std::nullopt);
 
 }  // namespace stoss::scene::detail

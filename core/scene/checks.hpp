@@ -3,6 +3,8 @@
 /// the rule and the value it got, and returns the checked value or nothing.
 
 #include <Eigen/Core>
+#include <filesystem>
+#include <map>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -23,6 +25,13 @@ class Checker {
   const std::vector<Issue>& issues() const { return issues_; }
   /// Number of issues so far; compare two marks to see whether a part of the scene was clean.
   size_t mark() const { return issues_.size(); }
+
+  /// Directory that relative mesh files ("mesh": {"file": ...}) are resolved against; nullopt when the
+  /// scene did not come from a file (then it cannot name mesh files).
+  std::optional<std::filesystem::path> mesh_directory;
+  /// "body/surface" → why a surface the body's mesh file defines is not on the body (appended to the
+  /// issue of a reference to it).
+  std::map<std::string, std::string> surface_notes;
 
  private:
   std::vector<Issue> issues_;

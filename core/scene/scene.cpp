@@ -35,12 +35,13 @@ std::string parse_message(const nlohmann::json::parse_error& e) {
 SceneError::SceneError(std::vector<Issue> found)
     : std::runtime_error(issue_lines(found)), issues(std::move(found)) {}
 
-model::Model load(const nlohmann::json& scene) {
+model::Model load(const nlohmann::json& scene, const std::optional<std::filesystem::path>& mesh_directory) {
   nlohmann::json filled = scene;
   detail::Checker checker;
+  checker.mesh_directory = mesh_directory;
   detail::check_scene(filled, checker);
   if (!checker.issues().empty()) throw SceneError(checker.issues());
-  return detail::build_model(filled);
+  return detail::build_model(filled, mesh_directory);
 }
 
 model::Model load_file(const std::string& path) {
@@ -52,7 +53,8 @@ model::Model load_file(const std::string& path) {
   } catch (const nlohmann::json::parse_error& e) {
     throw SceneError({{"", parse_message(e)}});
   }
-  return load(scene);
+  const std::filesystem::path directory = std::filesystem::path(path).parent_path();
+  return load(scene, directory.empty() ? std::filesystem::path(".") : directory);
 }
 
 Summary summarize(const model::Model& model) {

@@ -2,7 +2,9 @@
 /// @file Scene JSON → Model: validation with JSON-pointer errors, defaults, mesh building, effect
 /// resolution. The contract is api/scene.schema.json (compiled in, see schema()).
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -33,11 +35,15 @@ class SceneError : public std::runtime_error {
 
 /// Validates a scene, fills in defaults, builds the mesh (bodies in order) and resolves effects.
 /// @note model.scene is the input with every default filled in; model.effects = resolve_effects.
+/// @note Mesh files ("mesh": {"file": ...}) are read relative to `mesh_directory`; without one (scenes
+///       posted to the HTTP API) a scene naming a mesh file is invalid.
 /// @throws SceneError listing every issue found.
-model::Model load(const nlohmann::json& scene);
+model::Model load(const nlohmann::json& scene,
+                  const std::optional<std::filesystem::path>& mesh_directory = std::nullopt);
 
-/// load() of a file. An unreadable file or malformed JSON is a SceneError with pointer "" and the
-/// reason (for JSON: the parser's message with line and column).
+/// load() of a file, mesh files relative to the file's directory. An unreadable file or malformed
+/// JSON is a SceneError with pointer "" and the reason (for JSON: the parser's message with line and
+/// column).
 model::Model load_file(const std::string& path);
 
 /// What a dry run reports (POST /v1/validate, `stoss validate`).

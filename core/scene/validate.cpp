@@ -5,6 +5,7 @@
 #include <set>
 
 #include "core/scene/build.hpp"
+#include "core/scene/file_mesh.hpp"
 
 namespace stoss::scene::detail {
 namespace {
@@ -116,13 +117,21 @@ Surfaces check_inline_mesh(json& mesh, const std::string& p, Checker& c) {
   return c.mark() == start ? Surfaces(names) : std::nullopt;
 }
 
-Surfaces check_mesh(json& mesh, const std::string& p, Checker& c) {
-  if (!object_with(mesh, p, {"box", "hollow_sphere", "nodes", "hex8", "surfaces"}, c)) return std::nullopt;
+Surfaces check_mesh(json& mesh, const std::string& p, const std::optional<std::string>& body_name, Checker& c) {
+  if (!object_with(mesh, p, {"box", "hollow_sphere", "nodes", "hex8", "surfaces", "file", "elements", "transform"},
+                   c))
+    return std::nullopt;
   const bool inline_mesh = mesh.contains("nodes") || mesh.contains("hex8") || mesh.contains("surfaces");
-  if (mesh.contains("box") + mesh.contains("hollow_sphere") + inline_mesh != 1) {
-    c.fail(p, "exactly one of box, hollow_sphere, nodes+hex8");
+  if (mesh.contains("box") + mesh.contains("hollow_sphere") + inline_mesh + mesh.contains("file") != 1) {
+    c.fail(p, "exactly one of box, hollow_sphere, nodes+hex8, file");
     return std::nullopt;
   }
+  if (mesh.contains("file")) return check_file_mesh(mesh, p, body_name, c);
+  for (const char* key : {"elements", "transform"})
+    if (mesh.contains(key)) {
+      c.fail(child(p, key), "only for a mesh read from a file (\"file\")");
+      return std::nullopt;
+    }
   const size_t start = c.mark();
   if (inline_mesh) return check_inline_mesh(mesh, p, c);
   if (mesh.contains("box")) {
@@ -155,7 +164,7 @@ std::optional<NamedSurfaces> check_body(json& b, const std::string& p, Checker& 
   const json* name_value = member(b, "name", p, Presence::must(), c);
   const auto body_name = name_value ? name(*name_value, child(p, "name"), c) : std::nullopt;
   Surfaces surfaces;
-  if (json* m = member(b, "mesh", p, Presence::must(), c)) surfaces = check_mesh(*m, child(p, "mesh"), c);
+  if (json* m = member(b, "mesh", p, Presence::must(), c)) surfaces = check_mesh(*m, child(p, "mesh"), body_name, c);
   if (json* m = member(b, "material", p, Presence::must(), c)) check_material(*m, child(p, "material"), c);
   vector3_field(b, "initial_velocity", p, Presence::or_default(zero3), c);
   vector3_field(b, "initial_angular_velocity", p, Presence::or_default(zero3), c);
@@ -200,7 +209,9 @@ std::optional<std::string> check_surface_ref(const json& value, const std::strin
   if (it->second && !it->second->contains(surface)) {
     std::string known;
     for (const std::string& s : *it->second) known += (known.empty() ? "" : ", ") + s;
-    c.fail(p, "body " + shown(body) + " has no surface " + shown(surface) + " (it has " + known + ")");
+    const auto note = c.surface_notes.find(*ref);
+    c.fail(p, "body " + shown(body) + " has no surface " + shown(surface) + " (it has " + known + ")" +
+                  (note != c.surface_notes.end() ? "; " + note->second : ""));
   }
   return body;
 }
