@@ -15,12 +15,13 @@ Projection finish(const Eigen::Vector3d& slave, const SegmentNodes& nodes, const
   return p;
 }
 
+}  // namespace
+
 bool converged_step(double step, int iteration) {
   using L = ProjectionLimits;
   return step < L::step_tolerance ||
          (iteration >= L::stagnation_iterations && step < L::stagnation_tolerance);
 }
-}  // namespace
 
 Eigen::Vector2d projection_residual(const SegmentFrame& frame, const Eigen::Vector3d& r) {
   return {r.dot(frame.tau1), r.dot(frame.tau2)};  // seed eq. 10

@@ -31,6 +31,9 @@ struct Projection {
   int iterations = 0;  ///< Newton updates performed
 };
 
+/// The stop rule of §3.2 for a CPP Newton update of length `step` in iteration `iteration` (1-based).
+bool converged_step(double step, int iteration);
+
 /// r_α = (x_s − y(ξ))·τ_α(ξ), the CPP residual (seed eq. 10), for r = x_s − y(ξ).
 Eigen::Vector2d projection_residual(const SegmentFrame& frame, const Eigen::Vector3d& r);
 

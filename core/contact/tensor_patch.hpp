@@ -1,0 +1,168 @@
+#pragma once
+/// @file Master surface patches whose points are linear in the master nodes (docs/smooth_master_surface.md
+/// §2): y(ξ) = Σ_K N_K(ξ) y_K with N_K(ξ) = Σ_s W_Ks B_s(ξ), where the slot functions
+/// B_s(ξ) = b_i(ξ¹) b_j(ξ²) (s = i + n j) are tensor products of n univariate polynomials of degree
+/// ≤ 3 on the face's ξ ∈ [−1, 1]², extended beyond it by the same polynomials. A bilinear face
+/// (n = 2, W = identity) and a uniform cubic B-spline patch over a face's 4×4 neighbourhood (n = 4,
+/// ghost slots at a surface rim folded into W) share this form, and so do every kernel built on it.
+///
+/// Scalar type T: double, or Dual (a value with its gradient with respect to two parameters) where a
+/// kernel needs derivatives of the evaluation with respect to ξ_{n+1}.
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+namespace stoss::contact {
+
+/// The univariate factors of a patch.
+enum class PatchFamily {
+  bilinear,       ///< b_0 = (1 − t)/2, b_1 = (1 + t)/2
+  cubic_bspline,  ///< uniform cubic B-spline segment, t = 2u − 1 (docs/smooth_master_surface.md (2.1))
+};
+
+/// One patch: M master nodes and the M × n² slot weights (Σ_K W_Ks = 1 for every slot s, so that
+/// Σ_K N_K ≡ 1: translations are reproduced, which the invariant form of §4.3 relies on).
+struct TensorPatch {
+  PatchFamily family = PatchFamily::bilinear;
+  std::vector<int> nodes;   ///< global node ids, K = 0 … M−1 (K = 0 is the reference node y_1)
+  Eigen::MatrixXd weights;  ///< W (M × n²)
+  int size() const { return static_cast<int>(nodes.size()); }
+  int factors() const { return family == PatchFamily::bilinear ? 2 : 4; }
+};
+
+/// A value and its gradient with respect to two parameters (forward-mode differentiation of patch
+/// evaluations with respect to ξ_{n+1}).
+struct Dual {
+  double v = 0;
+  Eigen::Vector2d g = Eigen::Vector2d::Zero();
+  Dual() = default;
+  Dual(double value) : v(value) {}  // NOLINT: constants mix freely with duals
+  Dual(double value, const Eigen::Vector2d& grad) : v(value), g(grad) {}
+};
+inline Dual operator+(const Dual& a, const Dual& b) { return {a.v + b.v, a.g + b.g}; }
+inline Dual operator-(const Dual& a, const Dual& b) { return {a.v - b.v, a.g - b.g}; }
+inline Dual operator-(const Dual& a) { return {-a.v, -a.g}; }
+inline Dual operator*(const Dual& a, const Dual& b) { return {a.v * b.v, a.g * b.v + a.v * b.g}; }
+inline Dual& operator+=(Dual& a, const Dual& b) { return a = a + b; }
+
+inline double value_of(double x) { return x; }
+inline double value_of(const Dual& x) { return x.v; }
+
+/// Per node K: N_K, N_{K,1}, N_{K,2} (or divided differences of them, see patch_divided).
+template <class T>
+struct BasisValues {
+  std::vector<T> N, N1, N2;
+};
+
+/// Second derivatives N_{K,11}, N_{K,12}, N_{K,22}.
+struct BasisCurvatures {
+  Eigen::VectorXd N11, N12, N22;
+};
+
+/// Univariate factor i of `family` at t: value, first and second derivative.
+double factor(PatchFamily family, int i, double t, int derivative);
+
+/// The polynomial coefficients (degree ≤ 3, ascending) of factor i of `family`.
+const double* factor_coefficients(PatchFamily family, int i);
+
+/// p(t), p'(t) for p with ascending coefficients c (degree ≤ 3).
+template <class T>
+T polynomial(const double* c, const T& t) {
+  return c[0] + t * (c[1] + t * (c[2] + t * c[3]));
+}
+template <class T>
+T polynomial_slope(const double* c, const T& t) {
+  return c[1] + t * (2 * c[2] + t * (3 * c[3]));
+}
+/// (p(b) − p(a))/(b − a) in closed form: exact for every a, b, equal to p'(a) at a = b.
+template <class T>
+T polynomial_divided(const double* c, const T& a, const T& b) {
+  return c[1] + c[2] * (a + b) + c[3] * (a * a + a * b + b * b);
+}
+/// (p'(b) − p'(a))/(b − a).
+template <class T>
+T polynomial_slope_divided(const double* c, const T& a, const T& b) {
+  return 2 * c[2] + 3 * c[3] * (a + b);
+}
+
+namespace detail {
+/// Maps slot values to node values: out_K = Σ_s W_Ks slot_s.
+template <class T>
+std::vector<T> to_nodes(const TensorPatch& p, const std::vector<T>& slot) {
+  std::vector<T> out(p.size(), T(0.0));
+  for (int K = 0; K < p.size(); ++K)
+    for (size_t s = 0; s < slot.size(); ++s)
+      if (p.weights(K, s) != 0) out[K] += p.weights(K, s) * slot[s];
+  return out;
+}
+
+/// Per factor i of one direction: f_i and f_i' at t (or their divided differences).
+template <class T>
+struct FactorColumn {
+  std::vector<T> f, df;
+};
+
+template <class T>
+FactorColumn<T> factors_at(PatchFamily family, int n, const T& t) {
+  FactorColumn<T> c{std::vector<T>(n), std::vector<T>(n)};
+  for (int i = 0; i < n; ++i) {
+    c.f[i] = polynomial(factor_coefficients(family, i), t);
+    c.df[i] = polynomial_slope(factor_coefficients(family, i), t);
+  }
+  return c;
+}
+
+template <class T>
+FactorColumn<T> factors_divided(PatchFamily family, int n, const T& a, const T& b) {
+  FactorColumn<T> c{std::vector<T>(n), std::vector<T>(n)};
+  for (int i = 0; i < n; ++i) {
+    c.f[i] = polynomial_divided(factor_coefficients(family, i), a, b);
+    c.df[i] = polynomial_slope_divided(factor_coefficients(family, i), a, b);
+  }
+  return c;
+}
+
+/// Node values of B_s = u_i v_j, B_{s,1} = u'_i v_j, B_{s,2} = u_i v'_j from the two columns.
+template <class T>
+BasisValues<T> tensor(const TensorPatch& p, const FactorColumn<T>& u, const FactorColumn<T>& v) {
+  const int n = p.factors();
+  std::vector<T> B(n * n), B1(n * n), B2(n * n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      B[i + n * j] = u.f[i] * v.f[j];
+      B1[i + n * j] = u.df[i] * v.f[j];
+      B2[i + n * j] = u.f[i] * v.df[j];
+    }
+  return {to_nodes(p, B), to_nodes(p, B1), to_nodes(p, B2)};
+}
+}  // namespace detail
+
+/// N_K, N_{K,1}, N_{K,2} at ξ = (xi1, xi2).
+template <class T>
+BasisValues<T> patch_values(const TensorPatch& p, const T& xi1, const T& xi2) {
+  const int n = p.factors();
+  return detail::tensor(p, detail::factors_at(p.family, n, xi1), detail::factors_at(p.family, n, xi2));
+}
+
+/// Divided differences in one direction at a fixed other coordinate (docs/smooth_master_surface.md
+/// (3.4)): direction 0 gives [F(b, c) − F(a, c)]/(b − a) for F = N_K, N_{K,1}, N_{K,2}; direction 1
+/// gives [F(c, b) − F(c, a)]/(b − a). Exact for every a, b (polynomial closed forms, no subtraction).
+template <class T>
+BasisValues<T> patch_divided(const TensorPatch& p, int direction, const T& a, const T& b, const T& c) {
+  const int n = p.factors();
+  const auto divided = detail::factors_divided(p.family, n, a, b);
+  const auto fixed = detail::factors_at(p.family, n, c);
+  return direction == 0 ? detail::tensor(p, divided, fixed) : detail::tensor(p, fixed, divided);
+}
+
+/// N_{K,11}, N_{K,12}, N_{K,22} at ξ.
+BasisCurvatures patch_curvatures(const TensorPatch& p, const Eigen::Vector2d& xi);
+
+/// Σ_K c_K y_K for node values c and stacked positions x (3 per global node).
+Eigen::Vector3d combine_nodes(const TensorPatch& p, const Eigen::VectorXd& c, const Eigen::VectorXd& x);
+
+/// The bilinear patch of one face (the faceted surface of formulation §3.1 in this form).
+TensorPatch bilinear_patch(const std::array<int, 4>& face);
+
+}  // namespace stoss::contact

@@ -1,0 +1,45 @@
+#pragma once
+// Quad grids for the smooth-surface tests: nx × ny faces, node (i, j) at index i + (nx + 1) j,
+// faces ordered counter-clockwise seen from +z (outward normal up).
+#include <Eigen/Core>
+#include <cmath>
+#include <vector>
+
+#include "core/mesh/mesh.hpp"
+
+namespace stoss::contact::test {
+
+struct Grid {
+  int nx = 0, ny = 0;
+  double spacing = 0.25;
+  std::vector<mesh::Quad> faces;
+  Eigen::VectorXd x;
+
+  int id(int i, int j) const { return i + (nx + 1) * j; }
+  int face(int i, int j) const { return i + nx * j; }
+  Eigen::Vector3d node(int i, int j) const { return x.segment<3>(3 * id(i, j)); }
+
+  template <class Shape>
+  static Grid make(int nx, int ny, double spacing, Shape shape) {
+    Grid g;
+    g.nx = nx, g.ny = ny, g.spacing = spacing;
+    g.x.resize(3 * (nx + 1) * (ny + 1));
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) g.x.segment<3>(3 * g.id(i, j)) = shape(i * spacing, j * spacing);
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) g.faces.push_back({g.id(i, j), g.id(i + 1, j), g.id(i + 1, j + 1), g.id(i, j + 1)});
+    return g;
+  }
+  /// A flat uniform grid in z = 0.
+  static Grid flat(int nx, int ny, double spacing) {
+    return make(nx, ny, spacing, [](double u, double v) { return Eigen::Vector3d(u, v, 0); });
+  }
+  /// A doubly curved, slightly irregular grid (a bump with uneven spacing).
+  static Grid curved(int nx, int ny) {
+    return make(nx, ny, 0.25, [](double u, double v) {
+      return Eigen::Vector3d(u + 0.03 * std::sin(7 * v), v + 0.02 * std::cos(5 * u), 0.3 * std::sin(1.3 * u) * std::cos(1.1 * v));
+    });
+  }
+};
+
+}  // namespace stoss::contact::test
