@@ -37,6 +37,8 @@ nlohmann::json job_json(const jobs::Job& job) {
                       {"effects", job.effects},
                       {"summary", job.summary ? *job.summary : nlohmann::json(nullptr)},
                       {"links", links(job)}};
+  j["name"] = job.name ? nlohmann::json(*job.name) : nlohmann::json(nullptr);
+  j["links"]["scene"] = "/v1/jobs/" + job.id.str() + "/scene";
   if (job.error) j["error"] = *job.error;
   if (job.idempotency_key) j["idempotency_key"] = *job.idempotency_key;
   if (job.study) j["study"] = *job.study;

@@ -65,6 +65,15 @@ const std::map<std::string, Setter>& setters() {
        [](auto& f, auto& v, auto& o) { o.limits.max_steps = int(parse_integer(f, v, 1, 1'000'000'000)); }},
       {"--max-frames",
        [](auto& f, auto& v, auto& o) { o.limits.max_frames = int(parse_integer(f, v, 1, 1'000'000'000)); }},
+      {"--http-threads",
+       [](auto& f, auto& v, auto& o) { o.http_threads = int(parse_integer(f, v, 4, 4096)); }},
+      {"--read-timeout", [](auto& f, auto& v, auto& o) { o.read_timeout = parse_seconds(f, v); }},
+      {"--job-timeout",
+       [](auto& f, auto& v, auto& o) {
+         o.job_timeout = v == "0" ? 0 : parse_seconds(f, v);
+       }},
+      {"--job-memory",
+       [](auto& f, auto& v, auto& o) { o.job_memory = std::size_t(parse_integer(f, v, 0, 1ll << 50)); }},
       {"--max-queue",
        [](auto& f, auto& v, auto& o) { o.limits.max_queued = int(parse_integer(f, v, 0, 1'000'000'000)); }},
   };
@@ -107,6 +116,11 @@ Runs the job service (HTTP/JSON, see api/openapi.yaml) until SIGINT or SIGTERM.
   --max-steps N          most time steps in a scene (default 100000)
   --max-frames N         most output frames in a scene (default 2000)
   --max-queue N          most queued jobs; more submissions get 503 (default 1000)
+  --http-threads N       HTTP connections served at once, one thread each (default 128)
+  --read-timeout S       longest wait for the next bytes of a request's head or body (default 5)
+  --job-timeout S        wall-time limit of one job attempt; 0: none (default 0); a scene may set a
+                         lower one in solver.max_wall_seconds
+  --job-memory BYTES     address-space limit (RLIMIT_AS) of a job's process; 0: none (default 0)
   --lease-seconds S      a running job's lease; a job whose worker died reruns after it (default 10)
   --renew-seconds S      lease renewal interval (default 2)
   --max-attempts N       runs a job may start before an expired lease fails it (default 3)

@@ -17,6 +17,7 @@ void Problem::write(httplib::Response& res) const {
   res.status = status;
   if (status == 401) res.set_header("WWW-Authenticate", "Bearer");
   if (status == 503) res.set_header("Retry-After", "5");
+  if (status == 415) res.set_header("Accept-Post", "application/json");
   res.set_content(dump(to_json()), "application/problem+json");
 }
 

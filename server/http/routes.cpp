@@ -3,9 +3,11 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <regex>
 
 #include "core/output/result_reader.hpp"
 #include "core/scene/scene.hpp"
+#include "server/http/byte_range.hpp"
 #include "server/http/job_json.hpp"
 #include "server/http/problem.hpp"
 #include "server/http/scene_check.hpp"
@@ -173,6 +175,9 @@ void get_job(App& app, const Request& req, Response& res) {
 
 void cancel_job(App& app, const Request& req, Response& res) {
   const jobs::Job job = find_job(app, req);
+  if (jobs::is_terminal(job.status))  // canceled included: nothing is left to cancel
+    fail(409, "already-finished", "Job already finished",
+         "job " + job.id.str() + " already " + jobs::to_string(job.status));
   const jobs::CancelResult result = app.store.request_cancel(job.id);
   using Outcome = jobs::CancelResult::Outcome;
   switch (result.outcome) {
@@ -203,21 +208,38 @@ void delete_job(App& app, const Request& req, Response& res) {
   }
 }
 
-/// Streams a file from disk; httplib applies a Range header to it (206 with Content-Range).
+/// Streams a file from disk, honouring a single byte range (RFC 9110 §14: 206 with Content-Range, 416
+/// with Content-Range: bytes */SIZE when unsatisfiable, lengths clamped to the file).
 void stream_file(const Request& req, Response& res, const std::filesystem::path& path,
                  const std::string& type) {
   auto in = std::make_shared<std::ifstream>(path, std::ios::binary);
   std::error_code error;
-  const auto size = std::filesystem::file_size(path, error);
+  const auto size = static_cast<std::uint64_t>(std::filesystem::file_size(path, error));
   if (!*in || error) fail(500, "missing-result", "Result missing", "the result file cannot be read");
-  res.status = req.ranges.empty() ? 200 : 206;
-  res.set_content_provider(size, type, [in](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
-    char buffer[1 << 16];
-    in->seekg(static_cast<std::streamoff>(offset));
-    in->read(buffer, static_cast<std::streamsize>(std::min(length, sizeof buffer)));
-    const auto n = in->gcount();
-    return n > 0 && sink.write(buffer, static_cast<std::size_t>(n));
-  });
+  const ByteRange range = resolve_range(req.get_header_value("Range"), size);
+  if (range.kind == ByteRange::Kind::unsatisfiable) {
+    res.set_header("Content-Range", "bytes */" + std::to_string(size));
+    fail(416, "range-not-satisfiable", "Range Not Satisfiable",
+         "the file has " + std::to_string(size) + " bytes; Range " + req.get_header_value("Range") +
+             " selects none of them");
+  }
+  const std::uint64_t first = range.kind == ByteRange::Kind::partial ? range.first : 0;
+  const std::uint64_t length = range.kind == ByteRange::Kind::partial ? range.length : size;
+  res.status = 200;
+  if (range.kind == ByteRange::Kind::partial) {
+    res.status = 206;
+    res.set_header("Content-Range", "bytes " + std::to_string(first) + "-" + std::to_string(first + length - 1) +
+                                        "/" + std::to_string(size));
+  }
+  res.set_content_provider(
+      static_cast<std::size_t>(length), type,
+      [in, first](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+        char buffer[1 << 16];
+        in->seekg(static_cast<std::streamoff>(first + offset));
+        in->read(buffer, static_cast<std::streamsize>(std::min(length, sizeof buffer)));
+        const auto n = in->gcount();
+        return n > 0 && sink.write(buffer, static_cast<std::size_t>(n));
+      });
 }
 
 void get_result(App& app, const Request& req, Response& res) {
@@ -309,6 +331,31 @@ void get_schema(App&, const Request&, Response& res) {
   res.set_content(dump(scene::schema()), "application/schema+json");
 }
 
+/// The scene of a job as it was posted (for a study: the study's scene); `?resolved=true` with every
+/// default of the schema filled in.
+void get_scene(App& app, const Request& req, Response& res) {
+  const std::string resolved = req.has_param("resolved") ? req.get_param_value("resolved") : "false";
+  if (resolved != "true" && resolved != "false")
+    fail(400, "bad-parameter", "Bad parameter", "resolved must be true or false");
+  const jobs::Job job = find_job(app, req);
+  const auto posted = app.store.scene(job.id);
+  if (!posted) fail(404, "unknown-job", "Unknown job", "no job " + job.id.str());
+  if (resolved == "false") return send_json(res, 200, *posted);
+  try {
+    send_json(res, 200, scene::load(*posted).scene);
+  } catch (const std::exception& e) {
+    fail(500, "internal", "Scene cannot be resolved", e.what());
+  }
+}
+
+/// api/openapi.yaml, as in the source tree this binary was built from.
+void get_openapi(App&, const Request&, Response& res) {
+  static const std::optional<std::string> text =
+      read_file(std::filesystem::path(STOSS_SOURCE_DIR) / "api" / "openapi.yaml");
+  if (!text) fail(500, "missing-file", "OpenAPI document missing", "api/openapi.yaml cannot be read");
+  res.set_content(*text, "application/yaml");
+}
+
 void get_health(App&, const Request&, Response& res) {
   send_json(res, 200, {{"status", "ok"}});
 }
@@ -352,6 +399,8 @@ const std::vector<RouteEntry>& route_table() {
       {{"POST", "/v1/studies", true}, submit_study},
       {{"POST", "/v1/validate", true}, validate_scene},
       {{"GET", "/v1/schema/scene", true}, get_schema},
+      {{"GET", "/v1/jobs/{id}/scene", true}, get_scene},
+      {{"GET", "/v1/openapi.yaml", true}, get_openapi},
       {{"GET", "/healthz", false}, get_health},
       {{"GET", "/metrics", true}, get_metrics},
   };
@@ -375,6 +424,20 @@ std::string pattern_of(const std::string& path) {
 
 }  // namespace
 
+std::vector<std::string> allowed_methods(const std::string& path) {
+  static const std::vector<std::pair<std::regex, std::string>> patterns = [] {
+    std::vector<std::pair<std::regex, std::string>> out;
+    for (const auto& r : route_table()) out.emplace_back(std::regex(pattern_of(r.info.path)), r.info.method);
+    return out;
+  }();
+  std::vector<std::string> methods;
+  if (path.size() > 1024) return methods;
+  for (const auto& [pattern, method] : patterns)
+    if (std::regex_match(path, pattern) && std::find(methods.begin(), methods.end(), method) == methods.end())
+      methods.push_back(method);
+  return methods;
+}
+
 std::vector<RouteInfo> routes() {
   std::vector<RouteInfo> out;
   for (const auto& r : route_table()) out.push_back(r.info);
@@ -392,18 +455,51 @@ void install_routes(httplib::Server& server, App& app) {
 }
 
 void install_request_defaults(httplib::Server& server) {
-  server.set_pre_routing_handler([](const Request& req, Response&) {
-    const bool framed = req.has_header("Content-Length") || req.has_header("Transfer-Encoding");
+  server.set_pre_routing_handler([](const Request& req, Response& res) {
     // `req` is the server's own non-const Request, handed to this hook as const.
-    if (!framed) const_cast<Request&>(req).set_header("Content-Length", "0");
+    Request& request = const_cast<Request&>(req);
+    const bool framed = req.has_header("Content-Length") || req.has_header("Transfer-Encoding");
+    if (!framed) request.set_header("Content-Length", "0");
+    // The client's Content-Type moves aside: cpp-httplib would parse a form body (and cap it at 8 KiB,
+    // CPPHTTPLIB_FORM_URL_ENCODED_PAYLOAD_MAX_LENGTH, compiled into the library) or a multipart body
+    // before any handler ran. Handlers read the declared type from declared_type_header.
+    request.headers.erase(declared_type_header);
+    if (req.has_header("Content-Type")) {
+      request.headers.emplace(declared_type_header, req.get_header_value("Content-Type"));
+      request.headers.erase("Content-Type");
+    }
+    // Ranges are applied by the handlers that honour them (RFC 9110 §14), not by cpp-httplib.
+    request.ranges.clear();
+    // A path the API has, with a method it has not: 405 with Allow.
+    const std::vector<std::string> allowed = allowed_methods(req.path);
+    const bool head_of_get = req.method == "HEAD" && std::find(allowed.begin(), allowed.end(), "GET") != allowed.end();
+    if (!allowed.empty() && !head_of_get && std::find(allowed.begin(), allowed.end(), req.method) == allowed.end()) {
+      std::string allow;
+      for (const auto& m : allowed) allow += (allow.empty() ? "" : ", ") + m;
+      res.set_header("Allow", allow);
+      Problem{405, "urn:stoss:problem:method-not-allowed", "Method Not Allowed",
+              req.method + " is not allowed on " + req.path + "; allowed: " + allow}
+          .write(res);
+      return httplib::Server::HandlerResponse::Handled;
+    }
     return httplib::Server::HandlerResponse::Unhandled;
   });
 }
 
-void install_error_handling(httplib::Server& server, Metrics& metrics) {
-  server.set_error_handler(httplib::Server::HandlerWithResponse([](const Request& req, Response& res) {
+void install_error_handling(httplib::Server& server, Metrics& metrics, const Limits& limits) {
+  const std::size_t max_body = limits.max_body_bytes;
+  server.set_error_handler(httplib::Server::HandlerWithResponse([max_body](const Request& req, Response& res) {
     if (!res.body.empty() || res.has_header("Content-Length"))
       return httplib::Server::HandlerResponse::Unhandled;
+    if (res.status == 413) {  // cpp-httplib refused a body above the payload limit, before any handler
+      std::optional<unsigned long long> value;
+      const std::string length = req.get_header_value("Content-Length");
+      if (!length.empty() && length.size() <= 19 &&
+          std::all_of(length.begin(), length.end(), [](char c) { return c >= '0' && c <= '9'; }))
+        value = std::stoull(length);
+      body_too_large(max_body, value).write(res);
+      return httplib::Server::HandlerResponse::Handled;
+    }
     problem_for_status(res.status, req).write(res);
     return httplib::Server::HandlerResponse::Handled;
   }));

@@ -36,17 +36,22 @@ struct RouteInfo {
 /// Every route install_routes registers (a test checks this against api/openapi.yaml).
 std::vector<RouteInfo> routes();
 
+/// The methods the API has for `path` ("GET", "POST", …), empty when no route matches the path.
+std::vector<std::string> allowed_methods(const std::string& path);
+
 /// Registers every route of the API. Handlers answer errors as problem+json.
 void install_routes(httplib::Server& server, App& app);
 
 /// Request hygiene before routing: a POST or DELETE without Content-Length and without Transfer-Encoding
 /// has an empty body (RFC 9112 §6.3), as `curl -X POST …/cancel` sends it; cpp-httplib 0.11 would
-/// otherwise wait for the client to close the connection.
+/// otherwise wait for the client to close the connection. The declared Content-Type moves to
+/// declared_type_header (cpp-httplib would parse and cap form bodies); a known path with a method it does
+/// not have is answered 405 with Allow.
 void install_request_defaults(httplib::Server& server);
 
 /// The error handler (problem+json for statuses httplib sets itself: unknown route, oversize body, …),
 /// the exception handler (catches everything, answers 500, never lets a request take the server down),
 /// and the request counter of /metrics.
-void install_error_handling(httplib::Server& server, Metrics& metrics);
+void install_error_handling(httplib::Server& server, Metrics& metrics, const Limits& limits = {});
 
 }  // namespace stoss::server::http

@@ -1,6 +1,10 @@
 #include "server/http/scene_check.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <string>
+
+#include "server/common/json_input.hpp"
 
 namespace stoss::server::http {
 
@@ -19,34 +23,67 @@ std::string plain_message(const std::exception& e) {
 Problem invalid_scene(nlohmann::json errors) {
   const std::size_t n = errors.size();
   std::string detail = n == 1 ? "the scene has 1 error" : "the scene has " + std::to_string(n) + " errors";
-  if (n > 0)
-    detail += ", the first: " + errors[0].value("pointer", "") + ": " + errors[0].value("message", "");
+  if (n > 0) {
+    const std::string pointer = errors[0].value("pointer", "");
+    detail += ", the first: " + (pointer.empty() ? "the scene " : pointer + ": ") + errors[0].value("message", "");
+  }
   return {422, "urn:stoss:problem:invalid-scene", "Invalid scene", detail, {{"errors", std::move(errors)}}};
 }
 
 }  // namespace
 
+std::string declared_content_type(const httplib::Request& req) {
+  std::string type = req.has_header(declared_type_header) ? req.get_header_value(declared_type_header)
+                                                          : req.get_header_value("Content-Type");
+  type = type.substr(0, type.find(';'));
+  while (!type.empty() && (type.back() == ' ' || type.back() == '\t')) type.pop_back();
+  std::transform(type.begin(), type.end(), type.begin(), [](unsigned char c) { return std::tolower(c); });
+  return type;
+}
+
+Problem body_too_large(std::size_t limit, std::optional<unsigned long long> value) {
+  nlohmann::json entry = {{"name", "max_body_bytes"}, {"limit", limit}};
+  std::string detail = "the request body exceeds the server limit max_body_bytes = " + std::to_string(limit);
+  if (value) {
+    entry["value"] = *value;
+    detail = "the body has " + std::to_string(*value) +
+             " bytes, more than the server limit max_body_bytes = " + std::to_string(limit);
+  }
+  return {413, "urn:stoss:problem:limit-exceeded", "Request body too large", detail,
+          {{"limits", nlohmann::json::array({entry})}}};
+}
+
 nlohmann::json parse_json_body(const httplib::Request& req, const Limits& limits) {
   if (req.body.size() > limits.max_body_bytes)
+    throw ProblemError(body_too_large(limits.max_body_bytes, req.body.size()));
+  const std::string type = declared_content_type(req);
+  const bool declared_json = type == "application/json" || type == "text/json" ||
+                             (type.size() > 5 && type.compare(type.size() - 5, 5, "+json") == 0);
+  // JSON is accepted whatever the Content-Type says (curl sends application/x-www-form-urlencoded by
+  // default); a body that is not JSON and not declared as JSON is of a type no route takes.
+  if (!declared_json && !looks_like_json(req.body))
     throw ProblemError(Problem{
-        413,
-        "urn:stoss:problem:limit-exceeded",
-        "Request body too large",
-        "the body has " + std::to_string(req.body.size()) +
-            " bytes, more than the server limit max_body_bytes = " + std::to_string(limits.max_body_bytes),
-        {{"limits",
-          {{{"name", "max_body_bytes"}, {"limit", limits.max_body_bytes}, {"value", req.body.size()}}}}}});
+        415,
+        "urn:stoss:problem:unsupported-media-type",
+        "Unsupported Media Type",
+        "the body is not JSON" + (type.empty() ? std::string() : " (Content-Type " + type + ")") +
+            "; this route takes application/json",
+        {{"expected", nlohmann::json::array({"application/json"})}}});
   try {
-    return nlohmann::json::parse(req.body);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw ProblemError(Problem{400,
-                               "urn:stoss:problem:malformed-json",
-                               "Malformed JSON",
-                               "the body is not JSON: " + plain_message(e),
-                               {{"byte", e.byte}}});
-  } catch (const nlohmann::json::exception& e) {  // e.g. a number literal out of the range of double
-    throw ProblemError(Problem{400, "urn:stoss:problem:malformed-json", "Malformed JSON",
-                               "the body is not usable JSON: " + plain_message(e)});
+    return parse_json_input(req.body);
+  } catch (const JsonInputError& e) {
+    if (e.kind == JsonInputError::Kind::too_deep)
+      throw ProblemError(Problem{400,
+                                 "urn:stoss:problem:too-deep",
+                                 "JSON nested too deeply",
+                                 std::string("the body is not usable JSON: ") + e.what(),
+                                 {{"limits", nlohmann::json::array({{{"name", "max_json_depth"},
+                                                                     {"limit", max_json_depth}}})},
+                                  {"byte", e.byte.value_or(0)}}});
+    Problem p{400, "urn:stoss:problem:malformed-json", "Malformed JSON",
+              std::string(e.byte ? "the body is not JSON: " : "the body is not usable JSON: ") + e.what()};
+    if (e.byte) p.extra["byte"] = *e.byte;
+    throw ProblemError(p);
   }
 }
 

@@ -1,9 +1,18 @@
 #include "server/http/serve.hpp"
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
 #include <pthread.h>
 #include <signal.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <iostream>
+#include <map>
+#include <mutex>
 #include <thread>
 
 #include "server/http/options.hpp"
@@ -59,6 +68,30 @@ class SignalWaiter {
   std::thread thread_;
 };
 
+/// The listening port is taken (by another server or anything else): exit 2, not a second listener.
+class AddressInUse : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Binds `server` to host:port with SO_REUSEADDR only (no SO_REUSEPORT: a second server on the same port
+/// must fail, not share the connections). Returns the port; throws AddressInUse or runtime_error.
+int bind_server(httplib::Server& server, const std::string& host, int port) {
+  server.set_socket_options([](socket_t sock) {
+    const int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
+  errno = 0;
+  const int bound = port == 0 ? server.bind_to_any_port(host) : (server.bind_to_port(host, port) ? port : -1);
+  const int error = errno;
+  if (bound > 0) return bound;
+  if (error == EADDRINUSE)
+    throw AddressInUse("cannot listen on " + host + ":" + std::to_string(port) +
+                       ": address in use (is another stoss serve running on this port?)");
+  throw std::runtime_error("cannot listen on " + host + ":" + std::to_string(port) +
+                           (error ? std::string(": ") + std::strerror(error) : std::string()));
+}
+
 int run(const ServeOptions& options) {
   SignalWaiter signals;
   std::filesystem::create_directories(options.data / "jobs");
@@ -73,13 +106,21 @@ int run(const ServeOptions& options) {
 
   httplib::Server server;
   server.set_payload_max_length(options.limits.max_body_bytes);
+  // The head and the body of a response go out in two writes; with Nagle a kept-alive client waits for
+  // the ACK of the first (~40 ms) before the second. TCP_NODELAY is set on the listening socket, and
+  // Linux hands it down to every accepted socket.
+  server.set_tcp_nodelay(true);
+  const int threads = options.http_threads;
+  server.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
+  const auto timeout = std::chrono::milliseconds(options.read_timeout);
+  server.set_read_timeout(timeout);
+  server.set_write_timeout(std::max(timeout, std::chrono::milliseconds(5000)));
+  server.set_keep_alive_max_count(10'000);
+  server.set_keep_alive_timeout(std::max<time_t>(1, static_cast<time_t>(options.read_timeout / 1000)));
   install_request_defaults(server);
-  install_error_handling(server, app.metrics);
+  install_error_handling(server, app.metrics, options.limits);
   install_routes(server, app);
-  const int port = options.port == 0 ? server.bind_to_any_port(options.host)
-                                     : (server.bind_to_port(options.host, options.port) ? options.port : -1);
-  if (port < 0)
-    throw std::runtime_error("cannot listen on " + options.host + ":" + std::to_string(options.port));
+  const int port = bind_server(server, options.host, options.port);
 
   jobs::Rescuer rescuer(store, clock, options.max_attempts);
   rescuer.run_once();  // jobs of a dead process whose lease already ran out go back to the queue first
@@ -108,6 +149,9 @@ int serve_command(const std::vector<std::string>& args) {
     return run(parse_serve_options(args));
   } catch (const UsageError& e) {
     std::cerr << "stoss serve: " << e.what() << "\n\n" << serve_usage();
+    return 2;
+  } catch (const AddressInUse& e) {
+    std::cerr << "stoss serve: " << e.what() << std::endl;
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "stoss serve: " << e.what() << std::endl;

@@ -121,7 +121,8 @@ scene::Summary check_study_scene(const nlohmann::json& body, const Limits& limit
 Problem invalid_study(nlohmann::json errors) {
   const std::size_t n = errors.size();
   std::string detail = n == 1 ? "the study has 1 error" : "the study has " + std::to_string(n) + " errors";
-  detail += ", the first: " + errors[0].value("pointer", "") + ": " + errors[0].value("message", "");
+  const std::string pointer = errors[0].value("pointer", "");
+  detail += ", the first: " + (pointer.empty() ? "the study " : pointer + ": ") + errors[0].value("message", "");
   return {422, "urn:stoss:problem:invalid-study", "Invalid study", detail, {{"errors", std::move(errors)}}};
 }
 

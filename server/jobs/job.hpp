@@ -61,7 +61,8 @@ struct Job {
   bool cancel_requested = false;
   std::optional<std::string> idempotency_key;
   std::string body_hash;             ///< SHA-256 (hex) of the canonical scene JSON
-  nlohmann::json scene;              ///< the scene as submitted
+  nlohmann::json scene;              ///< the scene as submitted (only set for a claimed job)
+  std::optional<std::string> name;   ///< the scene's `name`, when it has one
   std::vector<std::string> effects;  ///< resolved at submission
   Progress progress;
   std::optional<nlohmann::json> summary;  ///< set when the run ended (also for canceled runs)

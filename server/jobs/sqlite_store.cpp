@@ -54,13 +54,19 @@ const std::vector<std::string> migrations = {
                      CHECK (kind IN ('simulation', 'study'));
     ALTER TABLE jobs ADD COLUMN study TEXT;
     )sql",
+    // 4: the scene's name, shown with the job (the scene itself is read only by workers).
+    R"sql(
+    ALTER TABLE jobs ADD COLUMN name TEXT;
+    UPDATE jobs SET name = json_extract(scene, '$.name')
+     WHERE json_valid(scene) AND json_type(scene, '$.name') = 'text';
+    )sql",
 };
 
 /// Every column but `scene` (scenes can be megabytes; only a worker needs one).
 const std::string job_columns =
     "seq, id, status, created_ms, started_ms, finished_ms, attempt, worker, lease_expires_ms, "
     "cancel_requested, idempotency_key, body_hash, effects, progress_step, progress_steps, progress_time, "
-    "progress_end, progress_eta, summary, error, kind, study";
+    "progress_end, progress_eta, summary, error, kind, study, name";
 
 Status status_column(const Statement& s, int col) {
   auto status = parse_status(s.text(col));
@@ -100,7 +106,8 @@ Job read_job(const Statement& s, bool with_scene = false) {
   if (!kind) throw sqlite::Error("job store: unknown kind '" + s.text(20) + "'");
   job.kind = *kind;
   job.study = json_column(s, 21);
-  if (with_scene) job.scene = nlohmann::json::parse(s.text(22));
+  job.name = s.optional_text(22);
+  if (with_scene) job.scene = nlohmann::json::parse(s.text(23));
   return job;
 }
 
@@ -224,7 +231,8 @@ CreateResult SqliteStore::create(const NewJob& job, int max_queued) {
   Statement insert(
       *c,
       "INSERT INTO jobs (id, status, created_ms, idempotency_key, body_hash, scene, effects, "
-      "progress_steps, progress_end, kind, study) VALUES (?1, 'queued', ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)"
+      "progress_steps, progress_end, kind, study, name)"
+      " VALUES (?1, 'queued', ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)"
       " RETURNING " +
           job_columns);
   insert.bind(1, JobId::random().str())
@@ -236,7 +244,10 @@ CreateResult SqliteStore::create(const NewJob& job, int max_queued) {
       .bind(7, job.progress.steps)
       .bind(8, job.progress.end)
       .bind(9, to_string(job.kind))
-      .bind(10, job.study ? std::optional(job.study->dump()) : std::nullopt);
+      .bind(10, job.study ? std::optional(job.study->dump()) : std::nullopt)
+      .bind(11, job.scene.is_object() && job.scene.contains("name") && job.scene["name"].is_string()
+                    ? std::optional(job.scene["name"].get<std::string>())
+                    : std::nullopt);
   insert.step();
   Job created = read_job(insert);
   insert.run();
@@ -247,6 +258,14 @@ CreateResult SqliteStore::create(const NewJob& job, int max_queued) {
 std::optional<Job> SqliteStore::get(const JobId& id) {
   auto c = impl_->borrow();
   return select_job(*c, id);
+}
+
+std::optional<nlohmann::json> SqliteStore::scene(const JobId& id) {
+  auto c = impl_->borrow();
+  Statement s(*c, "SELECT scene FROM jobs WHERE id = ?1");
+  s.bind(1, id.str());
+  if (!s.step()) return std::nullopt;
+  return nlohmann::json::parse(s.text(0));
 }
 
 Page SqliteStore::list(std::optional<Status> status, int limit, std::optional<std::int64_t> cursor) {

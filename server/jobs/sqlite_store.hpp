@@ -26,6 +26,7 @@ class SqliteStore : public JobStore {
 
   CreateResult create(const NewJob& job, int max_queued) override;
   std::optional<Job> get(const JobId& id) override;
+  std::optional<nlohmann::json> scene(const JobId& id) override;
   Page list(std::optional<Status> status, int limit, std::optional<std::int64_t> cursor) override;
   std::optional<Job> claim(const std::string& worker, Millis lease) override;
   Lease renew(const JobId& id, const std::string& worker, Millis lease) override;

@@ -83,7 +83,10 @@ class JobStore {
 
   /// Queues a job unless the key was seen before or `max_queued` jobs are queued already.
   virtual CreateResult create(const NewJob& job, int max_queued) = 0;
+  /// The job without its scene (Job::scene is null; see scene()).
   virtual std::optional<Job> get(const JobId& id) = 0;
+  /// The scene of job `id` as submitted, or nullopt for an unknown job.
+  virtual std::optional<nlohmann::json> scene(const JobId& id) = 0;
   /// Newest first; `cursor` continues a previous page.
   virtual Page list(std::optional<Status> status, int limit, std::optional<std::int64_t> cursor) = 0;
 

@@ -266,7 +266,7 @@ TEST_F(BadInput, BadListParametersAre400) {
 TEST_F(BadInput, UnknownRoutesAre404Problems) {
   auto c = client();
   EXPECT_EQ(problem(c.Get("/v2/jobs"), 404)["type"], "urn:stoss:problem:no-route");
-  problem(c.Put("/v1/jobs", "{}", "application/json"), 404);
+  problem(c.Put("/v1/jobs", "{}", "application/json"), 405);
 }
 
 /// Sends raw bytes and returns whatever comes back within `timeout` (possibly nothing). With `half_close`

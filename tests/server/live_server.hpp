@@ -55,6 +55,19 @@ class LiveServer {
   std::filesystem::path out_;
 };
 
+/// How a `stoss` command ended: exit code (or -1) or the signal that killed it (or 0), and what it
+/// printed (stdout and stderr together, or separately when asked).
+struct CommandResult {
+  int exit_code = -1;
+  int signal = 0;
+  std::string out;
+  std::string err;
+};
+
+/// Runs the `stoss` binary with `args`, waits at most `deadline` (then SIGKILL, signal 9 reported).
+CommandResult run_stoss(const std::vector<std::string>& args,
+                        std::chrono::milliseconds deadline = std::chrono::seconds(60));
+
 /// Calls `condition` until it is true or `deadline` passes; true if it became true.
 bool eventually(const std::function<bool()>& condition, std::chrono::milliseconds deadline);
 

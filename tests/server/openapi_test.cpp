@@ -51,7 +51,7 @@ TEST(OpenApi, TheSpecDescribesExactlyTheServersRoutes) {
   std::set<std::pair<std::string, std::string>> spec, served;
   for (const auto& op : read_spec(spec_file)) spec.insert({op.method, op.path});
   for (const auto& r : server::http::routes()) served.insert({r.method, r.path});
-  EXPECT_EQ(spec.size(), 15u);
+  EXPECT_EQ(spec.size(), 17u);
   EXPECT_EQ(spec, served);
 }
 
@@ -105,7 +105,7 @@ TEST(OpenApi, EveryOperationAnswersWithItsDocumentedSuccessCodeAndNeedsTheToken)
   }
 }
 
-TEST(OpenApi, MethodsTheSpecDoesNotListAreUnknownRoutes) {
+TEST(OpenApi, MethodsTheSpecDoesNotListAre405WithTheListedOnesInAllow) {
   TempDir dir;
   LiveServer server(dir.path() / "data", {"--workers", "0"});
   auto c = server.client();
@@ -121,9 +121,13 @@ TEST(OpenApi, MethodsTheSpecDoesNotListAreUnknownRoutes) {
       req.path = path;
       auto r = c.send(req);
       ASSERT_TRUE(r);
-      EXPECT_EQ(r->status, 404) << method << " " << path;
-      EXPECT_EQ(nlohmann::json::parse(r->body)["type"], "urn:stoss:problem:no-route")
+      EXPECT_EQ(r->status, 405) << method << " " << path;
+      EXPECT_EQ(nlohmann::json::parse(r->body)["type"], "urn:stoss:problem:method-not-allowed")
           << method << " " << path;
+      const std::string allow = r->get_header_value("Allow");
+      for (const std::string listed_method : {"GET", "POST", "DELETE"})
+        EXPECT_EQ(allow.find(listed_method) != std::string::npos, listed.count({listed_method, op.path}) > 0)
+            << method << " " << path << ": Allow " << allow;
     }
 }
 

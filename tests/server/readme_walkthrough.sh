@@ -1,5 +1,5 @@
 #!/bin/bash
-# The README's service walk-through and studies shall work as printed: every `$ ` command of its console blocks
+# The README's service walk-through, cancel example and studies shall work as printed: every `$ ` command of its console blocks
 # runs against a live `stoss serve` (README's 127.0.0.1:8080 replaced by the test's port), exits 0,
 # and prints output of the same shape as the README shows — the same lines after ids, numbers,
 # times and the worker's host name are masked. A job still running when polled is the one allowed
@@ -29,7 +29,7 @@ done
 # Commands and their expected output from the walk-through and studies sections: "C<tab>command" and
 # "O<tab>line" records; continuation lines of a command (ending in \) are joined.
 awk '
-  /^### (Walk-through|Studies)/ { inside = 1; next }
+  /^### (Walk-through|Cancel and delete|Studies)/ { inside = 1; next }
   /^##/ { inside = 0 }
   inside && /^```console/ { block = 1; next }
   inside && /^```/ { block = 0; next }

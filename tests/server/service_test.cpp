@@ -151,7 +151,7 @@ TEST(Service, CancelsQueuedAndRunningJobs) {
   auto result = c.Get("/v1/jobs/" + running + "/result");
   EXPECT_EQ(result->status, 409);
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "data/jobs" / running / "result.h5"));
-  EXPECT_EQ(c.Post("/v1/jobs/" + running + "/cancel")->status, 202);  // canceling again is a no-op
+  EXPECT_EQ(c.Post("/v1/jobs/" + running + "/cancel")->status, 409);  // a canceled job is finished
 
   EXPECT_EQ(c.Delete("/v1/jobs/" + running)->status, 204);
   EXPECT_EQ(c.Get("/v1/jobs/" + running)->status, 404);
