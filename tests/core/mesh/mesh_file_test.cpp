@@ -351,6 +351,22 @@ TEST(AbaqusReader, ReadsNodesElementsSetsAndSurfaces) {
   EXPECT_EQ(high.empty_surfaces, std::vector<std::string>{"SBOTTOM"});
 }
 
+TEST(AbaqusReader, ReadsADeckWrittenByCalculixGraphix) {
+  // cgx 2.17 wrote tests/data/meshes/cgx_block.inp (generate.sh): a 2 × 1 × 1 block, 4 × 2 × 2 C3D8.
+  const ImportedMesh m = read_mesh_file(data_dir / "cgx_block.inp", "cgx_block.inp");
+  EXPECT_EQ(m.nodes.size(), 45u);
+  ASSERT_EQ(m.hex8.size(), 16u);
+  EXPECT_EQ(m.element_sets.at("Eall").size(), 16u);
+  double volume = 0;
+  for (const Hex& h : m.hex8) {
+    EXPECT_NEAR(min_det_j0(m.nodes, h), 0.125 * 0.125, 1e-12);  // cgx's C3D8 node order is Stoss's
+    volume += 8 * min_det_j0(m.nodes, h);
+  }
+  EXPECT_NEAR(volume, 2.0, 1e-12);
+  const Selection s = select_body(m, "EALL");  // Abaqus names ignore case
+  EXPECT_EQ(s.body.surfaces.at("boundary").size(), 2u * (8 + 4 + 8));
+}
+
 TEST(AbaqusReader, IncludedFilesAreRead) {
   TempDir dir;
   dir.write("nodes.inp", "1,0,0,0\n2,1,0,0\n3,1,1,0\n4,0,1,0\n5,0,0,1\n6,1,0,1\n7,1,1,1\n8,0,1,1\n");

@@ -5,3 +5,9 @@ set -e
 cd "$(dirname "$0")"
 gmsh -3 -format msh41 two_blocks.geo -o two_blocks_ascii.msh > /dev/null
 gmsh -3 -format msh41 -bin two_blocks.geo -o two_blocks_binary.msh > /dev/null
+#   cgx_block.inp: CalculiX GraphiX (cgx 2.17) batch mesh of cgx_block.fbd, 16 C3D8 in ELSET Eall, 45 nodes.
+if command -v cgx > /dev/null; then
+  tmp=$(mktemp -d)
+  cp cgx_block.fbd "$tmp/" && (cd "$tmp" && cgx -bg cgx_block.fbd > /dev/null 2>&1)
+  mv "$tmp/all.msh" cgx_block.inp && rm -rf "$tmp"
+fi

@@ -1,0 +1,227 @@
+// Requirements for scenes whose bodies come from mesh files: "mesh": {"file", "elements", "transform"}
+// resolved relative to the scene file; the CalculiX-deck and Gmsh examples validate and run into
+// contact; bad files are scene issues naming the file and the line or element.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "core/scene/scene.hpp"
+#include "core/simulate.hpp"
+#include "tests/core/recording_observer.hpp"
+
+namespace stoss {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const fs::path examples = fs::path(STOSS_SOURCE_DIR) / "api/examples";
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    path = fs::temp_directory_path() / ("stoss_file_mesh_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() { fs::remove_all(path); }
+  fs::path write(const std::string& name, const std::string& text) const {
+    fs::create_directories((path / name).parent_path());
+    std::ofstream(path / name, std::ios::binary) << text;
+    return path / name;
+  }
+};
+
+/// The issues of loading a scene file, one "pointer: message" per line ("" when it loads).
+std::string issues_of(const fs::path& scene) {
+  try {
+    scene::load_file(scene.string());
+  } catch (const scene::SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const json material = {{"youngs_modulus", 1e4}, {"poisson_ratio", 0.4}, {"density", 1}};
+
+json one_body_scene(const json& mesh) {
+  return {{"format", "stoss-scene/1"},
+          {"bodies", {{{"name", "block"}, {"mesh", mesh}, {"material", material}}}},
+          {"time", {{"step", 0.01}, {"end", 0.02}}}};
+}
+
+const std::string cube_nodes =
+    "*NODE\n1,0,0,0\n2,1,0,0\n3,1,1,0\n4,0,1,0\n5,0,0,1\n6,1,0,1\n7,1,1,1\n8,0,1,1\n";
+
+/// The model with its end time cut to `steps` steps.
+model::Model first_steps(model::Model m, int steps) {
+  m.time.end = steps * m.time.step;
+  return m;
+}
+
+Eigen::Vector3d mean_velocity(const model::Model& m, const model::Frame& f, int body) {
+  const auto& b = m.mesh.bodies[body];
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  for (int n = b.node_begin; n < b.node_end; ++n) v += f.velocity.segment<3>(3 * n);
+  return v / (b.node_end - b.node_begin);
+}
+
+// ---------------------------------------------------------------------------------------- examples
+
+TEST(FileMeshExamples, CalculixDeckBallAndPlateRunIntoContact) {
+  // api/examples/ball_plate_inp.json: the ball is ELSET EBALL, the plate ELSET EPLATE of one deck; the
+  // surfaces keep the deck's names.
+  const model::Model m = scene::load_file((examples / "ball_plate_inp.json").string());
+  ASSERT_EQ(m.mesh.bodies.size(), 2u);
+  EXPECT_EQ(m.mesh.bodies[0].element_end - m.mesh.bodies[0].element_begin, 96);   // 6 × 4 × 4 shell cells
+  EXPECT_EQ(m.mesh.bodies[1].element_end - m.mesh.bodies[1].element_begin, 64);   // 8 × 8 × 1
+  EXPECT_EQ(m.mesh.node_count(), 2 * (6 * 16 + 2) + 9 * 9 * 2);
+  EXPECT_EQ(m.mesh.surface("ball/SBALL").size(), 96u);
+  EXPECT_EQ(m.mesh.surface("plate/SPLATE").size(), 64u);
+  EXPECT_THROW(m.mesh.surface("ball/SPLATE"), std::out_of_range);  // SPLATE has no face on the ball
+  EXPECT_EQ(m.contact.at(0).slave, "ball/SBALL");
+  // The outer faces of the ball point away from its centre (0, 0, 1.05).
+  for (const mesh::Quad& q : m.mesh.surface("ball/SBALL")) {
+    const auto& x = m.mesh.nodes;
+    const Eigen::Vector3d n = (x[q[1]] - x[q[0]]).cross(x[q[3]] - x[q[0]]);
+    EXPECT_GT(n.dot(x[q[0]] - Eigen::Vector3d(0, 0, 1.05)), 0);
+  }
+
+  // 0.05 above the plate at 1 per second: contact from about step 5; 14 steps.
+  testing::RecordingObserver r;
+  const model::Summary s = simulate(first_steps(m, 14), r);
+  ASSERT_TRUE(s.completed);
+  EXPECT_GT(r.contact_window().first, 0.02);
+  EXPECT_GT(r.contact_window().second, 0.1);
+  // Free bodies, no gravity: the impact moves momentum from the ball to the plate, the sum stays.
+  EXPECT_LT(r.vector_drift("linear_momentum"), 1e-9);
+  const Eigen::Vector3d ball = mean_velocity(m, r.frames.back(), 0), plate = mean_velocity(m, r.frames.back(), 1);
+  EXPECT_GT(ball.z(), -0.95);   // slowed by the plate
+  EXPECT_LT(plate.z(), -0.01);  // pushed down
+  EXPECT_LT(s.max_penetration, 1e-3);
+}
+
+TEST(FileMeshExamples, GmshPartWithAHoleFallsOnTheClampedPlate) {
+  // api/examples/holed_part_plate.json: physical volumes "part" and "plate" of one .msh; physical surfaces
+  // "bottom" and "top" hold faces of both bodies, and each body gets its own.
+  const model::Model m = scene::load_file((examples / "holed_part_plate.json").string());
+  ASSERT_EQ(m.mesh.bodies.size(), 2u);
+  EXPECT_EQ(m.mesh.bodies[0].element_end - m.mesh.bodies[0].element_begin, 4 * 4 * 3 * 2);
+  EXPECT_EQ(m.mesh.bodies[1].element_end - m.mesh.bodies[1].element_begin, 64);
+  EXPECT_EQ(m.mesh.surface("part/bottom").size(), 48u);
+  EXPECT_EQ(m.mesh.surface("part/top").size(), 48u);
+  EXPECT_EQ(m.mesh.surface("plate/top").size(), 64u);
+  EXPECT_EQ(m.mesh.surface("plate/bottom").size(), 64u);
+  // The hole: no node of the part within the radius 0.3 of the axis; the part is turned by 30°.
+  const auto& part = m.mesh.bodies[0];
+  double corner_angle = 0;
+  for (int n = part.node_begin; n < part.node_end; ++n) {
+    const Eigen::Vector3d& x = m.mesh.nodes[n];
+    EXPECT_GT(x.head<2>().norm(), 0.3 - 1e-9);
+    if (x.head<2>().norm() > 0.6 * std::sqrt(2.0) - 1e-9 && x.x() > 0 && x.y() > 0)
+      corner_angle = std::atan2(x.y(), x.x()) * 180 / M_PI;
+  }
+  EXPECT_NEAR(corner_angle, 45 + 30, 1e-9);
+
+  testing::RecordingObserver r;
+  const model::Summary s = simulate(first_steps(m, 10), r);
+  ASSERT_TRUE(s.completed);
+  EXPECT_GT(r.contact_window().first, 0);
+  // The clamped plate pushes back: the part's downward momentum shrinks.
+  const std::vector<double> pz = r.series("linear_momentum", 2);
+  EXPECT_LT(pz.front(), 0);
+  EXPECT_GT(pz.back(), pz.front() * 0.9);
+  EXPECT_LT(s.max_penetration, 1e-3);
+}
+
+// ---------------------------------------------------------------------------------------- scenes
+
+TEST(FileMeshScene, PathIsRelativeToTheSceneFileNotTheWorkingDirectory) {
+  TempDir dir;
+  dir.write("parts/cube.inp", cube_nodes + "*ELEMENT, TYPE=C3D8R, ELSET=E\n1,1,2,3,4,5,6,7,8\n*SURFACE, NAME=SB\nE, S1\n");
+  json scene = one_body_scene({{"file", "cube.inp"}, {"elements", "E"},
+                               {"transform", {{"translate", {1, 2, 3}}, {"scale", {2, 1, 1}}}}});
+  const fs::path file = dir.write("parts/scene.json", scene.dump());
+  const model::Model m = scene::load_file(file.string());
+  EXPECT_EQ(m.mesh.node_count(), 8);
+  EXPECT_EQ(m.mesh.nodes[6], Eigen::Vector3d(3, 3, 4));
+  EXPECT_EQ(m.mesh.surface("block/SB").size(), 1u);
+  EXPECT_EQ(m.mesh.surface("block/boundary").size(), 6u);
+  EXPECT_EQ(m.scene["bodies"][0]["mesh"]["file"], "cube.inp");  // the scene as written, not a resolved path
+}
+
+TEST(FileMeshScene, ScenesWithoutAFileCannotNameMeshFiles) {
+  // The HTTP API loads JSON bodies: a mesh file there would be a path on the server's disk.
+  try {
+    scene::load(one_body_scene({{"file", "/etc/passwd.inp"}}));
+    FAIL() << "loaded";
+  } catch (const scene::SceneError& e) {
+    ASSERT_EQ(e.issues.size(), 1u);
+    EXPECT_EQ(e.issues[0].pointer, "/bodies/0/mesh/file");
+    EXPECT_NE(e.issues[0].message.find("mesh files are read only for a scene given as a file"), std::string::npos);
+  }
+}
+
+TEST(FileMeshScene, BadMeshFilesAreIssuesNamingFileAndLineOrElement) {
+  TempDir dir;
+  const auto issues = [&](const std::string& deck, const json& mesh) {
+    dir.write("bad.inp", deck);
+    return issues_of(dir.write("scene.json", one_body_scene(mesh).dump()));
+  };
+  const json file = {{"file", "bad.inp"}};
+  // Inverted: the bottom face listed clockwise.
+  EXPECT_EQ(issues(cube_nodes + "*ELEMENT, TYPE=C3D8\n7,1,4,3,2,5,8,7,6\n", file),
+            "/bodies/0/mesh/file: bad.inp:11: element 7: inverted or degenerate hexahedron, det J0 = -0.125 at a "
+            "Gauss point (must be > 0; check the node order)");
+  // Degenerate: the top face on the bottom one.
+  EXPECT_NE(issues(cube_nodes + "*ELEMENT, TYPE=C3D8\n7,1,2,3,4,1,2,3,4\n", file)
+                .find("bad.inp:11: element 7: inverted or degenerate hexahedron"),
+            std::string::npos);
+  EXPECT_EQ(issues(cube_nodes + "*ELEMENT, TYPE=C3D10\n1,1,2,3,4,5,6,7,8,1,2\n", file),
+            "/bodies/0/mesh/file: bad.inp:10: unsupported element type C3D10; Stoss reads 8-node hexahedra (C3D8, C3D8R)");
+  EXPECT_EQ(issues(cube_nodes + "*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7\n", file),
+            "/bodies/0/mesh/file: bad.inp:11: element 1 has 7 nodes, C3D8 needs 8");
+  EXPECT_EQ(issues(cube_nodes + "*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7,8\n1,1,2,3,4,5,6,7,8\n", file),
+            "/bodies/0/mesh/file: bad.inp:12: duplicate element id 1 (first defined on line 11)");
+  EXPECT_EQ(issues(cube_nodes + "*ELEMENT, TYPE=C3D8, ELSET=E\n1,1,2,3,4,5,6,7,8\n", {{"file", "bad.inp"}, {"elements", "EBALL"}}),
+            "/bodies/0/mesh/file: bad.inp: has no element set 'EBALL' (it has E)");
+  EXPECT_EQ(issues(cube_nodes, file), "/bodies/0/mesh/file: bad.inp: has no 8-node hexahedra");
+  EXPECT_EQ(issues_of(dir.write("scene.json", one_body_scene({{"file", "missing.msh"}}).dump())),
+            "/bodies/0/mesh/file: missing.msh: cannot read the file");
+  EXPECT_EQ(issues(cube_nodes + "*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7,8\n",
+                   {{"file", "bad.inp"}, {"transform", {{"scale", -1}, {"rotate", {{"axis", {0, 0, 0}}, {"degrees", 10}}}}}}),
+            "/bodies/0/mesh/transform/rotate/axis: must not be the zero vector\n"
+            "/bodies/0/mesh/transform/scale: must be > 0, got -1");
+  EXPECT_EQ(issues_of(dir.write("scene.json", one_body_scene({{"box", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}, {"divisions", {1, 1, 1}}}},
+                                                               {"elements", "E"}}).dump())),
+            "/bodies/0/mesh/elements: only for a mesh read from a file (\"file\")");
+}
+
+TEST(FileMeshScene, ContactPairNamingAnEmptyOrMissingGroupIsAnIssue) {
+  TempDir dir;
+  fs::copy_file(examples / "meshes/ball_plate.inp", dir.path / "deck.inp");
+  json scene = json::parse(std::ifstream(examples / "ball_plate_inp.json"));
+  for (json& b : scene["bodies"]) b["mesh"]["file"] = "deck.inp";
+  // SPLATE exists in the deck but has no face on EBALL; SNONE does not exist at all.
+  scene["contact"][0]["slave"] = "ball/SPLATE";
+  scene["contact"].push_back({{"slave", "ball/SNONE"}, {"master", "plate/SPLATE"}});
+  EXPECT_EQ(issues_of(dir.write("scene.json", scene.dump())),
+            "/contact/0/slave: body \"ball\" has no surface \"SPLATE\" (it has SBALL, boundary); deck.inp defines "
+            "surface 'SPLATE', but none of its faces is on an element of 'EBALL'\n"
+            "/contact/1/slave: body \"ball\" has no surface \"SNONE\" (it has SBALL, boundary)");
+  // An empty physical group of a Gmsh file is named the same way.
+  scene = json::parse(std::ifstream(examples / "holed_part_plate.json"));
+  fs::copy_file(examples / "meshes/holed_part_plate.msh", dir.path / "part.msh");
+  for (json& b : scene["bodies"]) b["mesh"]["file"] = "part.msh";
+  scene["bodies"][0]["mesh"]["elements"] = "nothing";
+  EXPECT_EQ(issues_of(dir.write("scene.json", scene.dump())),
+            "/bodies/0/mesh/file: part.msh: has no element set 'nothing' (it has part, plate)");
+}
+
+}  // namespace
+}  // namespace stoss
