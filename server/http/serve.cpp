@@ -17,7 +17,7 @@
 
 #include "server/http/options.hpp"
 #include "server/http/routes.hpp"
-#include "server/jobs/inprocess_executor.hpp"
+#include "server/jobs/process_executor.hpp"
 #include "server/jobs/periodic.hpp"
 #include "server/jobs/rescuer.hpp"
 #include "server/jobs/sqlite_store.hpp"
@@ -98,7 +98,10 @@ int run(const ServeOptions& options) {
   jobs::SystemClock clock;
   jobs::SqliteStore store(options.data / "jobs.db", clock);
   jobs::JobFiles files(options.data);
-  jobs::InProcessExecutor executor(files, clock);
+  // Each job runs in a process of its own (this binary, `stoss run-job`): a job that crashes or runs
+  // over a limit fails alone.
+  jobs::ProcessExecutor executor(files, options.data, std::filesystem::read_symlink("/proc/self/exe"),
+                                 {options.job_timeout, options.job_memory});
   jobs::WorkerPool pool(store, executor, options.pool);
   std::optional<BearerAuth> auth;
   if (options.token_file) auth = BearerAuth::from_file(*options.token_file);
