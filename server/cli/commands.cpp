@@ -1,6 +1,8 @@
 #include "server/cli/commands.hpp"
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -9,6 +11,7 @@
 #include "core/simulate.hpp"
 #include "core/study/study.hpp"
 #include "server/cli/progress.hpp"
+#include "server/common/json_input.hpp"
 
 namespace stoss::cli {
 namespace {
@@ -41,17 +44,54 @@ int usage(const char* text) {
   return invalid_scene;
 }
 
+bool wants_help(const std::vector<std::string>& args) {
+  for (const auto& a : args)
+    if (a == "--help" || a == "-h") return true;
+  return false;
+}
+
+/// Checks that `path` holds usable JSON before the core reads it: nesting within server::max_json_depth,
+/// numbers within the range of double, valid syntax. Throws scene::SceneError (pointer "") when not.
+void precheck_scene_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return;  // load_file reports an unreadable file
+  const std::string text{std::istreambuf_iterator<char>(in), {}};
+  try {
+    server::parse_json_input(text);
+  } catch (const server::JsonInputError& e) {
+    throw scene::SceneError(std::vector<scene::Issue>{{"", e.what()}});
+  }
+}
+
 }  // namespace
 
 int run_command(const std::vector<std::string>& args) {
-  std::string scene_path, out_dir = "out";
-  for (size_t i = 0; i < args.size(); ++i) {
-    if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size()) out_dir = args[++i];
-    else if (scene_path.empty() && args[i].rfind("-", 0) != 0) scene_path = args[i];
-    else return usage("stoss run SCENE.json [-o DIR]");
+  constexpr const char* text =
+      "stoss run SCENE.json [-o DIR]\n"
+      "  simulates the scene; writes DIR/result.h5 and DIR/result.xdmf (DIR defaults to out/, which must\n"
+      "  then be absent or empty: pass -o DIR to write into, or over, an existing directory).\n"
+      "  exit 0 success, 1 solver failure, 2 invalid scene or command line";
+  if (wants_help(args)) {
+    std::cout << "usage: " << text << "\n";
+    return success;
   }
-  if (scene_path.empty()) return usage("stoss run SCENE.json [-o DIR]");
+  std::string scene_path, out_dir = "out";
+  bool out_given = false;
+  for (size_t i = 0; i < args.size(); ++i) {
+    if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size()) out_dir = args[++i], out_given = true;
+    else if (scene_path.empty() && args[i].rfind("-", 0) != 0) scene_path = args[i];
+    else return usage(text);
+  }
+  if (scene_path.empty()) return usage(text);
+  std::error_code error;
+  if (!out_given && std::filesystem::exists(out_dir, error) &&
+      !(std::filesystem::is_directory(out_dir, error) && std::filesystem::is_empty(out_dir, error))) {
+    std::cerr << "stoss run: " << out_dir << "/ exists and is not empty; nothing was overwritten. Pass -o "
+              << out_dir << " to overwrite it, or -o DIR for another directory.\n";
+    return invalid_scene;
+  }
   try {
+    precheck_scene_file(scene_path);
     const model::Model model = scene::load_file(scene_path);
     output::ResultWriter writer(out_dir);
     ProgressObserver progress;
@@ -64,6 +104,9 @@ int run_command(const std::vector<std::string>& args) {
     print_scene_error(e);
     return invalid_scene;
   } catch (const std::invalid_argument& e) {
+    std::cerr << "invalid scene: " << e.what() << "\n";
+    return invalid_scene;
+  } catch (const nlohmann::json::exception& e) {  // a scene value the core could not take
     std::cerr << "invalid scene: " << e.what() << "\n";
     return invalid_scene;
   } catch (const std::exception& e) {
@@ -118,6 +161,10 @@ int study_command(const std::vector<std::string>& args) {
   constexpr const char* text =
       "stoss study SCENE.json --steps h1,h2,... [--schemes energy_momentum,midpoint,hht] [--reference H] "
       "[--csv|--json]";
+  if (wants_help(args)) {
+    std::cout << "usage: " << text << "\n";
+    return success;
+  }
   std::string scene_path, format = "markdown";
   study::Options options;
   try {
@@ -127,9 +174,10 @@ int study_command(const std::vector<std::string>& args) {
     return usage(text);
   }
   try {
+    precheck_scene_file(scene_path);
     const study::Result result = study::run(scene::load_file(scene_path), options);
     if (format == "csv") std::cout << study::to_csv(result);
-    else if (format == "json") std::cout << study::to_json(result).dump(2) << "\n";
+    else if (format == "json") std::cout << server::safe_dump(study::to_json(result), 2) << "\n";
     else std::cout << "reference: energy_momentum, h = " << result.reference_step << "\n\n" << study::to_markdown(result);
     return success;
   } catch (const scene::SceneError& e) {
@@ -142,14 +190,40 @@ int study_command(const std::vector<std::string>& args) {
 }
 
 int validate_command(const std::vector<std::string>& args) {
-  if (args.empty() || args.size() > 2) return usage("stoss validate SCENE.json [--json]");
-  const bool json = args.size() == 2 && args[1] == "--json";
-  try {
-    const scene::Summary s = scene::summarize(scene::load_file(args[0]));
+  constexpr const char* text =
+      "stoss validate SCENE.json [--json]\n"
+      "  checks a scene: prints its effects, node/element/DOF counts, steps and frames, or every error\n"
+      "  with its JSON pointer (--json: the same as JSON). exit 0 valid, 2 invalid";
+  if (wants_help(args)) {
+    std::cout << "usage: " << text << "\n";
+    return success;
+  }
+  std::string path;
+  bool json = false;
+  for (const auto& a : args) {
+    if (a == "--json") json = true;
+    else if (path.empty() && a.rfind("-", 0) != 0) path = a;
+    else return usage(text);
+  }
+  if (path.empty()) return usage(text);
+  auto print_errors = [json](const std::vector<scene::Issue>& issues) {
     if (json) {
-      std::cout << nlohmann::json{{"valid", true}, {"effects", s.effects}, {"nodes", s.nodes},
-                                  {"elements", s.elements}, {"dofs", s.dofs}, {"steps", s.steps},
-                                  {"frames", s.frames}}.dump(2)
+      nlohmann::json errors = nlohmann::json::array();
+      for (const auto& i : issues) errors.push_back({{"pointer", i.pointer}, {"message", i.message}});
+      std::cout << server::safe_dump(nlohmann::json{{"valid", false}, {"errors", errors}}, 2) << "\n";
+    } else {
+      print_scene_error(scene::SceneError(issues));
+    }
+    return invalid_scene;
+  };
+  try {
+    precheck_scene_file(path);
+    const scene::Summary s = scene::summarize(scene::load_file(path));
+    if (json) {
+      std::cout << server::safe_dump(nlohmann::json{{"valid", true}, {"effects", s.effects}, {"nodes", s.nodes},
+                                                    {"elements", s.elements}, {"dofs", s.dofs},
+                                                    {"steps", s.steps}, {"frames", s.frames}},
+                                     2)
                 << "\n";
     } else {
       std::printf("valid scene\neffects: %s\nnodes %d, elements %d, dofs %d\nsteps %d, frames %d\n",
@@ -157,14 +231,9 @@ int validate_command(const std::vector<std::string>& args) {
     }
     return success;
   } catch (const scene::SceneError& e) {
-    if (json) {
-      nlohmann::json errors = nlohmann::json::array();
-      for (const auto& i : e.issues) errors.push_back({{"pointer", i.pointer}, {"message", i.message}});
-      std::cout << nlohmann::json{{"valid", false}, {"errors", errors}}.dump(2) << "\n";
-    } else {
-      print_scene_error(e);
-    }
-    return invalid_scene;
+    return print_errors(e.issues);
+  } catch (const std::exception& e) {  // a scene that validates but cannot be built
+    return print_errors(std::vector<scene::Issue>{{"", e.what()}});
   }
 }
 
