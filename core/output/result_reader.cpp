@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/output/h5.hpp"
+#include "core/output/layout.hpp"
 #include "core/output/number_text.hpp"
 
 namespace stoss::output {
@@ -101,6 +102,36 @@ std::vector<std::string> ResultFile::body_names() const {
   return file_->read_string_attribute("/mesh/body", "names");
 }
 
+Eigen::VectorXi ResultFile::element_bodies() const {
+  h5::silence_errors();
+  const auto values = file_->read_doubles("/mesh/body");
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size())).cast<int>();
+}
+
+Eigen::VectorXi ResultFile::node_bodies() const {
+  h5::silence_errors();
+  const auto values = file_->read_doubles("/mesh/node_body");
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size())).cast<int>();
+}
+
+std::map<std::string, Eigen::Matrix<std::int64_t, Eigen::Dynamic, 4>> ResultFile::surfaces() const {
+  h5::silence_errors();
+  std::map<std::string, Eigen::Matrix<std::int64_t, Eigen::Dynamic, 4>> out;
+  if (!file_->exists("/mesh/surfaces")) return out;
+  for (const auto& body : file_->children("/mesh/surfaces"))
+    for (const auto& surface : file_->children("/mesh/surfaces/" + body)) {
+      const std::string dataset = "/mesh/surfaces/" + body + "/" + surface;
+      const auto values = file_->read_doubles(dataset);
+      out[file_->read_string_attribute(dataset, "name").at(0)] =
+          as_matrix(values, static_cast<Eigen::Index>(values.size() / 4), 4).cast<std::int64_t>();
+    }
+  return out;
+}
+
+bool ResultFile::format_1() const {
+  return has_attribute("format") && attribute_string("format") == result_format_1;
+}
+
 int ResultFile::frame_count() const {
   h5::silence_errors();
   return static_cast<int>(file_->shape("/frames/time").at(0));
@@ -112,28 +143,55 @@ Eigen::VectorXd ResultFile::frame_times() const {
   return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
 }
 
-Eigen::MatrixXd ResultFile::frame_rows(const std::string& dataset, int k, int width) const {
+Eigen::MatrixXd ResultFile::frame_rows(const std::string& name, int k, int width) const {
   h5::silence_errors();
   if (k < 0) throw std::out_of_range("frame index " + std::to_string(k) + " is negative");
-  const auto values = file_->read_rows(dataset, static_cast<hsize_t>(k), 1);
+  if (format_1()) {
+    const auto values = file_->read_rows("/frames/" + name, static_cast<hsize_t>(k), 1);
+    return as_matrix(values, static_cast<Eigen::Index>(values.size() / width), width);
+  }
+  if (k >= frame_count())
+    throw std::out_of_range("frame " + std::to_string(k) + " is outside the " + std::to_string(frame_count()) +
+                            " frames of " + path().string());
+  const std::string dataset = frame_dataset(k, name);
+  if (!file_->exists(dataset)) throw std::out_of_range("no dataset " + dataset + " in " + path().string());
+  const auto values = file_->read_doubles(dataset);
   return as_matrix(values, static_cast<Eigen::Index>(values.size() / width), width);
 }
 
 Eigen::MatrixXd ResultFile::frame_positions(int k) const {
-  return frame_rows("/frames/position", k, 3);
+  return frame_rows("position", k, 3);
 }
 
 Eigen::MatrixXd ResultFile::frame_velocities(int k) const {
-  return frame_rows("/frames/velocity", k, 3);
+  return frame_rows("velocity", k, 3);
+}
+
+Eigen::MatrixXd ResultFile::frame_displacements(int k) const {
+  return frame_rows("displacement", k, 3);
 }
 
 bool ResultFile::has_contact_pressure() const {
   h5::silence_errors();
-  return file_->exists("/frames/contact_pressure");
+  return format_1() ? file_->exists("/frames/contact_pressure")
+                    : frame_count() > 0 && file_->exists(frame_dataset(0, "contact_pressure"));
 }
 
 Eigen::VectorXd ResultFile::frame_contact_pressure(int k) const {
-  return frame_rows("/frames/contact_pressure", k, 1).col(0);
+  return frame_rows("contact_pressure", k, 1).col(0);
+}
+
+bool ResultFile::has_stress() const {
+  h5::silence_errors();
+  return !format_1() && frame_count() > 0 && file_->exists(frame_dataset(0, "von_mises"));
+}
+
+Eigen::MatrixXd ResultFile::frame_cauchy_stress(int k) const {
+  return frame_rows("cauchy_stress", k, 6);
+}
+
+Eigen::VectorXd ResultFile::frame_von_mises(int k) const {
+  return frame_rows("von_mises", k, 1).col(0);
 }
 
 namespace {

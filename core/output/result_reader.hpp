@@ -1,8 +1,10 @@
 #pragma once
-/// @file Reading a result file (service.md §3): for tests, `stoss` tools and GET /v1/jobs/{id}/series.
+/// @file Reading a result file (layout: core/output/layout.hpp; formats stoss-result/2 and /1): for tests,
+/// `stoss` tools and GET /v1/jobs/{id}/series.
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <map>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -48,6 +50,12 @@ class ResultFile {
   Eigen::Matrix<std::int64_t, Eigen::Dynamic, 8> mesh_hex8() const;
   /// Names of the bodies, indexed by /mesh/body.
   std::vector<std::string> body_names() const;
+  /// /mesh/body: E body indices.
+  Eigen::VectorXi element_bodies() const;
+  /// /mesh/node_body: N body indices (format 2).
+  Eigen::VectorXi node_bodies() const;
+  /// /mesh/surfaces: "body/surface" → F × 4 node indices (format 2; empty for format 1).
+  std::map<std::string, Eigen::Matrix<std::int64_t, Eigen::Dynamic, 4>> surfaces() const;
 
   /// K, the number of frames.
   int frame_count() const;
@@ -57,14 +65,24 @@ class ResultFile {
   Eigen::MatrixXd frame_positions(int k) const;
   /// Frame k of /frames/velocity: N × 3.
   Eigen::MatrixXd frame_velocities(int k) const;
-  /// Whether the file has /frames/contact_pressure.
+  /// Frame k's displacement: N × 3 (format 2).
+  Eigen::MatrixXd frame_displacements(int k) const;
+  /// Whether the frames carry contact_pressure.
   bool has_contact_pressure() const;
-  /// Frame k of /frames/contact_pressure: N values.
+  /// Frame k's contact pressure: N values.
   Eigen::VectorXd frame_contact_pressure(int k) const;
+  /// Whether the frames carry cauchy_stress and von_mises (format 2, bodies with materials).
+  bool has_stress() const;
+  /// Frame k's element Cauchy stress: E × 6 (xx, xy, xz, yy, yz, zz).
+  Eigen::MatrixXd frame_cauchy_stress(int k) const;
+  /// Frame k's element von Mises stress: E values.
+  Eigen::VectorXd frame_von_mises(int k) const;
 
  private:
   explicit ResultFile(std::unique_ptr<h5::File> file);
-  Eigen::MatrixXd frame_rows(const std::string& dataset, int k, int width) const;
+  bool format_1() const;
+  /// Field `name` of frame k as rows of `width`: /frames/<k>/<name> (format 2) or row k of /frames/<name>.
+  Eigen::MatrixXd frame_rows(const std::string& name, int k, int width) const;
   std::string series_dataset(const std::string& name) const;
 
   std::unique_ptr<h5::File> file_;

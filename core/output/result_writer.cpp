@@ -11,6 +11,8 @@
 #include <system_error>
 
 #include "core/output/h5.hpp"
+#include "core/output/layout.hpp"
+#include "core/output/stress.hpp"
 #include "core/output/xdmf.hpp"
 
 namespace stoss::output {
@@ -55,8 +57,16 @@ void write_text_file(const fs::path& path, const std::string& text) {
 }
 
 void remove_earlier_results(const fs::path& directory) {
-  for (const char* name : {result_file_name, incomplete_file_name, xdmf_file_name})
+  for (const char* name : {result_file_name, incomplete_file_name, xdmf_file_name, xdmf_mesh_file_name})
     fs::remove(directory / name);
+}
+
+/// A body or surface name as an HDF5 link name ('/' and a leading '.' are not allowed there).
+std::string link_name(std::string name) {
+  for (char& c : name)
+    if (c == '/') c = '_';
+  if (name.empty() || name[0] == '.') name = "_" + name;
+  return name;
 }
 
 std::vector<std::string> body_names(const mesh::Mesh& mesh) {
@@ -66,7 +76,7 @@ std::vector<std::string> body_names(const mesh::Mesh& mesh) {
 }
 
 void write_root_attributes(const h5::File& file, const model::Model& model) {
-  file.write_attribute("/", "format", std::string("stoss-result/1"));
+  file.write_attribute("/", "format", std::string(result_format));
   file.write_attribute("/", "stoss_version", std::string(stoss_version));
   file.write_attribute("/", "scheme", model::to_string(model.time.scheme));
   file.write_attribute("/", "step", model.time.step);
@@ -88,6 +98,22 @@ void write_mesh(const h5::File& file, const mesh::Mesh& mesh) {
   file.write_dataset("/mesh/hex8", H5T_STD_I64LE, H5T_NATIVE_INT64, {E, 8}, hex8.data());
   file.write_dataset("/mesh/body", H5T_STD_I32LE, H5T_NATIVE_INT32, {E}, body.data());
   file.write_attribute("/mesh/body", "names", body_names(mesh));
+  std::vector<std::int32_t> node_body(N, -1);
+  for (size_t b = 0; b < mesh.bodies.size(); ++b)
+    for (int n = mesh.bodies[b].node_begin; n < mesh.bodies[b].node_end; ++n) node_body[n] = static_cast<std::int32_t>(b);
+  file.write_dataset("/mesh/node_body", H5T_STD_I32LE, H5T_NATIVE_INT32, {N}, node_body.data());
+  file.create_group("/mesh/surfaces", true);
+  for (const auto& body : mesh.bodies) {
+    const std::string group = "/mesh/surfaces/" + link_name(body.name);
+    file.create_group(group, true);
+    for (const auto& [name, quads] : body.surfaces) {
+      std::vector<std::int64_t> rows;
+      for (const auto& q : quads) rows.insert(rows.end(), q.begin(), q.end());
+      const std::string dataset = group + "/" + link_name(name);
+      file.write_dataset(dataset, H5T_STD_I64LE, H5T_NATIVE_INT64, {quads.size(), 4}, rows.data());
+      file.write_attribute(dataset, "name", body.name + "/" + name);
+    }
+  }
 }
 
 h5::Dims row_shape(int components) {
@@ -102,11 +128,9 @@ void create_series(const h5::File& file, const model::SeriesLayout& layout) {
                            row_shape(spec.components), series_chunk_rows);
 }
 
-void create_frames(const h5::File& file, hsize_t node_count) {
+void create_frames(const h5::File& file) {
   file.create_group("/frames", true);
   file.create_extendible("/frames/time", H5T_IEEE_F64LE, {}, frame_time_chunk_rows);
-  file.create_extendible("/frames/position", H5T_IEEE_F64LE, {node_count, 3}, 1);
-  file.create_extendible("/frames/velocity", H5T_IEEE_F64LE, {node_count, 3}, 1);
 }
 
 /// Columns [offset, offset + components) of `rows` buffered rows of `width` values, row-major.
@@ -144,6 +168,8 @@ struct ResultWriter::Run {
   std::vector<double> buffered_values;  ///< rows of layout.row_size() values
   std::vector<double> frame_times;
   std::optional<bool> contact_pressure;  ///< decided by the first frame
+  Eigen::VectorXd reference;             ///< X, 3 per node
+  std::unique_ptr<ElementStress> stress;  ///< null when some body has no material
 
   void flush_rows();
   void append_series(const model::SeriesSpec& spec, int offset);
@@ -178,12 +204,7 @@ void ResultWriter::Run::append_series(const model::SeriesSpec& spec, int offset)
 
 void ResultWriter::Run::decide_contact_pressure(const model::Frame& frame) {
   const bool present = frame.contact_pressure.size() > 0;
-  if (!contact_pressure) {
-    contact_pressure = present;
-    if (present)
-      file.create_extendible("/frames/contact_pressure", H5T_IEEE_F64LE, {static_cast<hsize_t>(node_count)},
-                             1);
-  }
+  if (!contact_pressure) contact_pressure = present;
   if (present != *contact_pressure)
     throw std::invalid_argument(*contact_pressure ? "frame without contact_pressure after frames with it"
                                                   : "frame with contact_pressure after frames without it");
@@ -191,8 +212,8 @@ void ResultWriter::Run::decide_contact_pressure(const model::Frame& frame) {
 }
 
 XdmfLayout ResultWriter::Run::xdmf_layout() const {
-  return XdmfLayout{result_file_name, node_count, element_count, frame_times,
-                    contact_pressure.value_or(false)};
+  return XdmfLayout{result_file_name, node_count, element_count, frame_times, contact_pressure.value_or(false),
+                    stress != nullptr};
 }
 
 ResultWriter::ResultWriter(std::filesystem::path directory) : directory_(std::move(directory)) {}
@@ -212,7 +233,10 @@ void ResultWriter::begin(const model::Model& model, const model::SeriesLayout& l
   write_root_attributes(run->file, model);
   write_mesh(run->file, model.mesh);
   create_series(run->file, layout);
-  create_frames(run->file, run->node_count);
+  create_frames(run->file);
+  run->reference = model.mesh.reference_positions();
+  auto stress = std::make_unique<ElementStress>(model);
+  if (stress->available()) run->stress = std::move(stress);
   run_ = std::move(run);
 }
 
@@ -237,11 +261,25 @@ void ResultWriter::frame(const model::Frame& frame) {
   check_size(frame.velocity, 3 * run_->node_count, "velocity");
   run_->decide_contact_pressure(frame);
   const h5::File& file = run_->file;
+  const long k = static_cast<long>(run_->frame_times.size());
+  const hsize_t N = run_->node_count, E = run_->element_count;
+  const auto write = [&](const char* name, const h5::Dims& dims, const double* data) {
+    file.write_dataset(frame_dataset(k, name), H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, dims, data);
+  };
+  file.create_group("/frames/" + std::to_string(k));
+  file.write_attribute("/frames/" + std::to_string(k), "time", frame.time);
+  write("position", {N, 3}, frame.position.data());
+  write("velocity", {N, 3}, frame.velocity.data());
+  const Eigen::VectorXd displacement = frame.position - run_->reference;
+  write("displacement", {N, 3}, displacement.data());
+  if (*run_->contact_pressure) write("contact_pressure", {N}, frame.contact_pressure.data());
+  if (run_->stress) {
+    std::vector<double> cauchy, von_mises;
+    run_->stress->compute(frame.position, cauchy, von_mises);
+    write("cauchy_stress", {E, 6}, cauchy.data());
+    write("von_mises", {E}, von_mises.data());
+  }
   file.append_rows("/frames/time", H5T_NATIVE_DOUBLE, 1, &frame.time);
-  file.append_rows("/frames/position", H5T_NATIVE_DOUBLE, 1, frame.position.data());
-  file.append_rows("/frames/velocity", H5T_NATIVE_DOUBLE, 1, frame.velocity.data());
-  if (*run_->contact_pressure)
-    file.append_rows("/frames/contact_pressure", H5T_NATIVE_DOUBLE, 1, frame.contact_pressure.data());
   run_->frame_times.push_back(frame.time);
 }
 
@@ -255,6 +293,7 @@ void ResultWriter::end(const model::Summary& summary) {
   run->file.close();
   if (summary.completed) {
     write_text_file(directory_ / xdmf_file_name, xdmf_document(run->xdmf_layout()));
+    write_text_file(directory_ / xdmf_mesh_file_name, xdmf_mesh_document(run->xdmf_layout()));
     rename_durably(directory_ / partial_file_name, directory_ / result_file_name);
   } else {
     rename_durably(directory_ / partial_file_name, directory_ / incomplete_file_name);

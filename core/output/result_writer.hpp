@@ -1,5 +1,6 @@
 #pragma once
-/// @file The observer that writes a run to DIR/result.h5 (service.md §3) and DIR/result.xdmf.
+/// @file The observer that writes a run to DIR/result.h5 (layout: core/output/layout.hpp) and the XDMF
+/// sidecars DIR/result.xdmf and DIR/result_mesh.xdmf.
 
 #include <filesystem>
 #include <memory>
@@ -12,10 +13,11 @@ namespace stoss::output {
 inline constexpr const char* result_file_name = "result.h5";                 ///< complete runs only
 inline constexpr const char* partial_file_name = "result.h5.partial";        ///< while a run writes
 inline constexpr const char* incomplete_file_name = "result.incomplete.h5";  ///< canceled or failed runs
-inline constexpr const char* xdmf_file_name = "result.xdmf";  ///< ParaView sidecar, complete runs
+inline constexpr const char* xdmf_file_name = "result.xdmf";  ///< time series sidecar, complete runs
+inline constexpr const char* xdmf_mesh_file_name = "result_mesh.xdmf";  ///< reference mesh sidecar, complete runs
 
 /// Writes one run into a directory. While the run goes the data is in result.h5.partial;
-/// end() renames it to result.h5 only when the run completed (after writing result.xdmf),
+/// end() renames it to result.h5 only when the run completed (after writing the XDMF sidecars),
 /// else to result.incomplete.h5 with complete = 0. So result.h5 exists only when complete.
 /// @note Series rows are buffered and written every rows_per_flush steps; frames at once.
 /// @note Not thread-safe: one writer serves one run on one thread at a time.
@@ -35,7 +37,9 @@ class ResultWriter : public model::Observer {
   void begin(const model::Model& model, const model::SeriesLayout& layout) override;
   /// Buffers one row; throws std::invalid_argument when its size is not layout.row_size().
   void step(const model::StepRow& row) override;
-  /// Appends one frame; throws std::invalid_argument when a field has the wrong size, or when
+  /// Writes one frame (group /frames/<k>: position, velocity, displacement, contact_pressure, and the
+  /// element stresses when every body has a material); throws std::invalid_argument when a field has the
+  /// wrong size, or when
   /// contact_pressure is present in some frames and absent in others (the first frame decides).
   void frame(const model::Frame& frame) override;
   /// Flushes, writes wall_seconds and complete, closes and renames (see the class comment).

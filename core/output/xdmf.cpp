@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "core/output/layout.hpp"
 #include "core/output/number_text.hpp"
 
 namespace stoss::output {
@@ -34,32 +35,14 @@ std::string escaped(const std::string& text) {
   return out;
 }
 
-std::string dims(long a, long b) {
-  return std::to_string(a) + " " + std::to_string(b);
-}
-std::string dims(long a, long b, long c) {
-  return dims(a, b) + " " + std::to_string(c);
-}
+std::string dims(long a) { return std::to_string(a); }
+std::string dims(long a, long b) { return std::to_string(a) + " " + std::to_string(b); }
 
-/// An HDF item for a whole dataset.
+/// A DataItem for a whole HDF5 dataset.
 std::string hdf_item(const XdmfLayout& l, const std::string& dataset, const std::string& dimensions,
                      const std::string& number_type, int precision) {
   return "<DataItem Dimensions=\"" + dimensions + "\" NumberType=\"" + number_type + "\" Precision=\"" +
-         std::to_string(precision) + "\" Format=\"HDF\">" + escaped(l.h5_file) + ":" + dataset +
-         "</DataItem>";
-}
-
-/// Frame k of a per-node frame dataset [K,N,width] (width 0: [K,N]).
-std::string frame_slab(const XdmfLayout& l, const std::string& dataset, long k, long width) {
-  const long K = static_cast<long>(l.frame_times.size()), N = l.node_count;
-  const bool vector = width > 0;
-  const std::string selection =
-      vector ? dims(k, 0, 0) + "  1 1 1  " + dims(1, N, width) : dims(k, 0) + "  1 1  " + dims(1, N);
-  return "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" + (vector ? dims(1, N, width) : dims(1, N)) +
-         "\" Type=\"HyperSlab\">\n            <DataItem Dimensions=\"3 " + (vector ? "3" : "2") +
-         "\" Format=\"XML\">" + selection + "</DataItem>\n            " +
-         hdf_item(l, dataset, vector ? dims(K, N, width) : dims(K, N), "Float", 8) +
-         "\n          </DataItem>";
+         std::to_string(precision) + "\" Format=\"HDF\">" + escaped(l.h5_file) + ":" + dataset + "</DataItem>";
 }
 
 std::string attribute(const std::string& name, const std::string& type, const std::string& center,
@@ -68,35 +51,58 @@ std::string attribute(const std::string& name, const std::string& type, const st
          "\">\n          " + item + "\n        </Attribute>\n";
 }
 
+std::string topology(const XdmfLayout& l) {
+  return "        <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"" + std::to_string(l.element_count) +
+         "\" NodesPerElement=\"8\">\n          " + hdf_item(l, "/mesh/hex8", dims(l.element_count, 8), "Int", 8) +
+         "\n        </Topology>\n";
+}
+
+std::string geometry(const XdmfLayout& l, const std::string& dataset) {
+  return "        <Geometry GeometryType=\"XYZ\">\n          " +
+         hdf_item(l, dataset, dims(l.node_count, 3), "Float", 8) + "\n        </Geometry>\n";
+}
+
 std::string frame_grid(const XdmfLayout& l, long k) {
   const long N = l.node_count, E = l.element_count;
+  const auto field = [&](const char* name) { return frame_dataset(k, name); };
   std::ostringstream out;
   out << "      <Grid Name=\"frame_" << k << "\" GridType=\"Uniform\">\n"
       << "        <Time Value=\"" << shortest_text(l.frame_times[k]) << "\"/>\n"
-      << "        <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"" << E
-      << "\" NodesPerElement=\"8\">\n"
-      << "          " << hdf_item(l, "/mesh/hex8", dims(E, 8), "Int", 8) << "\n        </Topology>\n"
-      << "        <Geometry GeometryType=\"XYZ\">\n          " << frame_slab(l, "/frames/position", k, 3)
-      << "\n        </Geometry>\n"
-      << attribute("velocity", "Vector", "Node", frame_slab(l, "/frames/velocity", k, 3));
+      << topology(l) << geometry(l, field("position"))
+      << attribute("displacement", "Vector", "Node", hdf_item(l, field("displacement"), dims(N, 3), "Float", 8))
+      << attribute("velocity", "Vector", "Node", hdf_item(l, field("velocity"), dims(N, 3), "Float", 8));
   if (l.contact_pressure)
-    out << attribute("contact_pressure", "Scalar", "Node", frame_slab(l, "/frames/contact_pressure", k, 0));
+    out << attribute("contact_pressure", "Scalar", "Node", hdf_item(l, field("contact_pressure"), dims(N), "Float", 8));
+  if (l.stress)
+    out << attribute("von_mises", "Scalar", "Cell", hdf_item(l, field("von_mises"), dims(E), "Float", 8))
+        << attribute("cauchy_stress", "Tensor6", "Cell", hdf_item(l, field("cauchy_stress"), dims(E, 6), "Float", 8));
   out << attribute("reference_position", "Vector", "Node", hdf_item(l, "/mesh/nodes", dims(N, 3), "Float", 8))
-      << attribute("body", "Scalar", "Cell", hdf_item(l, "/mesh/body", std::to_string(E), "Int", 4))
-      << "      </Grid>\n";
+      << attribute("body", "Scalar", "Cell", hdf_item(l, "/mesh/body", dims(E), "Int", 4)) << "      </Grid>\n";
   return out.str();
 }
+
+const char* const header =
+    "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+    "<Xdmf Version=\"3.0\">\n"
+    "  <Domain>\n";
 
 }  // namespace
 
 std::string xdmf_document(const XdmfLayout& layout) {
   std::ostringstream out;
-  out << "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
-      << "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n"
-      << "  <Domain>\n"
-      << "    <Grid Name=\"frames\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  out << header << "    <Grid Name=\"frames\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
   for (long k = 0; k < static_cast<long>(layout.frame_times.size()); ++k) out << frame_grid(layout, k);
   out << "    </Grid>\n  </Domain>\n</Xdmf>\n";
+  return out.str();
+}
+
+std::string xdmf_mesh_document(const XdmfLayout& l) {
+  std::ostringstream out;
+  out << header << "    <Grid Name=\"mesh\" GridType=\"Uniform\">\n"
+      << topology(l) << geometry(l, "/mesh/nodes")
+      << attribute("body", "Scalar", "Cell", hdf_item(l, "/mesh/body", dims(l.element_count), "Int", 4))
+      << attribute("node_body", "Scalar", "Node", hdf_item(l, "/mesh/node_body", dims(l.node_count), "Int", 4))
+      << "    </Grid>\n  </Domain>\n</Xdmf>\n";
   return out.str();
 }
 

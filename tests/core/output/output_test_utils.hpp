@@ -33,6 +33,12 @@ inline model::Model tiny_model() {
   m.scene = {{"name", "tiny"}, {"time", {{"scheme", "energy_momentum"}, {"step", 0.01}, {"end", 1.29}}}};
   m.mesh.add_body("ball", unit_cube(0.0));
   m.mesh.add_body("wall", unit_cube(2.0));
+  for (const char* name : {"ball", "wall"}) {
+    model::BodySpec body;
+    body.name = name;
+    body.material = {"saint_venant_kirchhoff", 1e4, 0.25, 1};  // λ = μ = 4000
+    m.bodies.push_back(body);
+  }
   m.time.scheme = model::Scheme::energy_momentum;
   m.time.step = 0.01;
   m.time.end = 1.29;

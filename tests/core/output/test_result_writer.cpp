@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -63,7 +64,7 @@ TEST_F(ResultWriterTest, CompletedRunStoresEverySeriesRowExactly) {
 TEST_F(ResultWriterTest, CompletedRunHasRootAttributes) {
   const model::Model m = write_tiny(true);
   const ResultFile file = ResultFile::open(dir / result_file_name);
-  EXPECT_EQ(file.attribute_string("format"), "stoss-result/1");
+  EXPECT_EQ(file.attribute_string("format"), "stoss-result/2");
   EXPECT_FALSE(file.attribute_string("stoss_version").empty());
   EXPECT_EQ(file.attribute_string("scheme"), "energy_momentum");
   EXPECT_EQ(file.attribute_double("step"), 0.01);
@@ -88,6 +89,17 @@ TEST_F(ResultWriterTest, CompletedRunStoresMesh) {
     for (int a = 0; a < 8; ++a) EXPECT_EQ(hex8(e, a), m.mesh.hex8[e][a]);
   EXPECT_EQ(hex8(1, 0), 8);  // the second body's nodes are renumbered after the first's
   EXPECT_EQ(file.body_names(), (std::vector<std::string>{"ball", "wall"}));
+  EXPECT_EQ(file.element_bodies(), Eigen::Vector2i(0, 1));
+  Eigen::VectorXi node_body(16);
+  node_body << 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1;
+  EXPECT_EQ(file.node_bodies(), node_body);
+  // The named surfaces, under their "body/surface" names, in global node numbers.
+  const auto surfaces = file.surfaces();
+  ASSERT_EQ(surfaces.size(), 2u);
+  const auto& wall = surfaces.at("wall/all");
+  ASSERT_EQ(wall.rows(), 6);
+  for (int f = 0; f < 6; ++f)
+    for (int a = 0; a < 4; ++a) EXPECT_EQ(wall(f, a), m.mesh.surface("wall/all")[f][a]);
 }
 
 // /frames shall hold each frame's time, positions, velocities and contact pressure.
@@ -107,8 +119,35 @@ TEST_F(ResultWriterTest, CompletedRunStoresFrames) {
       EXPECT_EQ(v.row(i).transpose(), expected.velocity.segment<3>(3 * i)) << "frame " << k << " node " << i;
     }
     EXPECT_EQ(file.frame_contact_pressure(k), expected.contact_pressure) << "frame " << k;
+    // displacement = position − reference position, exactly as subtracted.
+    const Eigen::MatrixXd u = file.frame_displacements(k);
+    for (int i = 0; i < 16; ++i)
+      EXPECT_EQ(u.row(i).transpose(), expected.position.segment<3>(3 * i) - m.mesh.nodes[i]) << "frame " << k;
   }
   EXPECT_THROW(file.frame_positions(3), std::out_of_range);
+  EXPECT_THROW(file.frame_positions(-1), std::out_of_range);
+}
+
+// Stresses: the tiny frames move node i by 0.001·i·k along every axis, so frame 0 is unstressed and
+// frame 2 is not; von Mises agrees with the stored Cauchy stress.
+TEST_F(ResultWriterTest, FramesCarryElementStress) {
+  write_tiny(true);
+  const ResultFile file = ResultFile::open(dir / result_file_name);
+  ASSERT_TRUE(file.has_stress());
+  EXPECT_LT(file.frame_von_mises(0).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT(file.frame_cauchy_stress(0).cwiseAbs().maxCoeff(), 1e-9);
+  const Eigen::MatrixXd sigma = file.frame_cauchy_stress(2);
+  const Eigen::VectorXd vm = file.frame_von_mises(2);
+  ASSERT_EQ(sigma.rows(), 2);
+  ASSERT_EQ(sigma.cols(), 6);
+  for (int e = 0; e < 2; ++e) {
+    const double xx = sigma(e, 0), xy = sigma(e, 1), xz = sigma(e, 2), yy = sigma(e, 3), yz = sigma(e, 4),
+                 zz = sigma(e, 5);
+    const double expected = std::sqrt(0.5 * ((xx - yy) * (xx - yy) + (yy - zz) * (yy - zz) + (zz - xx) * (zz - xx)) +
+                                      3 * (xy * xy + yz * yz + xz * xz));
+    EXPECT_NEAR(vm[e], expected, 1e-9 * expected);
+    EXPECT_GT(vm[e], 1.0);
+  }
 }
 
 // A completed run shall leave result.h5 and result.xdmf, and no partial files.
@@ -126,12 +165,18 @@ TEST_F(ResultWriterTest, CompletedRunWritesXdmfSidecar) {
   write_tiny(true);
   const std::string xdmf = read_text(dir / xdmf_file_name);
   EXPECT_EQ(testing::xml_structure_error(xdmf), "");
-  EXPECT_NE(xdmf.find("result.h5:/frames/position"), std::string::npos);
+  EXPECT_NE(xdmf.find("result.h5:/frames/2/position"), std::string::npos);
+  EXPECT_EQ(xdmf.find("HyperSlab"), std::string::npos);
   EXPECT_NE(xdmf.find("result.h5:/mesh/hex8"), std::string::npos);
   EXPECT_NE(xdmf.find("CollectionType=\"Temporal\""), std::string::npos);
   EXPECT_EQ(testing::count_of(xdmf, "<Time "), 3);
   EXPECT_EQ(testing::count_of(xdmf, "<Time Value=\"1.29\"/>"), 1);
-  EXPECT_EQ(testing::count_of(xdmf, "result.h5:/frames/contact_pressure"), 3);
+  EXPECT_EQ(testing::count_of(xdmf, "/contact_pressure</DataItem>"), 3);
+  EXPECT_EQ(testing::count_of(xdmf, "/von_mises</DataItem>"), 3);
+  const std::string mesh = read_text(dir / xdmf_mesh_file_name);
+  EXPECT_EQ(testing::xml_structure_error(mesh), "");
+  EXPECT_EQ(testing::count_of(mesh, "<Grid "), 1);
+  EXPECT_NE(mesh.find("result.h5:/mesh/nodes"), std::string::npos);
 }
 
 // Without contact pressure in the frames, neither the file nor the sidecar shall carry it.
@@ -160,14 +205,13 @@ std::pair<std::vector<hsize_t>, std::vector<hsize_t>> chunk_and_max_dims(const f
   return {chunk, max_dims};
 }
 
-// Frames shall be chunked one frame per chunk; series and frames shall grow along their first dimension.
+// Series and frame times shall grow along their first dimension; each frame is a group of whole datasets.
 TEST_F(ResultWriterTest, DatasetsAreChunkedAndExtendible) {
   write_tiny(true);
   const fs::path file = dir / result_file_name;
-  const auto [position_chunk, position_max] = chunk_and_max_dims(file, "/frames/position");
-  EXPECT_EQ(position_chunk, (std::vector<hsize_t>{1, 16, 3}));
-  EXPECT_EQ(position_max, (std::vector<hsize_t>{H5S_UNLIMITED, 16, 3}));
-  EXPECT_EQ(chunk_and_max_dims(file, "/frames/contact_pressure").first, (std::vector<hsize_t>{1, 16}));
+  EXPECT_EQ(chunk_and_max_dims(file, "/frames/time").second, (std::vector<hsize_t>{H5S_UNLIMITED}));
+  EXPECT_EQ(chunk_and_max_dims(file, "/frames/1/position").second, (std::vector<hsize_t>{16, 3}));
+  EXPECT_EQ(chunk_and_max_dims(file, "/frames/1/contact_pressure").second, (std::vector<hsize_t>{16}));
   const auto [momentum_chunk, momentum_max] = chunk_and_max_dims(file, "/series/linear_momentum");
   EXPECT_EQ(momentum_chunk.size(), 2u);
   EXPECT_EQ(momentum_max, (std::vector<hsize_t>{H5S_UNLIMITED, 3}));
@@ -211,6 +255,7 @@ TEST_F(ResultWriterTest, NewRunRemovesEarlierResults) {
   write_tiny(false);
   EXPECT_FALSE(fs::exists(dir / result_file_name));
   EXPECT_FALSE(fs::exists(dir / xdmf_file_name));
+  EXPECT_FALSE(fs::exists(dir / xdmf_mesh_file_name));
   EXPECT_TRUE(fs::exists(dir / incomplete_file_name));
 }
 
