@@ -1,6 +1,7 @@
 #include "core/simulate.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -96,6 +97,11 @@ Eigen::VectorXd initial_velocity(const Model& m, const Problem& p, const Eigen::
   return v;
 }
 
+bool any_smooth_master(const Model& m) {
+  return std::any_of(m.contact.begin(), m.contact.end(),
+                     [](const model::ContactPair& p) { return p.master_surface == model::MasterSurface::smooth; });
+}
+
 model::SeriesLayout series_layout(const Model& m) {
   model::SeriesLayout l;
   l.series = {{"kinetic_energy"}, {"strain_energy"}};
@@ -109,6 +115,9 @@ model::SeriesLayout series_layout(const Model& m) {
     l.series.push_back({"active_contacts", 1, true});
     l.series.push_back({"max_penetration"});
     l.series.push_back({"contact_energy_jump"});
+    l.series.push_back({"face_switches", 1, true});
+    l.series.push_back({"unprojected_nodes", 1, true});  // near slave nodes no face accepts (§3.4)
+    if (any_smooth_master(m)) l.series.push_back({"max_faceted_penetration"});
     if (m.has_effect(model::effect::contact_frictional)) l.series.push_back({"slipping_contacts", 1, true});
   }
   l.series.push_back({"newton_iterations", 1, true});
@@ -129,8 +138,8 @@ struct Balance {
 
 /// The contact series of one step (service.md §3), summed or maximised over the pairs.
 struct ContactRow {
-  int active = 0, slipping = 0;
-  double max_penetration = 0, own_face_penetration = 0, energy_jump = 0;
+  int active = 0, slipping = 0, switches = 0, unprojected = 0;
+  double max_penetration = 0, own_face_penetration = 0, faceted_penetration = 0, energy_jump = 0;
 };
 
 /// Folds the contact row of one substep into the step's: the last active count, the worst
@@ -139,7 +148,10 @@ void add_substep(ContactRow& step, const ContactRow& sub) {
   step.active = sub.active;
   step.max_penetration = std::max(step.max_penetration, sub.max_penetration);
   step.own_face_penetration = std::max(step.own_face_penetration, sub.own_face_penetration);
+  step.faceted_penetration = std::max(step.faceted_penetration, sub.faceted_penetration);
   step.energy_jump += sub.energy_jump;
+  step.switches += sub.switches;
+  step.unprojected = std::max(step.unprojected, sub.unprojected);
   step.slipping += sub.slipping;
 }
 
@@ -150,7 +162,10 @@ ContactRow contact_row(const Problem& p, const time::Integrator* integrator) {
     c.active += r.active;
     c.max_penetration = std::max(c.max_penetration, r.max_penetration);
     c.own_face_penetration = std::max(c.own_face_penetration, r.max_own_face_penetration);
+    c.faceted_penetration = std::max(c.faceted_penetration, r.max_faceted_penetration);
     c.energy_jump += r.energy_jump;
+    c.switches += r.switches;
+    c.unprojected += r.unassigned;
     c.slipping += r.slipping;
   }
   // The velocity correction (4.12) restores (part of) the activation jump as kinetic energy.
@@ -193,6 +208,9 @@ model::StepRow step_row(const time::State& s, const Balance& b, const ContactRow
     row.values.push_back(c.active);
     row.values.push_back(c.max_penetration);
     row.values.push_back(c.energy_jump);
+    row.values.push_back(c.switches);
+    row.values.push_back(c.unprojected);
+    if (layout.index_of("max_faceted_penetration") >= 0) row.values.push_back(c.faceted_penetration);
     if (layout.index_of("slipping_contacts") >= 0) row.values.push_back(c.slipping);
   }
   row.values.push_back(newton ? newton->iterations : 0);
@@ -309,6 +327,7 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
     update_drifts(sum, b0, b);
     sum.max_penetration = std::max(sum.max_penetration, c.max_penetration);
     sum.max_own_face_penetration = std::max(sum.max_own_face_penetration, c.own_face_penetration);
+    sum.max_faceted_penetration = std::max(sum.max_faceted_penetration, c.faceted_penetration);
     observer.step(step_row(s, b, c, layout, &r, seconds_since(t0)));
     if (frame_due(m, n, steps)) observer.frame(frame_of(s, p));
   }

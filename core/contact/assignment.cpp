@@ -4,6 +4,8 @@
 #include <optional>
 #include <vector>
 
+#include "core/contact/patch_projection.hpp"
+
 namespace stoss::contact {
 
 bool accepts(const Projection& p, double eps, double g_max) {
@@ -22,7 +24,8 @@ FaceProjection project_on(const Eigen::Vector3d& slave, int face, const PairSurf
                           const Eigen::VectorXd& x, const Eigen::Vector2d& xi_start) {
   FaceProjection out;
   out.face = face;
-  out.projection = closest_point_projection(slave, face_positions(s.faces[face], x), xi_start);
+  out.projection = s.smooth() ? patch_projection(slave, s.patches[face], x, xi_start)
+                              : closest_point_projection(slave, face_positions(s.faces[face], x), xi_start);
   return out;
 }
 

@@ -20,6 +20,9 @@ void check_supported(const model::ContactPair& pair, model::Scheme scheme) {
     throw std::invalid_argument(which +
                                 "impact \"velocity_correction\" needs the energy_momentum scheme; use "
                                 "\"persist\" or \"exact\" with " + model::to_string(scheme));
+  if (scheme != model::Scheme::energy_momentum && pair.master_surface == model::MasterSurface::smooth)
+    throw std::invalid_argument(which + "master_surface \"smooth\" is implemented for the energy_momentum scheme "
+                                        "only so far; use \"faceted\" with " + model::to_string(scheme));
 }
 
 std::string pair_label(const model::ContactPair& pair) {
@@ -42,6 +45,9 @@ std::unique_ptr<ContactTerm> make_pair_term(const model::Model& m, const model::
     throw std::invalid_argument(pair_label(pair) +
                                 "penalty contact is not implemented for the hht scheme; use energy_momentum "
                                 "or midpoint");
+  if (pair.master_surface == model::MasterSurface::smooth)
+    throw std::invalid_argument(pair_label(pair) + "master_surface \"smooth\" is implemented for lagrange pairs "
+                                                   "only so far; use \"faceted\" with penalty");
   return std::make_unique<PenaltyContactTerm>(m.mesh, pair, master_youngs_modulus(m, pair));
 }
 

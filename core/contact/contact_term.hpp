@@ -32,6 +32,7 @@ struct ContactReport {
   double energy_jump = 0;
   int activations = 0, releases = 0, switches = 0;
   int unassigned = 0;  ///< near slave nodes level with the surface that no face accepts (NTS blind spot)
+  double max_faceted_penetration = 0;  ///< smooth master: near slave nodes against the mesh's own faces
   int slipping = 0;    ///< closed penalty contacts on the Coulomb cone (5.3) in the step; 0 if frictionless
 };
 
@@ -64,6 +65,9 @@ class ContactTerm : public time::Term {
   /// against the closest master face that accepts it, whichever it is; a node level with the surface
   /// that no face accepts counts as unassigned (the NTS blind spot) and is logged.
   void measure_closest_penetration(const time::StepContext& step, const Eigen::VectorXd& x);
+  /// Sets the report's max_faceted_penetration: near slave nodes against the closest bilinear face of
+  /// the mesh that accepts them (ε_ext), for a pair whose contact uses the smooth surface.
+  void measure_faceted_penetration(const Eigen::VectorXd& x);
   /// v in the log's "%.3e" format.
   static std::string scientific(double v);
 

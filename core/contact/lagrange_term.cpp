@@ -22,8 +22,7 @@ LagrangeContactTerm::LagrangeContactTerm(const mesh::Mesh& mesh, const model::Co
 void LagrangeContactTerm::register_blocks(solve::BlockPattern& pattern) {
   for (size_t k = 0; k < elements_.size(); ++k) {
     ContactElement& e = elements_[k];
-    const std::array<int, 15> x = element_dofs(slave_node(e), face_of(e));
-    std::vector<int> rows(x.begin(), x.end());
+    std::vector<int> rows = element_dofs(slave_node(e), surfaces_, e.face);
     for (int a = 0; a < unknowns_per_element(); ++a) rows.push_back(element_offset(static_cast<int>(k)) + a);
     e.block = pattern.add_block(rows);
   }

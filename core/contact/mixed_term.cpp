@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/contact/mixed_element.hpp"
+#include "core/contact/patch_mixed_element.hpp"
 
 namespace stoss::contact {
 
@@ -11,8 +12,35 @@ Vector20 MixedContactTerm::coordinates(const ContactElement& e, const Eigen::Vec
   return mixed_coordinates(position(e, x), face_positions(face_of(e), x), d, xi);
 }
 
+PatchMixedState MixedContactTerm::patch_state(const ContactElement& e, const Eigen::VectorXd& x,
+                                              const Eigen::Vector3d& d, const Eigen::Vector2d& xi) const {
+  const TensorPatch& patch = surfaces_.patches[e.face];
+  PatchMixedState s{position(e, x), Eigen::MatrixXd(patch.size(), 3), d, xi};
+  for (int K = 0; K < patch.size(); ++K) s.master.row(K) = x.segment<3>(3 * patch.nodes[K]).transpose();
+  return s;
+}
+
+void MixedContactTerm::add_smooth(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                                  solve::BlockPattern* K) const {
+  for (size_t k = 0; k < elements_.size(); ++k) {
+    const ContactElement& e = elements_[k];
+    const int o = element_offset(static_cast<int>(k));
+    const PatchMixedResult r =
+        patch_mixed_element(surfaces_.patches[e.face], patch_state(e, step.x_n, e.d_n, e.xi_n),
+                            patch_state(e, z, z.segment<3>(o), z.segment<2>(o + 3)), z.segment<6>(o + 5), e.f3,
+                            step.h);  // docs/smooth_master_surface.md (3.5)
+    const std::vector<int> dofs = element_dofs(slave_node(e), surfaces_, e.face);
+    const int n = static_cast<int>(dofs.size());
+    for (int i = 0; i < n; ++i) R[dofs[i]] += r.Rq[i];
+    R.segment<5>(o) += r.Rq.segment<5>(n);
+    R.segment<6>(o + 5) += r.Rl;
+    if (K) K->scatter(e.block, r.K);  // rows: dofs, then d, ξ, λ (register_blocks)
+  }
+}
+
 void MixedContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
                            solve::BlockPattern* K) const {
+  if (surfaces_.smooth()) return add_smooth(step, z, R, K);
   Eigen::Matrix<double, 26, 26> block;
   for (size_t k = 0; k < elements_.size(); ++k) {
     const ContactElement& e = elements_[k];
@@ -71,6 +99,8 @@ void MixedContactTerm::read_auxiliaries(ContactElement& e, const Eigen::VectorXd
 }
 
 Vector6 MixedContactTerm::start_residual(const ContactElement& e, const Eigen::VectorXd& x_n) const {
+  if (surfaces_.smooth())
+    return patch_constraints(surfaces_.patches[e.face], patch_state(e, x_n, e.d_n, e.xi_n), e.f3);  // (4.11)
   return constraints(invariants(coordinates(e, x_n, e.d_n, e.xi_n), e.f3));  // g(π_n) of (4.11)
 }
 
@@ -84,10 +114,12 @@ void MixedContactTerm::add_impact_impulse(const time::StepContext& step, const E
     const Vector6 lambda = z.segment<6>(o + 5);
     energy_jump += lambda.dot(e.g_n);  // ΔH_imp (4.11)
     const Eigen::Vector3d d = z.segment<3>(o);
-    const Eigen::Vector4d N = bilinear_shape(z.segment<2>(o + 3)).N;
-    const std::array<int, 15> dofs = element_dofs(slave_node(e), face_of(e));
+    const Eigen::Vector2d xi = z.segment<2>(o + 3);
+    const std::vector<double> N = surfaces_.smooth() ? patch_values(surfaces_.patches[e.face], xi[0], xi[1]).N
+                                                     : patch_values(bilinear_patch(face_of(e)), xi[0], xi[1]).N;
+    const std::vector<int> dofs = element_dofs(slave_node(e), surfaces_, e.face);
     for (int i = 0; i < 3; ++i) b[dofs[i]] += step.h * lambda[0] * d[i];  // G_s = [d; −N_K d] (4.12)
-    for (int K = 0; K < 4; ++K)
+    for (size_t K = 0; K < N.size(); ++K)
       for (int i = 0; i < 3; ++i) b[dofs[3 + 3 * K + i]] -= step.h * lambda[0] * N[K] * d[i];
   }
 }

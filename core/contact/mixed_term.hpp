@@ -3,6 +3,7 @@
 /// active element 11 auxiliary unknowns w = (d, ξ, λ) after x_{n+1} in z.
 
 #include "core/contact/lagrange_term.hpp"
+#include "core/contact/patch_mixed_element.hpp"
 
 namespace stoss::contact {
 
@@ -31,6 +32,11 @@ class MixedContactTerm final : public LagrangeContactTerm {
   Vector6 start_residual(const ContactElement& e, const Eigen::VectorXd& x_n) const override;
 
  private:
+  /// The smooth-surface path: patch_mixed_element per element (docs/smooth_master_surface.md §3).
+  void add_smooth(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                  solve::BlockPattern* K) const;
+  PatchMixedState patch_state(const ContactElement& e, const Eigen::VectorXd& x, const Eigen::Vector3d& d,
+                              const Eigen::Vector2d& xi) const;
   Vector20 coordinates(const ContactElement& e, const Eigen::VectorXd& x, const Eigen::Vector3d& d,
                        const Eigen::Vector2d& xi) const;
 };

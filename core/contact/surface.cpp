@@ -46,6 +46,18 @@ PairSurfaces pair_surfaces(const mesh::Mesh& mesh, const std::string& slave, con
   return s;
 }
 
+std::vector<int> master_nodes(const PairSurfaces& s, int face) {
+  if (s.smooth()) return s.patches[face].nodes;
+  return {s.faces[face].begin(), s.faces[face].end()};
+}
+
+std::vector<int> element_dofs(int slave, const PairSurfaces& s, int face) {
+  std::vector<int> dofs = {3 * slave, 3 * slave + 1, 3 * slave + 2};
+  for (int node : master_nodes(s, face))
+    for (int k = 0; k < 3; ++k) dofs.push_back(3 * node + k);
+  return dofs;
+}
+
 SegmentNodes face_positions(const mesh::Quad& face, const Eigen::VectorXd& x) {
   SegmentNodes y;
   for (int K = 0; K < 4; ++K) y.row(K) = x.segment<3>(3 * face[K]).transpose();

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/contact/tensor_patch.hpp"
 #include "core/contact/types.hpp"
 #include "core/mesh/mesh.hpp"
 
@@ -23,11 +24,22 @@ struct PairSurfaces {
   std::vector<mesh::Quad> faces;       ///< master faces, outward order (§1.1)
   std::vector<double> face_size;       ///< per master face
   double mean_face_size = 0;
+  /// Smooth master surface: one patch per face (smooth_surface.hpp); empty for the faceted surface,
+  /// whose face f is the bilinear segment of faces[f].
+  std::vector<TensorPatch> patches;
+  bool smooth() const { return !patches.empty(); }
 };
 
 /// Collects the pair's surfaces from the mesh; throws std::out_of_range naming a missing surface and
 /// std::invalid_argument if a surface is empty.
 PairSurfaces pair_surfaces(const mesh::Mesh& mesh, const std::string& slave, const std::string& master);
+
+/// The master nodes an element on face f couples to: the patch's nodes on a smooth surface, the face's
+/// four nodes otherwise.
+std::vector<int> master_nodes(const PairSurfaces& s, int face);
+
+/// Global dofs of a slave node and the master nodes of face f (slave first, 3 per node).
+std::vector<int> element_dofs(int slave, const PairSurfaces& s, int face);
 
 /// Positions y_1 … y_4 of a face (rows) taken from stacked positions x.
 SegmentNodes face_positions(const mesh::Quad& face, const Eigen::VectorXd& x);

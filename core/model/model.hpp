@@ -50,6 +50,12 @@ enum class SwitchGap {
   keep,   ///< f_3 := g_N^new(x_n): energy exact; the node may stay below the new face (≤ kink × ε_sw × ℓ/2)
 };
 
+/// The master surface contact sees (docs/smooth_master_surface.md §1).
+enum class MasterSurface {
+  faceted,  ///< the bilinear faces of the mesh (C0: kinks at every edge)
+  smooth,   ///< cubic B-spline patches over each face's 4×4 neighbourhood (C1 and more)
+};
+
 /// One contact pair (formulation.md §3–5). Slave nodes against master faces.
 struct ContactPair {
   std::string slave;                   ///< "body/surface"
@@ -59,6 +65,7 @@ struct ContactPair {
   ImpactMode impact = ImpactMode::persist;
   double switch_hysteresis = 0.05;     ///< ε_sw of §3.4
   SwitchGap switch_gap = SwitchGap::clamp;
+  MasterSurface master_surface = MasterSurface::faceted;  ///< scenes resolve it (scene/master_surface.hpp)
   std::optional<double> normal_stiffness;      ///< ε_N; unset: 10 E ℓ (§5.1)
   std::optional<double> tangential_stiffness;  ///< ε_T; unset: 10 E ℓ
   NormalTraction normal_traction = NormalTraction::discrete_derivative;

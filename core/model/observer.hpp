@@ -49,6 +49,7 @@ struct Summary {
   double angular_momentum_drift = 0;  ///< max |J_n − J_0| / max(|J_0|, ...)
   double max_penetration = 0;  ///< only meaningful with contact: series max_penetration, max over steps
   double max_own_face_penetration = 0;  ///< with contact: active slave nodes below their own master face
+  double max_faceted_penetration = 0;   ///< with a smooth master: the same nodes against the mesh's faces
   int newton_iterations = 0;            ///< total
   double newton_iterations_per_step = 0;
   double wall_seconds = 0;

@@ -59,7 +59,7 @@ model::ContactPair contact_pair(const json& e) {
                 : e["impact"] == "velocity_correction" ? model::ImpactMode::velocity_correction
                                                        : model::ImpactMode::persist;
   pair.switch_hysteresis = e["switch_hysteresis"].get<double>();
-  pair.switch_gap = e["switch_gap"] == "keep" ? model::SwitchGap::keep : model::SwitchGap::clamp;
+  pair.switch_gap = e.value("switch_gap", "") == "keep" ? model::SwitchGap::keep : model::SwitchGap::clamp;
   if (e.contains("normal_stiffness")) pair.normal_stiffness = e["normal_stiffness"].get<double>();
   if (e.contains("tangential_stiffness")) pair.tangential_stiffness = e["tangential_stiffness"].get<double>();
   pair.normal_traction = e["normal_traction"] == "midpoint" ? model::NormalTraction::midpoint

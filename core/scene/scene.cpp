@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/scene/build.hpp"
+#include "core/scene/master_surface.hpp"
 #include "core/scene/validate.hpp"
 
 namespace stoss::scene {
@@ -41,7 +42,9 @@ model::Model load(const nlohmann::json& scene, const std::optional<std::filesyst
   checker.mesh_directory = mesh_directory;
   detail::check_scene(filled, checker);
   if (!checker.issues().empty()) throw SceneError(checker.issues());
-  return detail::build_model(filled, mesh_directory);
+  model::Model m = detail::build_model(filled, mesh_directory);
+  detail::resolve_master_surfaces(m);
+  return m;
 }
 
 model::Model load_file(const std::string& path) {

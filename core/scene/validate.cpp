@@ -224,6 +224,7 @@ void check_contact_pair(json& e, const std::string& p, const SurfaceIndex& index
                                                        "impact",
                                                        "switch_hysteresis",
                                                        "switch_gap",
+                                                       "master_surface",
                                                        "normal_stiffness",
                                                        "tangential_stiffness",
                                                        "normal_traction"};
@@ -244,7 +245,9 @@ void check_contact_pair(json& e, const std::string& p, const SurfaceIndex& index
   choice_field(e, "impact", p, Presence::or_default("persist"), {"persist", "exact", "velocity_correction"},
                c);
   number_field(e, "switch_hysteresis", p, Presence::or_default(0.05), at_least(0), c);
-  choice_field(e, "switch_gap", p, Presence::or_default("clamp"), {"clamp", "keep"}, c);
+  // Both resolved once the mesh exists (master_surface.hpp): the defaults depend on the surface.
+  choice_field(e, "switch_gap", p, Presence::may(), {"clamp", "keep"}, c);
+  choice_field(e, "master_surface", p, Presence::may(), {"smooth", "faceted"}, c);
   number_field(e, "normal_stiffness", p, Presence::may(), above(0), c);
   number_field(e, "tangential_stiffness", p, Presence::may(), above(0), c);
   choice_field(e, "normal_traction", p, Presence::or_default("discrete_derivative"),

@@ -404,8 +404,7 @@ TEST(SceneSchema, DefaultsAgreeWithTheValidator) {
   const std::vector<Path> rich_paths{
       {"time", "alpha"},     {"contact", "enforcement"},       {"contact", "friction"},
       {"contact", "impact"}, {"contact", "switch_hysteresis"}, {"contact", "normal_traction"},
-      {"contact", "switch_gap"},
-      {"boundary", "fix"}};
+      {"boundary", "fix"}};  // contact/switch_gap: resolved from the surface (master_surface_test.cpp)
   auto expect_default = [&](const json& filled, const Path& path) {
     const std::string where = json(path).dump();
     const json& parent = schema_at(s, Path(path.begin(), path.end() - 1));
@@ -457,8 +456,11 @@ TEST(SceneSchema, EveryFieldTheValidatorAcceptsIsDeclared) {
 
 /// Every optional property has a description, and a default unless absence has its own meaning.
 void expect_documented(const json& schema, const json& node, const std::string& where) {
-  const std::set<std::string> without_default{"center", "normal_stiffness", "tangential_stiffness",
-                                                "elements"};  // elements: absent = every element
+  // elements: absent = every element; master_surface, switch_gap: resolved from the master surface
+  // (docs/smooth_master_surface.md §1); max_wall_seconds: absent = no limit.
+  const std::set<std::string> without_default{"center",         "normal_stiffness", "tangential_stiffness",
+                                                "elements",       "master_surface",   "switch_gap",
+                                                "max_wall_seconds"};
   if (node.is_array())
     for (const json& element : node) expect_documented(schema, element, where);
   if (!node.is_object()) return;

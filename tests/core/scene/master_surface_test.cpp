@@ -1,0 +1,94 @@
+// Each contact pair's master surface shall resolve to "smooth" by default where it is implemented and
+// the master qualifies, to "faceted" otherwise, and an explicit "smooth" that cannot be had shall be
+// refused at validation with its JSON pointer and the reason (docs/smooth_master_surface.md §1).
+#include <gtest/gtest.h>
+
+#include "core/scene/scene.hpp"
+
+namespace stoss::scene {
+namespace {
+
+using nlohmann::json;
+
+const json material = {{"youngs_modulus", 1e4}, {"poisson_ratio", 0.4}, {"density", 1}};
+
+/// A ball over a plate; contact pair 0 with the given master.
+json ball_and_plate(const std::string& master) {
+  return {{"format", "stoss-scene/1"},
+          {"bodies",
+           {{{"name", "ball"},
+             {"mesh", {{"hollow_sphere", {{"center", {0, 0, 1.3}}, {"outer_radius", 1.0}, {"inner_radius", 0.8}}}}},
+             {"material", material}},
+            {{"name", "plate"},
+             {"mesh", {{"box", {{"min", {-2, -2, -0.4}}, {"max", {2, 2, 0}}, {"divisions", {4, 4, 1}}}}}},
+             {"material", material}}}},
+          {"contact", {{{"slave", master == "ball/outer" ? "plate/top" : "ball/outer"}, {"master", master}}}},
+          {"time", {{"step", 0.01}, {"end", 1.0}}}};
+}
+
+std::string refusal(const json& scene) {
+  try {
+    load(scene);
+  } catch (const SceneError& e) {
+    return e.issues.at(0).pointer + ": " + e.issues.at(0).message;
+  }
+  return "accepted";
+}
+
+TEST(MasterSurface, DefaultsToSmoothWithKeptGapOnAPlate) {
+  const model::Model m = load(ball_and_plate("plate/top"));
+  EXPECT_EQ(m.contact.at(0).master_surface, model::MasterSurface::smooth);
+  EXPECT_EQ(m.contact.at(0).switch_gap, model::SwitchGap::keep);
+  EXPECT_EQ(m.scene["contact"][0]["master_surface"], "smooth");
+  EXPECT_EQ(m.scene["contact"][0]["switch_gap"], "keep");
+}
+
+TEST(MasterSurface, DefaultsToFacetedWhereSmoothIsNotImplementedOrTheMasterDoesNotQualify) {
+  json midpoint = ball_and_plate("plate/top");
+  midpoint["time"]["scheme"] = "midpoint";
+  EXPECT_EQ(load(midpoint).contact.at(0).master_surface, model::MasterSurface::faceted);
+  EXPECT_EQ(load(midpoint).contact.at(0).switch_gap, model::SwitchGap::clamp);
+  json penalty = ball_and_plate("plate/top");
+  penalty["contact"][0]["enforcement"] = "penalty";
+  EXPECT_EQ(load(penalty).scene["contact"][0]["master_surface"], "faceted");
+  const model::Model sphere = load(ball_and_plate("ball/outer"));  // cube corners: valence 3
+  EXPECT_EQ(sphere.contact.at(0).master_surface, model::MasterSurface::faceted);
+}
+
+TEST(MasterSurface, ExplicitSmoothThatCannotBeHadIsRefusedWithItsPointer) {
+  json midpoint = ball_and_plate("plate/top");
+  midpoint["time"]["scheme"] = "midpoint";
+  midpoint["contact"][0]["master_surface"] = "smooth";
+  EXPECT_EQ(refusal(midpoint).rfind("/contact/0/master_surface: \"smooth\" is implemented for time.scheme", 0), 0u)
+      << refusal(midpoint);
+  json penalty = ball_and_plate("plate/top");
+  penalty["contact"][0]["enforcement"] = "penalty";
+  penalty["contact"][0]["master_surface"] = "smooth";
+  EXPECT_NE(refusal(penalty).find("implemented for enforcement \"lagrange\""), std::string::npos);
+  json sphere = ball_and_plate("ball/outer");
+  sphere["contact"][0]["master_surface"] = "smooth";
+  const std::string why = refusal(sphere);
+  EXPECT_EQ(why.rfind("/contact/0/master_surface: master ball/outer cannot carry a smooth surface: node ", 0), 0u)
+      << why;
+  EXPECT_NE(why.find("lies in 3 faces (an extraordinary vertex"), std::string::npos) << why;
+}
+
+TEST(MasterSurface, UnknownValueIsRefusedWithTheChoices) {
+  json scene = ball_and_plate("plate/top");
+  scene["contact"][0]["master_surface"] = "nurbs";
+  const std::string why = refusal(scene);
+  EXPECT_EQ(why.rfind("/contact/0/master_surface: ", 0), 0u) << why;
+  EXPECT_NE(why.find("smooth"), std::string::npos) << why;
+  EXPECT_NE(why.find("nurbs"), std::string::npos) << why;
+}
+
+TEST(MasterSurface, ExplicitFacetedIsKeptWithTheClampRule) {
+  json scene = ball_and_plate("plate/top");
+  scene["contact"][0]["master_surface"] = "faceted";
+  const model::Model m = load(scene);
+  EXPECT_EQ(m.contact.at(0).master_surface, model::MasterSurface::faceted);
+  EXPECT_EQ(m.contact.at(0).switch_gap, model::SwitchGap::clamp);
+}
+
+}  // namespace
+}  // namespace stoss::scene
