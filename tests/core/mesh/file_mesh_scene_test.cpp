@@ -6,9 +6,14 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <array>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
+#include "core/output/result_reader.hpp"
+#include "core/output/result_writer.hpp"
 #include "core/scene/scene.hpp"
 #include "core/simulate.hpp"
 #include "tests/core/recording_observer.hpp"
@@ -92,9 +97,14 @@ TEST(FileMeshExamples, CalculixDeckBallAndPlateRunIntoContact) {
     EXPECT_GT(n.dot(x[q[0]] - Eigen::Vector3d(0, 0, 1.05)), 0);
   }
 
-  // 0.05 above the plate at 1 per second: contact from about step 5; 14 steps.
+  // 0.05 above the plate at 1 per second: contact from about step 5; 14 steps, written to a result.
+  TempDir dir;
   testing::RecordingObserver r;
-  const model::Summary s = simulate(first_steps(m, 14), r);
+  output::ResultWriter writer(dir.path);
+  model::ObserverList both({&r, &writer});
+  model::Model short_run = first_steps(m, 14);
+  short_run.output.every = 7;
+  const model::Summary s = simulate(short_run, both);
   ASSERT_TRUE(s.completed);
   EXPECT_GT(r.contact_window().first, 0.02);
   EXPECT_GT(r.contact_window().second, 0.1);
@@ -104,6 +114,37 @@ TEST(FileMeshExamples, CalculixDeckBallAndPlateRunIntoContact) {
   EXPECT_GT(ball.z(), -0.95);   // slowed by the plate
   EXPECT_LT(plate.z(), -0.01);  // pushed down
   EXPECT_LT(s.max_penetration, 1e-3);
+
+  // The result names the bodies and the deck's surfaces, and meshio reads it (values equal to HDF5).
+  const output::ResultFile file = output::ResultFile::open(dir.path / output::result_file_name);
+  EXPECT_EQ(file.body_names(), (std::vector<std::string>{"ball", "plate"}));
+  const auto surfaces = file.surfaces();
+  EXPECT_EQ(surfaces.at("ball/SBALL").rows(), 96);
+  EXPECT_EQ(surfaces.at("plate/SPLATE").rows(), 64);
+  ASSERT_EQ(file.frame_count(), 3);
+  EXPECT_GT(file.frame_von_mises(2).maxCoeff(), 0);
+  EXPECT_GT(file.frame_contact_pressure(2).maxCoeff(), 0);
+  std::string python;
+  for (const char* p : {"/usr/bin/python3", "python3"})
+    if (python.empty() && std::system((std::string(p) + " -c 'import meshio, h5py' > /dev/null 2>&1").c_str()) == 0)
+      python = p;
+  if (python.empty()) {
+    GTEST_SKIP() << "python3-meshio (with python3-h5py) is not installed; deploy/packages.txt installs both";
+  }
+  const std::string command = python + " '" + STOSS_SOURCE_DIR + "/tests/core/output/meshio_check.py' '" +
+                              dir.path.string() + "' 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string out;
+  std::array<char, 4096> buffer;
+  while (size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) out.append(buffer.data(), n);
+  ASSERT_EQ(::pclose(pipe), 0) << out;
+  const json report = json::parse(out);
+  EXPECT_EQ(report["points"], m.mesh.node_count());
+  EXPECT_EQ(report["cells"], 160);
+  EXPECT_EQ(report["frames"], 3);
+  EXPECT_GT(report["values_compared"].get<long>(), 3 * 358 * 10);
+  EXPECT_EQ(report["last_von_mises_max"].get<double>(), file.frame_von_mises(2).maxCoeff());
 }
 
 TEST(FileMeshExamples, GmshPartWithAHoleFallsOnTheClampedPlate) {
