@@ -146,7 +146,7 @@ struct Deck {
   /// Named sets, keyed by upper-case name: canonical name and members (ids) with the line naming them.
   struct Set {
     std::string name;
-    std::vector<std::pair<long, Line>> ids;
+    std::vector<std::pair<long, const Line*>> ids;  ///< lines live as long as the Deck
   };
   std::map<std::string, Set> node_sets, element_sets;
   struct SurfaceRow {
@@ -176,7 +176,7 @@ struct Deck {
     node_line[id] = line.number;
     mesh.nodes.push_back(x);
     mesh.node_ids.push_back(id);
-    if (!nset.empty()) set_named(node_sets, nset).ids.push_back({id, line});
+    if (!nset.empty()) set_named(node_sets, nset).ids.push_back({id, &line});
   }
 
   void add_element(const Line& line, const std::vector<std::string>& f, const std::string& elset) {
@@ -193,7 +193,7 @@ struct Deck {
     mesh.hex8.push_back({});
     mesh.element_ids.push_back(id);
     mesh.element_lines.push_back(line.number);
-    if (!elset.empty()) set_named(element_sets, elset).ids.push_back({id, line});
+    if (!elset.empty()) set_named(element_sets, elset).ids.push_back({id, &line});
   }
 
   void add_set_line(std::map<std::string, Set>& sets, const Keyword& k, const std::string& name, const Line& line,
@@ -204,18 +204,19 @@ struct Deck {
       const long first = parse_id(line, f[0], "first id"), last = parse_id(line, f[1], "last id");
       const long step = f.size() == 3 ? parse_id(line, f[2], "increment") : 1;
       if (last < first) fail(line, "GENERATE: last id " + std::to_string(last) + " < first id " + std::to_string(first));
-      if ((last - first) / step > 100'000'000) fail(line, "GENERATE range too large");
-      for (long id = first; id <= last; id += step) s.ids.push_back({id, line});
+      if ((last - first) / step > 10'000'000) fail(line, "GENERATE range of more than 10000000 ids");
+      for (long id = first; id <= last; id += step) s.ids.push_back({id, &line});
       return;
     }
     for (const std::string& item : f) {
       if (is_integer_text(item)) {
-        s.ids.push_back({parse_id(line, item, "id"), line});
+        s.ids.push_back({parse_id(line, item, "id"), &line});
         continue;
       }
       const auto other = sets.find(upper(item));
       if (other == sets.end()) fail(line, "'" + item + "' is neither an id nor a set defined above");
-      const std::vector<std::pair<long, Line>> members = other->second.ids;  // copy: may be s itself
+      if (s.ids.size() + other->second.ids.size() > 50'000'000) fail(line, "set of more than 50000000 members");
+      const std::vector<std::pair<long, const Line*>> members = other->second.ids;  // copy: may be s itself
       s.ids.insert(s.ids.end(), members.begin(), members.end());
     }
   }
@@ -232,13 +233,13 @@ struct Deck {
   void parse(const std::vector<Line>& lines) {
     std::optional<Keyword> keyword;
     std::vector<std::string> pending;  // element fields continued over lines
-    Line pending_line;
+    const Line* pending_line = nullptr;
     for (size_t i = 0; i < lines.size(); ++i) {
       const Line& line = lines[i];
       std::string text = trimmed(line.text);
       if (text.empty() || text.rfind("**", 0) == 0) continue;
       if (text[0] == '*') {
-        if (!pending.empty()) fail(pending_line, "element line ends with ',' but no continuation follows");
+        if (!pending.empty()) fail(*pending_line, "element line ends with ',' but no continuation follows");
         while (text.back() == ',' && i + 1 < lines.size()) text += trimmed(lines[++i].text);
         keyword = parse_keyword(line, text);
         start_keyword(*keyword);
@@ -250,11 +251,11 @@ struct Deck {
       if (k.name == "NODE") {
         add_node(line, f, k.get("NSET"));
       } else if (k.name == "ELEMENT") {
-        if (pending.empty()) pending_line = line;
+        if (pending.empty()) pending_line = &line;
         pending.insert(pending.end(), f.begin(), f.end());
         const bool continued = text.back() == ',' && pending.size() < 9;
         if (!continued) {
-          add_element(pending_line, pending, k.get("ELSET"));
+          add_element(*pending_line, pending, k.get("ELSET"));
           pending.clear();
         }
       } else if (k.name == "NSET") {
@@ -265,7 +266,7 @@ struct Deck {
         add_surface_line(k, line, f);
       }
     }
-    if (!pending.empty()) fail(pending_line, "element line ends with ',' but the file ends (truncated file?)");
+    if (!pending.empty()) fail(*pending_line, "element line ends with ',' but the file ends (truncated file?)");
   }
 
   void start_keyword(const Keyword& k) {
@@ -311,10 +312,10 @@ struct Deck {
       }
     for (const auto& [key, set] : node_sets)
       for (const auto& [id, line] : set.ids)
-        if (!node_index.contains(id)) fail(line, "NSET " + set.name + ": node " + std::to_string(id) + " is not defined");
+        if (!node_index.contains(id)) fail(*line, "NSET " + set.name + ": node " + std::to_string(id) + " is not defined");
     for (const auto& [key, set] : element_sets) {
       std::set<int> members;
-      for (const auto& [id, line] : set.ids) members.insert(element(id, line, "ELSET " + set.name));
+      for (const auto& [id, line] : set.ids) members.insert(element(id, *line, "ELSET " + set.name));
       mesh.element_sets[set.name].assign(members.begin(), members.end());
     }
     for (const auto& [key, surface] : surfaces) {
