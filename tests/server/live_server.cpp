@@ -123,7 +123,8 @@ std::string LiveServer::output() const {
   return read_text(out_);
 }
 
-CommandResult run_stoss(const std::vector<std::string>& arguments, std::chrono::milliseconds deadline) {
+CommandResult run_stoss(const std::vector<std::string>& arguments, std::chrono::milliseconds deadline,
+                        const std::filesystem::path& cwd) {
   static std::atomic<int> counter{0};
   const auto base = std::filesystem::temp_directory_path() /
                     ("stoss-cmd-" + std::to_string(getpid()) + "-" + std::to_string(counter++));
@@ -138,12 +139,21 @@ CommandResult run_stoss(const std::vector<std::string>& arguments, std::chrono::
   posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
   posix_spawn_file_actions_addopen(&actions, 1, out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addopen(&actions, 2, err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (!cwd.empty()) posix_spawn_file_actions_addchdir_np(&actions, cwd.c_str());
   pid_t pid = -1;
   const int rc = posix_spawn(&pid, STOSS_BINARY, &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   CommandResult result;
   if (rc != 0) return result;
-  int status = wait_exit(pid, deadline);
+  int status = -1;
+  const auto end = std::chrono::steady_clock::now() + deadline;
+  while (waitpid(pid, &status, WNOHANG) != pid) {  // finer than eventually(): commands take milliseconds
+    if (std::chrono::steady_clock::now() > end) {
+      status = -1;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
   if (status == -1) {
     ::kill(pid, SIGKILL);
     waitpid(pid, &status, 0);

@@ -66,7 +66,8 @@ struct CommandResult {
 
 /// Runs the `stoss` binary with `args`, waits at most `deadline` (then SIGKILL, signal 9 reported).
 CommandResult run_stoss(const std::vector<std::string>& args,
-                        std::chrono::milliseconds deadline = std::chrono::seconds(60));
+                        std::chrono::milliseconds deadline = std::chrono::seconds(60),
+                        const std::filesystem::path& cwd = {});
 
 /// Calls `condition` until it is true or `deadline` passes; true if it became true.
 bool eventually(const std::function<bool()>& condition, std::chrono::milliseconds deadline);
