@@ -259,6 +259,36 @@ TEST(GmshReader, TruncatedFilesAreErrorsAtEveryCut) {
   }
 }
 
+TEST(MeshFiles, MutatedFilesAreReadOrRefusedButNeverCrash) {
+  // 400 deterministic single-byte mutations of each real fixture: every outcome is a mesh or a
+  // MeshFileError (anything else — another exception, a crash, a hang — fails the test).
+  TempDir dir;
+  const std::vector<std::pair<fs::path, std::string>> fixtures{
+      {data_dir / "two_blocks_ascii.msh", "m.msh"},
+      {data_dir / "two_blocks_binary.msh", "m.msh"},
+      {data_dir / "cgx_block.inp", "m.inp"},
+      {fs::path(STOSS_SOURCE_DIR) / "api/examples/meshes/ball_plate.inp", "m.inp"}};
+  const std::string replacements = "0 9-.,e\n$*x\xff\x00";
+  unsigned state = 12345;
+  const auto next = [&state] { return state = state * 1103515245u + 12345u, (state >> 8); };
+  for (const auto& [fixture, name] : fixtures) {
+    const std::string text = slurp(fixture);
+    int refused = 0;
+    for (int i = 0; i < 400; ++i) {
+      std::string mutated = text;
+      mutated[next() % mutated.size()] = replacements[next() % replacements.size()];
+      const fs::path p = dir.write(name, mutated);
+      try {
+        const ImportedMesh m = read_mesh_file(p);
+        select_body(m, std::nullopt);
+      } catch (const MeshFileError&) {
+        ++refused;
+      }
+    }
+    EXPECT_GT(refused, 0) << fixture;
+  }
+}
+
 // ------------------------------------------------------------------------------------------- Abaqus
 
 /// Two stacked unit cubes (elements 1, 2) in set ELOW / EHIGH, surfaces on the bottom and the top.
