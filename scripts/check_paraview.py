@@ -56,4 +56,12 @@ for name in sorted(cell_data):
         compare(f"cell data {name}", cell_data[name], expected)
     elif name == "body":
         compare("cell data body", cell_data[name], h5["/mesh/body"][()])
+# The other reader the README names: the temporal Xdmf3 reader, by name.
+from paraview import simple  # noqa: E402
+
+other = simple.Xdmf3ReaderT(FileName=[f"{directory}/result.xdmf"])
+simple.UpdatePipeline(time=times[-1] if times else 0, proxy=other)
+other_points = other.GetDataInformation().GetNumberOfPoints()
+print(f"Xdmf3ReaderT: {len(other.TimestepValues)} time steps, {other_points} points at the last one")
+failures += other_points != info.GetNumberOfPoints()
 sys.exit(1 if failures or info.GetNumberOfPoints() == 0 else 0)
