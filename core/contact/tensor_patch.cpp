@@ -26,6 +26,18 @@ double factor(PatchFamily family, int i, double t, int derivative) {
 }
 
 BasisCurvatures patch_curvatures(const TensorPatch& p, const Eigen::Vector2d& xi) {
+  if (p.pieces) {  // N_{,αβ} = scale² Σ R_γα R_δβ G_{,γδ} on the piece that holds ξ (2.6)
+    const ExtraordinaryPieces& e = *p.pieces;
+    const detail::PieceLocation l = detail::locate(e, xi);
+    const auto s = detail::to_piece(e, l, xi[0], xi[1]);
+    const BasisCurvatures g = patch_curvatures(e.rings[l.ring - 1][l.square], {s[0], s[1]});
+    const Eigen::Matrix2d J = l.scale * detail::corner_rotation(e.corner);  // ∂s/∂ξ
+    const auto second = [&](int a, int b) {
+      return Eigen::VectorXd(J(0, a) * J(0, b) * g.N11 + (J(0, a) * J(1, b) + J(1, a) * J(0, b)) * g.N12 +
+                             J(1, a) * J(1, b) * g.N22);
+    };
+    return {second(0, 0), second(0, 1), second(1, 1)};
+  }
   const int n = p.factors();
   std::vector<double> B11(n * n), B12(n * n), B22(n * n);
   for (int j = 0; j < n; ++j)

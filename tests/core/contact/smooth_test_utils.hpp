@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/mesh/generators.hpp"
 #include "core/mesh/mesh.hpp"
 
 namespace stoss::contact::test {
@@ -33,6 +34,16 @@ struct Grid {
   /// A flat uniform grid in z = 0.
   static Grid flat(int nx, int ny, double spacing) {
     return make(nx, ny, spacing, [](double u, double v) { return Eigen::Vector3d(u, v, 0); });
+  }
+  /// The outer surface of a unit hollow sphere (cube-sphere: valence 3 at the 8 cube corners).
+  static Grid sphere(int divisions) {
+    const mesh::BodyMesh b = mesh::hollow_sphere({0, 0, 0}, 1.0, 0.8, divisions, 1);
+    Grid g;
+    g.spacing = 1.6 / divisions;
+    g.faces = b.surfaces.at("outer");
+    g.x.resize(3 * b.nodes.size());
+    for (size_t I = 0; I < b.nodes.size(); ++I) g.x.segment<3>(3 * I) = b.nodes[I];
+    return g;
   }
   /// A doubly curved, slightly irregular grid (a bump with uneven spacing).
   static Grid curved(int nx, int ny) {

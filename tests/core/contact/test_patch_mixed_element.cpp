@@ -20,33 +20,42 @@ using test::Grid;
 
 struct Case {
   const char* name;
-  int face_i, face_j;
-  Eigen::Vector2d xi;
+  int face_i, face_j;  ///< on the sphere: face_i = −1 picks the first face with an extraordinary corner
+  Eigen::Vector2d xi;  ///< on the sphere: (u, v) from that corner
   bool bilinear = false;
+  bool sphere = false;
 };
 
 class PatchMixedElement : public ::testing::TestWithParam<Case> {
  protected:
   void SetUp() override {
-    grid = Grid::curved(4, 4);
     const Case& c = GetParam();
-    const int f = grid.face(c.face_i, c.face_j);
-    patch = c.bilinear ? bilinear_patch(grid.faces[f]) : smooth_surface(grid.faces).patches[f];
+    grid = c.sphere ? Grid::sphere(4) : Grid::curved(4, 4);
+    Eigen::Vector2d xi = c.xi;
+    if (c.sphere) {
+      for (const TensorPatch& p : smooth_surface(grid.faces).patches)
+        if (p.pieces && !patch.pieces) patch = p;
+      xi = detail::corner_rotation(patch.pieces->corner).transpose() * Eigen::Vector2d(2 * c.xi[0] - 1, 2 * c.xi[1] - 1);
+    } else {
+      const int f = grid.face(c.face_i, c.face_j);
+      patch = c.bilinear ? bilinear_patch(grid.faces[f]) : smooth_surface(grid.faces).patches[f];
+    }
     std::mt19937 rng(7 + c.face_i + 5 * c.face_j);
     std::normal_distribution<double> n(0, 1);
     const auto jitter = [&](double s) -> Eigen::Vector3d { return Eigen::Vector3d(n(rng), n(rng), n(rng)) * s; };
-    const PatchFrame on = patch_frame(patch, grid.x, c.xi);
+    const PatchFrame on = patch_frame(patch, grid.x, xi);
     at_n.master.resize(patch.size(), 3);
     for (int K = 0; K < patch.size(); ++K)
       at_n.master.row(K) = (grid.x.segment<3>(3 * patch.nodes[K]) + jitter(0.01)).transpose();
     at_n.slave = on.y + 0.02 * on.normal + jitter(0.01);
     at_n.d = on.normal + jitter(0.05);
-    at_n.xi = c.xi + Eigen::Vector2d(0.01 * n(rng), 0.01 * n(rng));
+    const double xi_jitter = c.sphere ? 0.001 : 0.01;  // near the vertex: stay in the face's first rings
+    at_n.xi = xi + Eigen::Vector2d(xi_jitter * n(rng), xi_jitter * n(rng));
     at_1 = at_n;  // a large step: every coordinate moves
     for (int K = 0; K < patch.size(); ++K) at_1.master.row(K) += jitter(0.05).transpose();
     at_1.slave += jitter(0.05);
     at_1.d += jitter(0.05);
-    at_1.xi += Eigen::Vector2d(0.07 * n(rng), 0.05 * n(rng));
+    at_1.xi += c.sphere ? Eigen::Vector2d(0.002 * n(rng), 0.002 * n(rng)) : Eigen::Vector2d(0.07 * n(rng), 0.05 * n(rng));
     for (int k = 0; k < 6; ++k) lambda[k] = n(rng);
   }
 
@@ -125,7 +134,9 @@ INSTANTIATE_TEST_SUITE_P(
     Cases, PatchMixedElement,
     ::testing::Values(Case{"interior", 1, 2, {0.2, -0.3}}, Case{"on_edge", 1, 1, {1.0, 0.1}},
                       Case{"at_corner", 2, 1, {-1.0, 1.0}}, Case{"rim", 0, 2, {-0.95, 0.3}},
-                      Case{"surface_corner", 3, 3, {0.9, 0.97}}, Case{"bilinear", 1, 1, {0.3, 0.4}, true}),
+                      Case{"surface_corner", 3, 3, {0.9, 0.97}}, Case{"bilinear", 1, 1, {0.3, 0.4}, true},
+                      Case{"extraordinary_ring_3", -1, -1, {0.2, 0.15}, false, true},
+                      Case{"extraordinary_ring_8", -1, -1, {0.006, 0.004}, false, true}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 }  // namespace

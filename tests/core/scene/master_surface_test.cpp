@@ -26,6 +26,17 @@ json ball_and_plate(const std::string& master) {
           {"time", {{"step", 0.01}, {"end", 1.0}}}};
 }
 
+/// One hexahedron given inline, its six faces as the surface "all" (outward node order).
+json one_cube() {
+  return {{"name", "cube"},
+          {"mesh",
+           {{"nodes", {{-2, -2, -1}, {2, -2, -1}, {2, 2, -1}, {-2, 2, -1}, {-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}}},
+            {"hex8", {{0, 1, 2, 3, 4, 5, 6, 7}}},
+            {"surfaces",
+             {{"all", {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}}}}}},
+          {"material", material}};
+}
+
 std::string refusal(const json& scene) {
   try {
     load(scene);
@@ -51,8 +62,15 @@ TEST(MasterSurface, DefaultsToFacetedWhereSmoothIsNotImplementedOrTheMasterDoesN
   json penalty = ball_and_plate("plate/top");
   penalty["contact"][0]["enforcement"] = "penalty";
   EXPECT_EQ(load(penalty).scene["contact"][0]["master_surface"], "faceted");
-  const model::Model sphere = load(ball_and_plate("ball/outer"));  // cube corners: valence 3
-  EXPECT_EQ(sphere.contact.at(0).master_surface, model::MasterSurface::faceted);
+  json cube = ball_and_plate("plate/top");
+  cube["bodies"][1] = one_cube();
+  cube["contact"][0]["master"] = "cube/all";  // every corner of every face extraordinary
+  EXPECT_EQ(load(cube).contact.at(0).master_surface, model::MasterSurface::faceted);
+}
+
+TEST(MasterSurface, ASphereWithExtraordinaryCornersIsSmoothByDefault) {
+  const model::Model sphere = load(ball_and_plate("ball/outer"));  // cube corners: valence 3 (§2.5)
+  EXPECT_EQ(sphere.contact.at(0).master_surface, model::MasterSurface::smooth);
 }
 
 TEST(MasterSurface, ExplicitSmoothThatCannotBeHadIsRefusedWithItsPointer) {
@@ -65,12 +83,14 @@ TEST(MasterSurface, ExplicitSmoothThatCannotBeHadIsRefusedWithItsPointer) {
   penalty["contact"][0]["enforcement"] = "penalty";
   penalty["contact"][0]["master_surface"] = "smooth";
   EXPECT_NE(refusal(penalty).find("implemented for enforcement \"lagrange\""), std::string::npos);
-  json sphere = ball_and_plate("ball/outer");
-  sphere["contact"][0]["master_surface"] = "smooth";
-  const std::string why = refusal(sphere);
-  EXPECT_EQ(why.rfind("/contact/0/master_surface: master ball/outer cannot carry a smooth surface: node ", 0), 0u)
+  json cube = ball_and_plate("plate/top");
+  cube["bodies"][1] = one_cube();
+  cube["contact"][0]["master"] = "cube/all";
+  cube["contact"][0]["master_surface"] = "smooth";
+  const std::string why = refusal(cube);
+  EXPECT_EQ(why.rfind("/contact/0/master_surface: master cube/all cannot carry a smooth surface: face ", 0), 0u)
       << why;
-  EXPECT_NE(why.find("lies in 3 faces (an extraordinary vertex"), std::string::npos) << why;
+  EXPECT_NE(why.find("has extraordinary vertices at nodes"), std::string::npos) << why;
 }
 
 TEST(MasterSurface, UnknownValueIsRefusedWithTheChoices) {
