@@ -12,6 +12,7 @@
 #include "server/http/problem.hpp"
 #include "server/http/scene_check.hpp"
 #include "server/http/study_check.hpp"
+#include "server/jobs/series_recorder.hpp"
 #include "server/jobs/sha256.hpp"
 #include "server/jobs/study_job.hpp"
 
@@ -284,6 +285,18 @@ std::string format_param(const Request& req, const std::vector<std::string>& all
 void get_series(App& app, const Request& req, Response& res) {
   const std::string format = format_param(req, {"json", "csv"});
   const jobs::Job job = find_job(app, req);
+  if (job.kind == jobs::Kind::simulation && job.status != jobs::Status::succeeded) {
+    // Running, failed or canceled: the series up to the last completed step, marked completed: false.
+    const auto partial = app.files.dir(job.id) / jobs::partial_series_file;
+    if (format == "csv") {
+      if (auto csv = jobs::partial_series_csv(partial)) {
+        res.set_header("Stoss-Completed", "false");
+        return res.set_content(*csv, "text/csv");
+      }
+    } else if (auto series = jobs::read_partial_series(partial)) {
+      return send_json(res, 200, *series);
+    }
+  }
   require_result_file(job);
   const auto path = app.files.result(job.id);
   if (format == "csv") return res.set_content(output::series_csv(path), "text/csv");

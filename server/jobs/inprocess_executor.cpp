@@ -6,15 +6,17 @@
 #include "core/scene/scene.hpp"
 #include "core/simulate.hpp"
 #include "server/jobs/job_observer.hpp"
+#include "server/jobs/series_recorder.hpp"
 #include "server/jobs/study_job.hpp"
 
 namespace stoss::server::jobs {
 
 namespace {
 
-Outcome failed(std::ofstream& log, const std::string& reason) {
+Outcome failed(std::ofstream& log, const std::string& reason,
+               std::optional<nlohmann::json> summary = std::nullopt) {
   log << "failed: " << reason << '\n' << std::flush;
-  return {Status::failed, std::nullopt, reason};
+  return {Status::failed, std::move(summary), reason};
 }
 
 }  // namespace
@@ -41,20 +43,44 @@ Outcome InProcessExecutor::run(const Job& job, const std::atomic<bool>& cancel,
   }
 }
 
+namespace {
+
+/// The job summary of a run, with the friction balance when the run dissipates (frictional contact).
+nlohmann::json job_summary(const model::Summary& summary, const model::Model& model, const SeriesRecorder& series) {
+  nlohmann::json j = summary_json(summary, model);
+  if (auto dissipated = series.dissipated_energy()) {
+    j["dissipated_energy"] = *dissipated;
+    j["energy_plus_dissipated_drift"] = series.energy_plus_dissipated_drift().value_or(0.0);
+  }
+  return j;
+}
+
+}  // namespace
+
 Outcome InProcessExecutor::simulate_job(const Job& job, const model::Model& model, std::ofstream& log,
                                         const std::atomic<bool>& cancel, const ProgressSink& progress) {
   std::optional<model::Summary> summary;
-  {
+  SeriesRecorder series(files_.dir(job.id) / partial_series_file);
+  try {
     output::ResultWriter writer(files_.dir(job.id));
     ProgressObserver reporter(progress, clock_, progress_interval_);
     LogObserver logger(log);
-    model::ObserverList observers({&writer, &reporter, &logger});
+    model::ObserverList observers({&writer, &reporter, &logger, &series});
     summary = stoss::simulate(model, observers, &cancel);
+  } catch (const std::exception& e) {
+    if (!series.summary()) throw;
+    // A step failed: the series and summary up to the last completed step stay readable.
+    files_.discard_partial(job.id);
+    return failed(log, e.what(), job_summary(*series.summary(), model, series));
   }
-  if (summary->completed) return {Status::succeeded, summary_json(*summary, model), std::nullopt};
+  if (summary->completed) {
+    std::error_code ignored;
+    std::filesystem::remove(files_.dir(job.id) / partial_series_file, ignored);  // result.h5 has it all
+    return {Status::succeeded, job_summary(*summary, model, series), std::nullopt};
+  }
   files_.discard_partial(job.id);
   log << "canceled at step " << summary->steps << '\n' << std::flush;
-  return {Status::canceled, summary_json(*summary, model), std::nullopt};
+  return {Status::canceled, job_summary(*summary, model, series), std::nullopt};
 }
 
 }  // namespace stoss::server::jobs

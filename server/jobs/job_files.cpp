@@ -29,6 +29,7 @@ void JobFiles::prepare_attempt(const JobId& id) const {
   std::filesystem::remove(result(id), ignored);
   std::filesystem::remove(xdmf(id), ignored);
   std::filesystem::remove(study(id), ignored);
+  std::filesystem::remove(dir(id) / "series.partial.jsonl", ignored);
 }
 
 void JobFiles::discard_partial(const JobId& id) const {

@@ -34,7 +34,14 @@ void ProgressObserver::report(Millis now) {
   if (sink_) sink_(current_);
 }
 
+void LogObserver::step(const model::StepRow& row) {
+  last_step_ = row.step;
+  last_time_ = row.time;
+}
+
 void LogObserver::log(const std::string& line) {
+  if (last_step_ >= 0 && line.rfind("newton:", 0) == 0)
+    out_ << "step " << last_step_ + 1 << " (from t = " << last_time_ << "): ";
   out_ << line << '\n' << std::flush;
 }
 

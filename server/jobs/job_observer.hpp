@@ -38,11 +38,15 @@ class ProgressObserver : public model::Observer {
 class LogObserver : public model::Observer {
  public:
   explicit LogObserver(std::ofstream& out) : out_(out) {}
+  void step(const model::StepRow& row) override;
+  /// Solver lines ("newton: …") name the step they belong to and the time it starts from.
   void log(const std::string& line) override;
   void end(const model::Summary& summary) override;
 
  private:
   std::ofstream& out_;
+  int last_step_ = -1;     ///< the last converged step (0: the initial state)
+  double last_time_ = 0;
 };
 
 /// The job summary of service.md §2 from a run's summary; max_penetration only when the model has contact.

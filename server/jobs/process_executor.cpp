@@ -20,6 +20,7 @@
 
 #include "server/common/json_input.hpp"
 #include "server/jobs/inprocess_executor.hpp"
+#include "server/jobs/series_recorder.hpp"
 
 extern char** environ;
 
@@ -148,12 +149,15 @@ Millis ProcessExecutor::wall_limit(const Job& job, Millis server_limit) {
 }
 
 Outcome ProcessExecutor::failed(const Job& job, const std::string& reason) const {
+  std::optional<nlohmann::json> summary;
   try {
     files_.discard_partial(job.id);
     append_log(files_.log(job.id), "failed: " + reason);
+    // The summary up to the last step the process recorded before it died.
+    if (auto series = read_partial_series(files_.dir(job.id) / partial_series_file)) summary = (*series)["summary"];
   } catch (...) {
   }
-  return {Status::failed, std::nullopt, reason};
+  return {Status::failed, summary, reason};
 }
 
 Outcome ProcessExecutor::run(const Job& job, const std::atomic<bool>& cancel, const ProgressSink& progress) {

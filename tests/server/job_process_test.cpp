@@ -5,6 +5,7 @@
 #include <signal.h>
 
 #include <fstream>
+#include <regex>
 
 #include "server/jobs/process_executor.hpp"
 #include "tests/server/live_server.hpp"
@@ -141,6 +142,94 @@ TEST(JobProcess, WallLimitIsTheLowerOfServerAndScene) {
   EXPECT_EQ(server::jobs::ProcessExecutor::wall_limit(job, 5000), 2500);
   EXPECT_EQ(server::jobs::ProcessExecutor::wall_limit(job, 1000), 1000);
   EXPECT_EQ(server::jobs::signal_reason(SIGSEGV), "killed by signal SIGSEGV");
+}
+
+}  // namespace
+}  // namespace stoss::test
+
+namespace stoss::test {
+namespace {
+
+TEST(PartialResults, SeriesAndSummaryOfRunningFailedAndCanceledJobsAreReadableAndMarkedIncomplete) {
+  TempDir dir;
+  const auto data = dir.path() / "data";
+  LiveServer server(data, {"--workers", "2"});
+  auto c = server.client();
+  const std::string running = id_of(submit(c, long_scene())), doomed = id_of(submit(c, long_scene()));
+  ASSERT_TRUE(eventually([&] { return running_with_progress(c, running) && running_with_progress(c, doomed); },
+                         120s));
+  // Running: the series so far (flushed a few times a second), completed: false; no result.
+  nlohmann::json series;
+  ASSERT_TRUE(eventually(
+      [&] {
+        auto r = c.Get("/v1/jobs/" + running + "/series");
+        if (!r || r->status != 200) return false;
+        series = nlohmann::json::parse(r->body);
+        return series["time"].size() >= 2;
+      },
+      30s));
+  EXPECT_EQ(series["completed"], false);
+  EXPECT_EQ(series["summary"]["completed"], false);
+  EXPECT_GE(series["summary"]["steps"].get<int>(), 1);
+  EXPECT_EQ(series["time"].size(), series["kinetic_energy"].size());
+  EXPECT_EQ(series["linear_momentum"][0].size(), 3u);
+  auto csv = c.Get("/v1/jobs/" + running + "/series?format=csv");
+  EXPECT_EQ(csv->status, 200);
+  EXPECT_EQ(csv->get_header_value("Stoss-Completed"), "false");
+  EXPECT_EQ(csv->body.rfind("time,kinetic_energy,", 0), 0u) << csv->body.substr(0, 200);
+  EXPECT_EQ(c.Get("/v1/jobs/" + running + "/result")->status, 409);
+
+  // Failed (its process killed): the summary up to the last recorded step, and the series.
+  ASSERT_EQ(::kill(job_pid(data, doomed), SIGKILL), 0);
+  const auto failed = wait_for_status(c, doomed, {"failed", "succeeded", "canceled"}, 60s);
+  ASSERT_EQ(failed["status"], "failed");
+  EXPECT_EQ(failed["summary"]["completed"], false) << failed.dump();
+  EXPECT_GE(failed["summary"]["steps"].get<int>(), 1) << failed.dump();
+  auto failed_series = c.Get("/v1/jobs/" + doomed + "/series");
+  EXPECT_EQ(failed_series->status, 200);
+  EXPECT_EQ(body_json(failed_series)["completed"], false);
+  EXPECT_EQ(c.Get("/v1/jobs/" + doomed + "/result")->status, 409);
+
+  // Canceled: the same.
+  EXPECT_EQ(c.Post("/v1/jobs/" + running + "/cancel")->status, 202);
+  const auto canceled = wait_for_status(c, running, {"canceled", "failed", "succeeded"}, 60s);
+  ASSERT_EQ(canceled["status"], "canceled");
+  EXPECT_EQ(canceled["summary"]["completed"], false);
+  const auto canceled_series = body_json(c.Get("/v1/jobs/" + running + "/series"));
+  EXPECT_EQ(canceled_series["completed"], false);
+  EXPECT_GE(canceled_series["time"].size(), series["time"].size());
+  EXPECT_EQ(c.Get("/v1/jobs/" + running + "/result")->status, 409);
+
+  // A queued job has no series yet.
+  LiveServer idle(dir.path() / "idle", {"--workers", "0"});
+  auto ic = idle.client();
+  const std::string queued = id_of(submit(ic, box_scene(2, 10)));
+  EXPECT_EQ(ic.Get("/v1/jobs/" + queued + "/series")->status, 409);
+}
+
+TEST(PartialResults, AFrictionalJobsSummaryCarriesTheDissipatedEnergy) {
+  TempDir dir;
+  LiveServer server(dir.path() / "data", {"--workers", "1"});
+  auto c = server.client();
+  nlohmann::json scene =
+      nlohmann::json::parse(std::ifstream(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate_friction.json"));
+  scene["time"]["end"] = 0.4;  // 40 steps: the ball lands and slides on the plate
+  const std::string id = id_of(submit(c, scene));
+  const auto done = wait_for_status(c, id, {"succeeded", "failed"}, 300s);
+  ASSERT_EQ(done["status"], "succeeded") << done.dump();
+  const auto& summary = done["summary"];
+  ASSERT_TRUE(summary.contains("dissipated_energy")) << summary.dump();
+  ASSERT_TRUE(summary.contains("energy_plus_dissipated_drift")) << summary.dump();
+  EXPECT_GT(summary["dissipated_energy"].get<double>(), 0.0);
+  // Energy lost to friction is accounted for: the balance drifts far less than the energy alone.
+  EXPECT_LT(summary["energy_plus_dissipated_drift"].get<double>(), summary["energy_drift"].get<double>());
+  // The series' last dissipated_energy is the summary's.
+  const auto series = body_json(c.Get("/v1/jobs/" + id + "/series"));
+  EXPECT_DOUBLE_EQ(series["dissipated_energy"].back().get<double>(), summary["dissipated_energy"].get<double>());
+  // Line-search lines in the log name their step and the time it starts from.
+  const std::string log = c.Get("/v1/jobs/" + id + "/log")->body;
+  EXPECT_TRUE(std::regex_search(log, std::regex(R"(\nstep \d+ \(from t = [0-9.e-]+\): newton: residual .* halving it)")))
+      << log;
 }
 
 }  // namespace

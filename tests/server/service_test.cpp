@@ -173,7 +173,11 @@ TEST(Service, AFailedRunKeepsItsLogAndReason) {
   EXPECT_FALSE(reason.empty());
   EXPECT_NE(c.Get("/v1/jobs/" + id + "/log")->body.find("failed: " + reason), std::string::npos);
   EXPECT_EQ(c.Get("/v1/jobs/" + id + "/result")->status, 409);
-  EXPECT_EQ(c.Get("/v1/jobs/" + id + "/series")->status, 409);
+  // The series and summary up to the failing step stay readable, marked incomplete (issue 10).
+  auto series = c.Get("/v1/jobs/" + id + "/series");
+  EXPECT_EQ(series->status, 200);
+  EXPECT_EQ(nlohmann::json::parse(series->body)["completed"], false);
+  EXPECT_EQ(failed["summary"]["completed"], false) << failed.dump();
 }
 
 /// The system shall keep every accepted job across a kill -9, run the interrupted one again to
