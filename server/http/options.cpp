@@ -116,7 +116,8 @@ Runs the job service (HTTP/JSON, see api/openapi.yaml) until SIGINT or SIGTERM.
   --max-steps N          most time steps in a scene (default 100000)
   --max-frames N         most output frames in a scene (default 2000)
   --max-queue N          most queued jobs; more submissions get 503 (default 1000)
-  --http-threads N       HTTP connections served at once, one thread each (default 128)
+  --http-threads N       HTTP connections served at once, one thread each (default 128); there is no
+                         per-client cap: one client may hold them all (put a proxy in front if needed)
   --read-timeout S       longest wait for the next bytes of a request's head or body (default 5)
   --job-timeout S        wall-time limit of one job attempt; 0: none (default 0); a scene may set a
                          lower one in solver.max_wall_seconds
