@@ -7,6 +7,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <future>
 #include <map>
 
 #include "server/common/json_input.hpp"
@@ -104,21 +105,31 @@ TEST(Fuzz, TheLiveServerAndTheCommandLineAnswerEveryInput) {
   for (const auto& [status, n] : statuses) std::cout << " " << status << "×" << n;
   std::cout << std::endl;
 
-  // The command line: validate (plain and --json), and run for a few inputs that validate, with few steps.
+  // The command line: validate (plain and --json), two processes at a time, and run for a few inputs that
+  // validate, with few steps.
   std::map<int, std::size_t> exits;
   std::size_t runs = 0;
-  for (std::size_t i = 0; i < inputs; ++i) {
-    const FuzzInput input = corpus.next_scene();
-    const std::string file = write_input(dir.path() / "input.json", input.text);
-    const bool json = i % 2 == 1;
-    const auto r = run_stoss(json ? std::vector<std::string>{"validate", file, "--json"}
-                                  : std::vector<std::string>{"validate", file},
-                             60s);
-    ASSERT_EQ(r.signal, 0) << "stoss validate died of signal " << r.signal << " on input " << i << ":\n"
-                           << input.text.substr(0, 2000);
-    ++exits[r.exit_code];
-    ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 2) << r.exit_code << " " << r.err;
-    if (json) {
+  for (std::size_t i = 0; i < inputs; i += 2) {
+    FuzzInput pair[2] = {corpus.next_scene(), corpus.next_scene()};
+    std::future<CommandResult> results[2];
+    for (int k = 0; k < 2; ++k) {
+      const std::string file = write_input(dir.path() / ("input" + std::to_string(k) + ".json"), pair[k].text);
+      const bool json = k == 1;
+      results[k] = std::async(std::launch::async, [file, json] {
+        return run_stoss(json ? std::vector<std::string>{"validate", file, "--json"}
+                              : std::vector<std::string>{"validate", file},
+                         60s);
+      });
+    }
+    for (int k = 0; k < 2; ++k) {
+      const CommandResult r = results[k].get();
+      const FuzzInput& input = pair[k];
+      const bool json = k == 1;
+      ASSERT_EQ(r.signal, 0) << "stoss validate died of signal " << r.signal << " on input " << i + k << ":\n"
+                             << input.text.substr(0, 2000);
+      ++exits[r.exit_code];
+      ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 2) << r.exit_code << " " << r.err;
+      if (!json) continue;
       nlohmann::json answer;
       ASSERT_NO_THROW(answer = nlohmann::json::parse(r.out)) << r.out;
       EXPECT_EQ(answer["valid"].get<bool>(), r.exit_code == 0) << r.out;
