@@ -19,19 +19,27 @@ const fs::path results_dir = source_dir / "bench" / "results";
 
 void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
 
-/// Displacement error and energy error against wall seconds, log-log, a line per scheme.
+/// Two panels, log-log: displacement error and energy error against wall seconds, one colour per
+/// scheme, the legend inside each panel.
 void plot(const std::string& name, const stoss::study::Result& r) {
   const fs::path csv = results_dir / ("accuracy_" + name + ".csv"), png = results_dir / ("accuracy_" + name + ".png");
   const fs::path script = results_dir / ("accuracy_" + name + ".gnuplot");
-  std::string lines;
-  for (const char* scheme : {"energy_momentum", "midpoint", "hht"})
-    for (const char* column : {"5", "6"})
-      lines += std::string(lines.empty() ? "" : ", ") + "'" + csv.string() +
-               "' using (strcol(1) eq '" + scheme + "' && $4 == 1 ? $8 : 1/0):" + column + " with linespoints title '" +
-               scheme + (std::string(column) == "5" ? " displacement" : " energy") + "'";
-  write(script, "set datafile separator ','\nset terminal pngcairo size 900,600 noenhanced\nset output '" + png.string() +
-                    "'\nset logscale xy\nset key outside\nset xlabel 'wall seconds'\nset ylabel 'error'\n"
-                    "set title 'accuracy against time: " + name + "'\nplot " + lines + "\n");
+  const std::pair<const char*, const char*> schemes[] = {
+      {"energy_momentum", "#1f77b4"}, {"midpoint", "#d62728"}, {"hht", "#2ca02c"}};
+  const auto panel = [&](const char* column, const char* label, const char* key) {
+    std::string lines;
+    for (const auto& [scheme, colour] : schemes)
+      lines += std::string(lines.empty() ? "" : ", ") + "'" + csv.string() + "' using (strcol(1) eq '" + scheme +
+               "' && $4 == 1 ? $8 : 1/0):" + column + " with linespoints lw 2 pt 7 lc rgb '" + colour + "' title '" +
+               scheme + "'";
+    return std::string("set title '") + label + "'\nset ylabel '" + label + "'\nset key inside " + key +
+           " box opaque\nplot " + lines + "\n";
+  };
+  write(script, "set datafile separator ','\nset terminal pngcairo size 1200,480 noenhanced font ',11'\nset output '" +
+                    png.string() + "'\nset multiplot layout 1,2 title 'accuracy against time: " + name +
+                    "'\nset logscale xy\nset format y '%.0e'\nset grid\n"
+                    "set xlabel 'wall seconds'\n" +
+                    panel("5", "displacement error", "top right") + panel("6", "energy error (relative)", "right center") + "unset multiplot\n");
   if (std::system(("gnuplot '" + script.string() + "' 2>/dev/null").c_str()) != 0)
     std::cerr << "gnuplot not available: " << png << " not written\n";
 }
