@@ -1,5 +1,5 @@
 #pragma once
-/// @file Narrow phase of the contact search (formulation.md §3.4): which master face a slave node
+/// @file Narrow phase of the contact search (docs/theory.md §3.4): which master face a slave node
 /// belongs to, with a defined outcome at edges, corners and when no face accepts it.
 
 #include <Eigen/Core>

@@ -1,5 +1,5 @@
 #pragma once
-/// @file Broad phase of the contact search (formulation.md §3.4): master-face boxes in a uniform
+/// @file Broad phase of the contact search (docs/theory.md §3.4): master-face boxes in a uniform
 /// grid, one candidate list per slave node and step, refreshed within the step only where a node
 /// left the box it was searched with. Never an all-pairs loop: building the grid is O(faces), a
 /// query visits the cells its box overlaps.

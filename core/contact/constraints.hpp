@@ -1,6 +1,6 @@
 #pragma once
 /// @file The six constraints of the mixed NTS element as functions of the invariants, with their
-/// gradient and Hessians (formulation.md §4.3.3, §4.3.5, (4.3)–(4.5)).
+/// gradient and Hessians (docs/theory.md §4.3.3, §4.3.5, (4.3)–(4.5)).
 ///
 /// Short names: P = (π2, π3, π4), Q = (π9, π10, π11), Π the symmetric 3×3 matrix stored as
 /// (π12 … π17), N̂ = (N_2, N_3, N_4) and its derivatives at ξ = (π5, π6). Indices are 0-based

@@ -20,9 +20,6 @@ void check_supported(const model::ContactPair& pair, model::Scheme scheme) {
     throw std::invalid_argument(which +
                                 "impact \"velocity_correction\" needs the energy_momentum scheme; use "
                                 "\"persist\" or \"exact\" with " + model::to_string(scheme));
-  if (scheme != model::Scheme::energy_momentum && pair.master_surface == model::MasterSurface::smooth)
-    throw std::invalid_argument(which + "master_surface \"smooth\" is implemented for the energy_momentum scheme "
-                                        "only so far; use \"faceted\" with " + model::to_string(scheme));
 }
 
 std::string pair_label(const model::ContactPair& pair) {

@@ -9,7 +9,7 @@
 
 namespace stoss::contact {
 
-/// The frictionless Lagrange term of `pair` for `scheme` (formulation.md §4): the mixed
+/// The frictionless Lagrange term of `pair` for `scheme` (docs/theory.md §4): the mixed
 /// energy–momentum form (§4.3) for energy_momentum, the midpoint NTS form (§4.2) for midpoint, the
 /// HHT-α form of (2.11) for hht (hht_term.hpp).
 /// @throws std::invalid_argument, naming the pair, for what is not implemented: penalty enforcement or

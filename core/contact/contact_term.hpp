@@ -1,5 +1,5 @@
 #pragma once
-/// @file What every contact term of a pair reports to the run (service.md §3): the per-step contact
+/// @file What every contact term of a pair reports to the run (docs/results.md): the per-step contact
 /// row, the nodal contact pressure and the Coulomb work. Lagrange (lagrange_term.hpp) and penalty
 /// (penalty_term.hpp) terms implement it.
 

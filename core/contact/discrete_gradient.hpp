@@ -1,6 +1,6 @@
 #pragma once
 /// @file Gonzalez discrete gradient of the constraints g(π) with the cancellation-free defect, and
-/// its derivative with respect to π at t_{n+1} (formulation.md §4.3.6, (4.6)–(4.8)).
+/// its derivative with respect to π at t_{n+1} (docs/theory.md §4.3.6, (4.6)–(4.8)).
 
 #include <Eigen/Core>
 #include <array>

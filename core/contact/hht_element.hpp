@@ -1,6 +1,6 @@
 #pragma once
 /// @file Residual and tangent of one active NTS Lagrange element of the HHT-α scheme
-/// (formulation.md §2.4, (2.11), with the NTS gap of §3).
+/// (docs/theory.md §2.4, (2.11), with the NTS gap of §3).
 
 #include <Eigen/Core>
 

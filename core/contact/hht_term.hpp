@@ -1,5 +1,5 @@
 #pragma once
-/// @file Frictionless Lagrange NTS contact for the HHT-α scheme (formulation.md §2.4, (2.11)): one
+/// @file Frictionless Lagrange NTS contact for the HHT-α scheme (docs/theory.md §2.4, (2.11)): one
 /// multiplier per active element after x_{n+1} in z, like the midpoint form (§4.2).
 
 #include <array>
@@ -29,7 +29,7 @@ class HhtContactTerm final : public MidpointContactTerm {
 
  private:
   /// (element dofs, λ N_s) of the elements active at the end of the last converged step.
-  std::vector<std::pair<std::array<int, 15>, Vector15>> previous_force_;
+  std::vector<std::pair<std::vector<int>, Eigen::VectorXd>> previous_force_;
 };
 
 }  // namespace stoss::contact

@@ -1,6 +1,6 @@
 #pragma once
 /// @file Invariants of the mixed energy–momentum NTS element and their derivatives
-/// (formulation.md §4.3.1, §4.3.2, §4.3.4).
+/// (docs/theory.md §4.3.1, §4.3.2, §4.3.4).
 ///
 /// Augmented coordinates q = [x_s; y_1; y_2; y_3; y_4; d; ξ] ∈ R^20 (d at 15–17, ξ at 18–19).
 /// With r = x_s − y_1 and e_i = y_i − y_1, the 17 invariants (0-based index k ↔ π_{k+1}) are

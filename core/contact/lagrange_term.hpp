@@ -1,7 +1,7 @@
 #pragma once
 /// @file Frictionless Lagrange contact of one pair as a time::Term: the active set, the face
 /// assignment and the per-step report, shared by the two time discretisations of the constraint
-/// (formulation.md §3.4, §3.5, §4.2, §4.3, §4.5).
+/// (docs/theory.md §3.4, §3.5, §4.2, §4.3, §4.5).
 
 #include <Eigen/Core>
 #include <string>
@@ -19,7 +19,7 @@
 namespace stoss::contact {
 
 /// One active contact element: a slave node tied to one master face for a whole step (§3.4).
-/// @note λ_1 ≤ 0 in compression (formulation.md §0); the midpoint form uses lambda[0] only.
+/// @note λ_1 ≤ 0 in compression (docs/theory.md §0); the midpoint form uses lambda[0] only.
 struct ContactElement {
   int slave = -1;                    ///< index into PairSurfaces::slave_nodes
   int face = -1;                     ///< index into PairSurfaces::faces

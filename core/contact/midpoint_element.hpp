@@ -1,6 +1,6 @@
 #pragma once
 /// @file Residual and tangent of one active NTS Lagrange element of the implicit midpoint rule
-/// (formulation.md §4.2, (4.2)).
+/// (docs/theory.md §4.2, (4.2)).
 
 #include <Eigen/Core>
 

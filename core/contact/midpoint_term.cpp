@@ -7,8 +7,34 @@
 
 namespace stoss::contact {
 
+void MidpointContactTerm::scatter_patch(const ContactElement& e, int offset, const PatchNtsResult& r,
+                                        Eigen::VectorXd& R, solve::BlockPattern* K) const {
+  const std::vector<int> dofs = element_dofs(slave_node(e), surfaces_, e.face);
+  const int n = static_cast<int>(dofs.size());
+  for (int i = 0; i < n; ++i) R[dofs[i]] += r.Rx[i];
+  R[offset] += r.Rl;
+  if (!K) return;
+  Eigen::MatrixXd block = Eigen::MatrixXd::Zero(n + 1, n + 1);
+  block.topLeftCorner(n, n) = r.Kxx;
+  block.topRightCorner(n, 1) = r.Kxl;
+  block.bottomLeftCorner(1, n) = r.Klx;
+  K->scatter(e.block, block);
+}
+
 void MidpointContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
                               solve::BlockPattern* K) const {
+  if (surfaces_.smooth()) {
+    for (size_t k = 0; k < elements_.size(); ++k) {
+      const ContactElement& e = elements_[k];
+      const int o = element_offset(static_cast<int>(k));
+      const TensorPatch& patch = surfaces_.patches[e.face];
+      const PatchNtsResult r =
+          patch_midpoint_element(local_patch(patch), local_positions(slave_node(e), patch, step.x_n),
+                                 local_positions(slave_node(e), patch, z), z[o], e.f3, step.h, e.xi);  // (4.2)
+      scatter_patch(e, o, r, R, K);
+    }
+    return;
+  }
   for (size_t k = 0; k < elements_.size(); ++k) {
     const ContactElement& e = elements_[k];
     const int o = element_offset(static_cast<int>(k));

@@ -1,10 +1,11 @@
 #pragma once
-/// @file Frictionless Lagrange NTS contact for the implicit midpoint rule (formulation.md §4.2, seed
+/// @file Frictionless Lagrange NTS contact for the implicit midpoint rule (docs/theory.md §4.2, seed
 /// eqs 50–52): one multiplier per active element after x_{n+1} in z.
 
 #include <array>
 
 #include "core/contact/lagrange_term.hpp"
+#include "core/contact/patch_nts_element.hpp"
 #include "core/contact/surface.hpp"
 
 namespace stoss::contact {
@@ -30,6 +31,10 @@ class MidpointContactTerm : public LagrangeContactTerm {
 
   /// Adds one element's rows (Rx to its 15 dofs, Rl to its multiplier row at `offset`) and, if K is
   /// given, its 16 × 16 block [Kxx Kxl; Klx 0]. Result: MidpointResult or HhtElementResult.
+  /// The same for an element on a smooth patch (patch_nts_element.hpp): 3M + 3 dofs.
+  void scatter_patch(const ContactElement& e, int offset, const PatchNtsResult& r, Eigen::VectorXd& R,
+                     solve::BlockPattern* K) const;
+
   template <class Result>
   void scatter(const ContactElement& e, int offset, const Result& r, Eigen::VectorXd& R,
                solve::BlockPattern* K) const {

@@ -1,6 +1,6 @@
 #pragma once
 /// @file Residual and tangent of one active mixed energy–momentum NTS contact element
-/// (formulation.md §4.3.7, (4.9)–(4.10)).
+/// (docs/theory.md §4.3.7, (4.9)–(4.10)).
 ///
 /// Unknowns of the element: q_{n+1} = [x_s; y_1 … y_4; d; ξ] ∈ R^20 (layout of invariants.hpp) and
 /// λ ∈ R⁶. The building blocks are in invariants.hpp, constraints.hpp and discrete_gradient.hpp.

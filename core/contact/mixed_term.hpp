@@ -1,5 +1,5 @@
 #pragma once
-/// @file Frictionless Lagrange contact in the mixed energy–momentum form (formulation.md §4.3): per
+/// @file Frictionless Lagrange contact in the mixed energy–momentum form (docs/theory.md §4.3): per
 /// active element 11 auxiliary unknowns w = (d, ξ, λ) after x_{n+1} in z.
 
 #include "core/contact/lagrange_term.hpp"

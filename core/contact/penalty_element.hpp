@@ -1,6 +1,6 @@
 #pragma once
 /// @file Frictional penalty contact of one NTS element: one slave node against one 4-node master
-/// segment over one time step n → n+1 (formulation.md §5, (5.1)–(5.4)).
+/// segment over one time step n → n+1 (docs/theory.md §5, (5.1)–(5.4)).
 ///
 /// Pure functions: the friction history goes in, the updated history comes out (`history_after`),
 /// to be committed by the caller only when the step has converged (§5.2 item 7). The master face is

@@ -1,5 +1,5 @@
 #pragma once
-/// @file Frictional penalty contact of one pair as a time::Term (formulation.md §5): no auxiliary
+/// @file Frictional penalty contact of one pair as a time::Term (docs/theory.md §5): no auxiliary
 /// unknowns; per step every near slave node gets one master face, fixed for the step (§3.4), and
 /// penalty_element() (§5.2) adds h·(5.2) and its non-symmetric tangent. The friction history is
 /// committed in end_step only (§5.2 item 7).

@@ -1,6 +1,6 @@
 #pragma once
 /// @file Closest-point projection (CPP) of a slave node onto a bilinear master segment and the
-/// normal gap (formulation.md §3.2, (3.4)–(3.5)).
+/// normal gap (docs/theory.md §3.2, (3.4)–(3.5)).
 
 #include <Eigen/Core>
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file Bilinear 4-node master segment: shape functions and the local frame at a point ξ
-/// (formulation.md §3.1, (3.1)–(3.3)).
+/// (docs/theory.md §3.1, (3.1)–(3.3)).
 
 #include <Eigen/Core>
 

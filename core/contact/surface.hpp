@@ -1,7 +1,7 @@
 #pragma once
 /// @file The two sides of one contact pair: slave nodes and master faces taken from named mesh
 /// surfaces ("body/surface"), with the per-face sizes the search and the measures use
-/// (formulation.md §3.1, §3.4).
+/// (docs/theory.md §3.1, §3.4).
 
 #include <Eigen/Core>
 #include <array>
@@ -44,7 +44,7 @@ std::vector<int> element_dofs(int slave, const PairSurfaces& s, int face);
 /// Positions y_1 … y_4 of a face (rows) taken from stacked positions x.
 SegmentNodes face_positions(const mesh::Quad& face, const Eigen::VectorXd& x);
 
-/// Global dofs of the element vector [x_s; y_1; …; y_4] (formulation.md §3.3), 15 entries.
+/// Global dofs of the element vector [x_s; y_1; …; y_4] (docs/theory.md §3.3), 15 entries.
 std::array<int, 15> element_dofs(int slave, const mesh::Quad& face);
 
 /// The element vector [x_s; y_1; …; y_4] taken from stacked positions x.

@@ -1,6 +1,6 @@
 #pragma once
 /// @file Fixed-size Eigen types shared by the NTS contact element kernels, and the packing of the
-/// 15-entry element vector [x_s; y_1; y_2; y_3; y_4] (formulation.md §3.3).
+/// 15-entry element vector [x_s; y_1; y_2; y_3; y_4] (docs/theory.md §3.3).
 
 #include <Eigen/Core>
 

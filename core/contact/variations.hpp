@@ -1,6 +1,6 @@
 #pragma once
 /// @file First variations of the NTS gap at the closest point, and the derivative of the gap
-/// gradient (formulation.md §3.3, (3.6)–(3.9)).
+/// gradient (docs/theory.md §3.3, (3.6)–(3.9)).
 ///
 /// All derivatives are with respect to the element vector x = [x_s; y_1; y_2; y_3; y_4] (15
 /// entries, node K of the segment at entries 3 + 3K). They hold at a converged CPP (§3.2): pass the

@@ -1,6 +1,6 @@
 #pragma once
 /// @file Hex8 total-Lagrangian element kernels: strain energy, internal force and tangent for each force
-/// rule of the time schemes, and the consistent mass (formulation.md §1.3–1.4, §2).
+/// rule of the time schemes, and the consistent mass (docs/theory.md §1.3–1.4, §2).
 
 #include <Eigen/Core>
 

@@ -9,7 +9,7 @@ namespace stoss::fem {
 using Matrix83 = Eigen::Matrix<double, 8, 3>;
 using Vector8 = Eigen::Matrix<double, 8, 1>;
 
-/// Shape function values N_I(ξ) and derivatives ∂N_I/∂ξ (formulation.md (1.1)).
+/// Shape function values N_I(ξ) and derivatives ∂N_I/∂ξ (docs/theory.md (1.1)).
 struct ShapeValues {
   Vector8 N;
   Matrix83 dN_dxi;
@@ -19,7 +19,7 @@ ShapeValues hex8_shape(const Eigen::Vector3d& xi);
 /// The eight Gauss points ±1/√3 (weights 1), ordered ξ fastest.
 const std::array<Eigen::Vector3d, 8>& gauss_points();
 
-/// Precomputed reference data of one Gauss point (formulation.md (1.2)).
+/// Precomputed reference data of one Gauss point (docs/theory.md (1.2)).
 struct GaussPoint {
   double wJ = 0;     ///< weight × det J0
   Vector8 N;         ///< shape values

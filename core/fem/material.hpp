@@ -11,7 +11,7 @@ using Matrix6d = Eigen::Matrix<double, 6, 6>;
 /// Voigt order [11, 22, 33, 23, 13, 12], engineering shear strains.
 Eigen::Matrix<double, 6, 1> to_voigt_stress(const Eigen::Matrix3d& S);
 
-/// St. Venant–Kirchhoff: W(E) = ½ λ (tr E)² + μ E:E (formulation.md (1.4)).
+/// St. Venant–Kirchhoff: W(E) = ½ λ (tr E)² + μ E:E (docs/theory.md (1.4)).
 class SaintVenantKirchhoff {
  public:
   SaintVenantKirchhoff(double youngs_modulus, double poisson_ratio);

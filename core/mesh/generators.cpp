@@ -68,7 +68,7 @@ class NodeMerger {
   std::unordered_map<Cell, std::vector<int>, CellHash> cells_;
 };
 
-/// Parameters of one cube-sphere patch (a, σ) of formulation.md §7.
+/// Parameters of one cube-sphere patch (a, σ) of docs/theory.md §7.
 struct Patch {
   int a;
   double sigma;

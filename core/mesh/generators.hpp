@@ -1,5 +1,5 @@
 #pragma once
-/// @file Mesh generators: primitives a scene names instead of listing nodes (service.md §1).
+/// @file Mesh generators: primitives a scene names instead of listing nodes (docs/scene.md).
 
 #include <Eigen/Core>
 #include <array>
@@ -9,14 +9,14 @@
 namespace stoss::mesh {
 
 /// Structured hex8 grid of the box [min, max] with divisions[a] elements along axis a.
-/// @note Node (i, j, k) has index i + (nx+1)(j + (ny+1)k); elements follow formulation.md §1.1
+/// @note Node (i, j, k) has index i + (nx+1)(j + (ny+1)k); elements follow docs/theory.md §1.1
 ///       (local ξ, η, ζ along x, y, z), so det J0 > 0.
 /// @note Surfaces `xmin xmax ymin ymax bottom top` (bottom: z = min.z, top: z = max.z), quads in
 ///       outward order: (b−a)×(d−a) points out of the box.
 /// @throws std::invalid_argument unless max > min componentwise and every division ≥ 1.
 BodyMesh box(const Eigen::Vector3d& min, const Eigen::Vector3d& max, const std::array<int, 3>& divisions);
 
-/// Hollow sphere as a cube-sphere shell (formulation.md §7): 6 patches of divisions × divisions
+/// Hollow sphere as a cube-sphere shell (docs/theory.md §7): 6 patches of divisions × divisions
 /// equiangular cells, `layers` element layers between the radii.
 /// @note Node layers at r_k = inner + k (outer − inner)/layers; nodes shared by patches are merged
 ///       (tolerance 1e-9 × outer_radius). divisions = 6, layers = 2 gives 654 nodes, 432 hex8.

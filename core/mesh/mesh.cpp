@@ -65,7 +65,7 @@ Eigen::VectorXd Mesh::reference_positions() const {
 }
 
 std::array<Quad, 6> hex_faces(const Hex& h) {
-  // formulation.md §1.1, face table: outward local order.
+  // docs/theory.md §1.1, face table: outward local order.
   return {Quad{h[0], h[3], h[2], h[1]}, Quad{h[4], h[5], h[6], h[7]}, Quad{h[0], h[1], h[5], h[4]},
           Quad{h[2], h[3], h[7], h[6]}, Quad{h[0], h[4], h[7], h[3]}, Quad{h[1], h[2], h[6], h[5]}};
 }

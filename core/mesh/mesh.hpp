@@ -9,7 +9,7 @@
 
 namespace stoss::mesh {
 
-using Hex = std::array<int, 8>;   ///< node indices in VTK_HEXAHEDRON order (formulation.md §1.1)
+using Hex = std::array<int, 8>;   ///< node indices in VTK_HEXAHEDRON order (docs/theory.md §1.1)
 using Quad = std::array<int, 4>;  ///< face node indices, ordered so that (b−a)×(d−a) points outwards
 
 /// One body's mesh with body-local node indices (what generators and importers produce).
@@ -49,7 +49,7 @@ struct Mesh {
   Eigen::VectorXd reference_positions() const;
 };
 
-/// Faces that belong to exactly one element, in outward order (formulation.md §1.1).
+/// Faces that belong to exactly one element, in outward order (docs/theory.md §1.1).
 std::vector<Quad> boundary_faces(const std::vector<Hex>& hex8);
 
 /// The six faces of a hex8 in outward order: ζ−, ζ+, η−, η+, ξ−, ξ+.

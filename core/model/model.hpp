@@ -18,7 +18,7 @@ std::string to_string(Scheme s);
 /// The scheme named `name` (energy_momentum, midpoint, hht), or nullopt.
 std::optional<Scheme> scheme_from_string(std::string_view name);
 
-/// St. Venant–Kirchhoff parameters (formulation.md (1.4)–(1.5)).
+/// St. Venant–Kirchhoff parameters (docs/theory.md (1.4)–(1.5)).
 struct Material {
   std::string model = "saint_venant_kirchhoff";
   double youngs_modulus = 0;
@@ -44,7 +44,7 @@ struct Boundary {
 enum class Enforcement { lagrange, penalty };
 enum class ImpactMode { persist, exact, velocity_correction };
 enum class NormalTraction { discrete_derivative, midpoint };
-/// Gap target of an active element that moves to another master face (formulation.md §3.4).
+/// Gap target of an active element that moves to another master face (docs/theory.md §3.4).
 enum class SwitchGap {
   clamp,  ///< f_3 := min(max(g_N^new(x_n), 0), f_3^old): no frozen penetration; the step may jump in energy
   keep,   ///< f_3 := g_N^new(x_n): energy exact; the node may stay below the new face (≤ kink × ε_sw × ℓ/2)
@@ -56,7 +56,7 @@ enum class MasterSurface {
   smooth,   ///< cubic B-spline patches over each face's 4×4 neighbourhood (C1 and more)
 };
 
-/// One contact pair (formulation.md §3–5). Slave nodes against master faces.
+/// One contact pair (docs/theory.md §3–5). Slave nodes against master faces.
 struct ContactPair {
   std::string slave;                   ///< "body/surface"
   std::string master;                  ///< "body/surface"
@@ -115,7 +115,7 @@ struct Model {
   int dof_count() const { return 3 * mesh.node_count(); }
 };
 
-/// Resolves the effect list from what the model contains (service.md §1); each frictional pair adds
+/// Resolves the effect list from what the model contains (docs/scene.md); each frictional pair adds
 /// "contact_frictional:<slave>,<master>" after "contact_frictional".
 std::vector<std::string> resolve_effects(const Model& m);
 

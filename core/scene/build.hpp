@@ -11,7 +11,7 @@
 
 namespace stoss::scene::detail {
 
-/// Smallest det J0 over the 2×2×2 Gauss points of one element (formulation.md (1.1)–(1.2)).
+/// Smallest det J0 over the 2×2×2 Gauss points of one element (docs/theory.md (1.1)–(1.2)).
 double min_jacobian_determinant(const std::vector<Eigen::Vector3d>& nodes, const mesh::Hex& element);
 
 /// The body mesh a validated `mesh` member describes (box, hollow_sphere or inline). An inline mesh

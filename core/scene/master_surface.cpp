@@ -13,9 +13,6 @@ namespace {
 std::optional<std::string> smooth_unavailable(const model::Model& m, const model::ContactPair& p) {
   if (p.enforcement != model::Enforcement::lagrange)
     return "\"smooth\" is implemented for enforcement \"lagrange\" so far; use \"faceted\" with \"penalty\"";
-  if (m.time.scheme != model::Scheme::energy_momentum)
-    return "\"smooth\" is implemented for time.scheme \"energy_momentum\" so far; use \"faceted\" with "
-           "midpoint or hht";
   const contact::SmoothSurface s = contact::smooth_surface(m.mesh.surface(p.master));
   if (!s.ok()) return "master " + p.master + " cannot carry a smooth surface: " + s.problem;
   return std::nullopt;

@@ -7,12 +7,12 @@
 namespace stoss::scene::detail {
 
 /// Resolves every pair's `master_surface` and `switch_gap` and writes them into the model and into its
-/// resolved scene: `smooth` by default wherever it is implemented (enforcement lagrange with
-/// time.scheme energy_momentum) and the master surface qualifies (contact/smooth_surface.hpp),
+/// resolved scene: `smooth` by default wherever it is implemented (enforcement lagrange, every scheme)
+/// and the master surface qualifies (contact/smooth_surface.hpp),
 /// `faceted` otherwise; `switch_gap` defaults to `keep` on a smooth surface (a switch then costs no
 /// energy and the gap it keeps is tiny, §3.3) and to `clamp` on a faceted one.
 /// @throws SceneError at /contact/<i>/master_surface where "smooth" was asked for and cannot be had,
-///         naming the reason (unsupported enforcement or scheme, or the node or edge that breaks the
+///         naming the reason (penalty enforcement, or the node or edge that breaks the
 ///         surface rules).
 void resolve_master_surfaces(model::Model& m);
 

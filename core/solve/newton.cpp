@@ -23,7 +23,7 @@ bool keeps_contracting(double trial, double current, int it, const NewtonOptions
 }
 
 /// A fresh Newton step that no longer halves a residual already near the tolerance, with an increment
-/// within it, has hit the round-off floor of the residual (as the CPP of formulation.md §3.2 does).
+/// within it, has hit the round-off floor of the residual (as the CPP of docs/theory.md §3.2 does).
 bool stagnated_at_round_off(double trial, double current, double increment, double tolerance) {
   return increment <= tolerance && trial <= 100 * tolerance && trial > 0.5 * current;
 }

@@ -22,20 +22,8 @@ struct Outcome {
   std::string failure;
 };
 
-/// The smooth master surface is implemented for energy_momentum only (docs/smooth_master_surface.md
-/// §1): the other schemes run such a pair on the faceted surface with the faceted default switch rule.
-void fall_back_to_faceted(model::Model& m) {
-  if (m.time.scheme == model::Scheme::energy_momentum) return;
-  for (model::ContactPair& p : m.contact)
-    if (p.master_surface == model::MasterSurface::smooth) {
-      p.master_surface = model::MasterSurface::faceted;
-      p.switch_gap = model::SwitchGap::clamp;
-    }
-}
-
 Outcome run_once(model::Model m, const Run& run, const Options& options) {
   m.time.scheme = run.scheme;
-  fall_back_to_faceted(m);
   m.time.step = run.step;
   m.output.every = std::max(1, m.time.steps());
   FinalState last;

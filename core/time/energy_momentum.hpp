@@ -1,5 +1,5 @@
 #pragma once
-/// @file Energy–momentum scheme (formulation.md §2.3): midpoint kinematics, discrete-gradient forces.
+/// @file Energy–momentum scheme (docs/theory.md §2.3): midpoint kinematics, discrete-gradient forces.
 
 #include "core/time/midpoint.hpp"
 

@@ -1,5 +1,5 @@
 #pragma once
-/// @file HHT-α (formulation.md §2.4): the dissipative engineering baseline, conserving neither energy
+/// @file HHT-α (docs/theory.md §2.4): the dissipative engineering baseline, conserving neither energy
 /// nor angular momentum in nonlinear problems.
 
 #include "core/time/scheme.hpp"

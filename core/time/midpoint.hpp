@@ -1,5 +1,5 @@
 #pragma once
-/// @file Implicit midpoint rule (formulation.md §2.2) and the kinematics it shares with the EM scheme.
+/// @file Implicit midpoint rule (docs/theory.md §2.2) and the kinematics it shares with the EM scheme.
 
 #include "core/time/scheme.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file Time schemes: how x_{n+1} determines v_{n+1}, the inertia part of the step residual, and the
-/// force rule the terms use (formulation.md §2). One file per scheme.
+/// force rule the terms use (docs/theory.md §2). One file per scheme.
 
 #include <Eigen/Core>
 #include <memory>

@@ -1,6 +1,6 @@
 #pragma once
 /// @file Automatic step reduction: a step whose Newton solve fails is retried in substeps (issue 6,
-/// item 4; formulation.md §2.1 — every scheme's step equations hold for any h).
+/// item 4; docs/theory.md §2.1 — every scheme's step equations hold for any h).
 
 #include <functional>
 

@@ -1,5 +1,5 @@
 #pragma once
-/// @file One physical effect in the discrete equations of a step (architecture.md, "Term").
+/// @file One physical effect in the discrete equations of a step (docs/architecture.md, "Terms").
 
 #include <Eigen/Core>
 #include <functional>
@@ -9,7 +9,7 @@
 
 namespace stoss::time {
 
-/// How a term evaluates its force inside a step; the scheme chooses (formulation.md §2).
+/// How a term evaluates its force inside a step; the scheme chooses (docs/theory.md §2).
 enum class ForceRule {
   midpoint,           ///< f(x_m), tangent ½ K(x_m)                          (2.5)
   discrete_gradient,  ///< energy–momentum: directional derivative of V       (2.6)
@@ -71,7 +71,7 @@ class Term {
   /// positions hold the current iterate.
   virtual void initialize_auxiliaries(const StepContext& step, Eigen::VectorXd& z) {}
   /// After Newton converged with the current auxiliary set: updates the set from the solution z
-  /// (the contact active set, formulation.md §3.5). Returns true if it changed.
+  /// (the contact active set, docs/theory.md §3.5). Returns true if it changed.
   virtual bool update_active_set(const StepContext& step, const Eigen::VectorXd& z) { return false; }
   /// Dimensionless size of the term's auxiliary rows in R (the largest over its groups of rows of
   /// like units). Terms that own auxiliaries override it; converged when ≤ the Newton tolerance.

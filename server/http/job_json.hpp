@@ -1,5 +1,5 @@
 #pragma once
-/// @file The job JSON of service.md §2: id, kind, status, times, progress, effects, summary, error, links
+/// @file The job JSON of docs/api.md: id, kind, status, times, progress, effects, summary, error, links
 /// (and a study job's parameters as `study`).
 
 #include <nlohmann/json.hpp>

@@ -1,5 +1,5 @@
 #pragma once
-/// @file The routes of service.md §2 (api/openapi.yaml) on an httplib::Server.
+/// @file The routes of docs/api.md (api/openapi.yaml) on an httplib::Server.
 
 #include <optional>
 #include <string>

@@ -34,7 +34,7 @@ std::string to_string(Kind k);
 /// The kind named `text`, or nullopt.
 std::optional<Kind> parse_kind(std::string_view text);
 
-/// How far a run has come (service.md §2 `progress`). For a study, `step`/`steps` count runs.
+/// How far a run has come (docs/api.md `progress`). For a study, `step`/`steps` count runs.
 struct Progress {
   int step = 0;                       ///< converged steps so far
   int steps = 0;                      ///< steps to reach `end`

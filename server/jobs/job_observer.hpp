@@ -49,7 +49,7 @@ class LogObserver : public model::Observer {
   double last_time_ = 0;
 };
 
-/// The job summary of service.md §2 from a run's summary; max_penetration only when the model has contact.
+/// The job summary of docs/api.md from a run's summary; max_penetration only when the model has contact.
 nlohmann::json summary_json(const model::Summary& summary, const model::Model& model);
 
 }  // namespace stoss::server::jobs

@@ -1,5 +1,5 @@
 #pragma once
-// Test helper: the B7 scene of formulation.md §6.3, shared by the impact, HHT-contact and friction tests.
+// Test helper: the B7 scene of docs/theory.md §6.3, shared by the impact, HHT-contact and friction tests.
 #include "core/mesh/generators.hpp"
 #include "core/model/model.hpp"
 

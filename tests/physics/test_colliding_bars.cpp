@@ -1,5 +1,5 @@
 // The system shall reproduce 1D wave theory for two identical elastic bars colliding end-on
-// (formulation.md §6.3 B1, api/examples/colliding_bars.json): contact lasts 2L/c, the bars leave with
+// (docs/theory.md §6.3 B1, api/examples/colliding_bars.json): contact lasts 2L/c, the bars leave with
 // exchanged velocities, and energy and momentum are kept.
 #include <gtest/gtest.h>
 

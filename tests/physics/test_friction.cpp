@@ -1,4 +1,4 @@
-// The system shall integrate frictional penalty contact (formulation.md §5) so that
+// The system shall integrate frictional penalty contact (docs/theory.md §5) so that
 //  - a block sliding on a plate under gravity stops after v0²/(2μg) (§6.3 B3), and on an incline stays
 //    when tan θ < μ and slides with acceleration g(sin θ − μ cos θ) when tan θ > μ;
 //  - with EM elasticity and the "dd" normal traction on a flat undeformed master, neither H nor H + D
@@ -302,7 +302,7 @@ TEST(FrictionBallPlate, RunsToTheEndKeepsEnergyBeforeImpactAndNeverGainsAfter) {
     total_jump += jump[n] / H0;
   }
   EXPECT_LT(before, 1e-8) << "before the impact: the frictionless bound (test_hollow_ball_plate.cpp)";
-  EXPECT_LT(rise, 1e-8) << "deforming master: the largest rise per step (formulation.md §5.3)";
+  EXPECT_LT(rise, 1e-8) << "deforming master: the largest rise per step (docs/theory.md §5.3)";
   EXPECT_LT(rise_with_D, 1e-8) << "H + D − (face-switch jump)";
   EXPECT_LT(std::abs(total_jump), 5e-3) << "measured: one switch, +2.0e-3 H0";
   EXPECT_GT(D.back(), 0) << "the ball slides on the plate at touchdown";

@@ -1,4 +1,4 @@
-// The system shall run the seed's example (formulation.md §7, api/examples/hollow_ball_plate.json): a
+// The system shall run the seed's example (docs/theory.md §7, api/examples/hollow_ball_plate.json): a
 // 432-element hollow ball hits a free plate. With the default settings (smooth master surface,
 // docs/smooth_master_surface.md) the mixed energy–momentum contact conserves energy in every step to
 // 1e-10 H0, face switches included, and both momenta. The faceted surface stays as the comparator:

@@ -1,5 +1,5 @@
 // The system shall keep the energy identity (4.11) of the mixed energy–momentum contact through
-// impacts and releases in each impact mode of formulation.md §4.5, and both momenta in every scheme
+// impacts and releases in each impact mode of docs/theory.md §4.5, and both momenta in every scheme
 // (§6.3 B7: a tumbling hex8 cube hits a free hex8 plate, 4 slave nodes on one master face).
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // The system shall reproduce a uniform SVK stress state on a distorted patch of elements and have a
-// total mass equal to density × volume (formulation.md §1).
+// total mass equal to density × volume (docs/theory.md §1).
 #include <gtest/gtest.h>
 
 #include "core/fem/assembly.hpp"

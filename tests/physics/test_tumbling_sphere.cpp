@@ -1,5 +1,5 @@
 // The system shall conserve energy (energy_momentum) and both momenta (both schemes) of the free
-// tumbling hollow sphere of formulation.md §7, api/examples/tumbling_sphere*.json.
+// tumbling hollow sphere of docs/theory.md §7, api/examples/tumbling_sphere*.json.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -64,7 +64,7 @@ TEST(TumblingSphereHard, MidpointEnergyErrorExceedsEnergyMomentum) {
 }
 
 TEST(TumblingSphere, DiscreteMassMatchesThePrototype) {
-  // formulation.md §7: the 432-element ball has discrete mass 1.98376 (analytic 2.0441), and the
+  // docs/theory.md §7: the 432-element ball has discrete mass 1.98376 (analytic 2.0441), and the
   // initial momentum is m_b v with v = (0, 1, −1).
   RecordingObserver r;
   model::Model m = example("tumbling_sphere.json", model::Scheme::energy_momentum);

@@ -59,7 +59,7 @@ TEST(SummaryJson, CarriesMaxPenetrationOnlyWithContact) {
   EXPECT_EQ(j["energy_drift"], 1e-12);
   EXPECT_EQ(j["newton_iterations"], 42);
   EXPECT_EQ(j["wall_seconds"], 1.5);
-  // service.md §2: energy drift, momentum drift, iterations per step and wall seconds in every summary.
+  // docs/api.md: energy drift, momentum drift, iterations per step and wall seconds in every summary.
   for (const char* key : {"energy_drift", "linear_momentum_drift", "angular_momentum_drift", "wall_seconds",
                           "newton_iterations_per_step"})
     EXPECT_TRUE(j.contains(key)) << key;

@@ -1,5 +1,5 @@
 // Contact hard cases (issue 6 item 3) on the paper's example (api/examples/hollow_ball_plate.json,
-// formulation.md §7). The system shall, with energy_momentum (mixed form §4.3, impact "persist") on
+// docs/theory.md §7). The system shall, with energy_momentum (mixed form §4.3, impact "persist") on
 // the default smooth master surface (docs/smooth_master_surface.md), complete each case with every
 // step converged at its full size (no automatic step reduction), no NaN, the per-step energy identity
 // ΔH = contact_energy_jump (4.11), energy within 1e-9 of H_0 over the run (face switches no longer

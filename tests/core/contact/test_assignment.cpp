@@ -1,6 +1,6 @@
 // The narrow phase shall assign a slave node to one master face with a defined outcome on shared
 // edges and nodes (±1e-12 around them), at the outer boundary, at convex kinks and when no face
-// accepts the node (formulation.md §3.4).
+// accepts the node (docs/theory.md §3.4).
 #include <gtest/gtest.h>
 
 #include <string>

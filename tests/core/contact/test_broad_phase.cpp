@@ -1,5 +1,5 @@
 // The broad phase shall return exactly the master faces whose boxes overlap a slave node's box
-// (formulation.md §3.4), without an all-pairs loop, and keep its lists local as the mesh grows.
+// (docs/theory.md §3.4), without an all-pairs loop, and keep its lists local as the mesh grows.
 #include <gtest/gtest.h>
 
 #include <random>

@@ -1,4 +1,4 @@
-// The HHT-α contact element (formulation.md (2.11) with the NTS gap of §3): tangent blocks against
+// The HHT-α contact element (docs/theory.md (2.11) with the NTS gap of §3): tangent blocks against
 // central differences through the CPP (§6.1 bound 1e-6), and the force structure that keeps L.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // The contact terms shall assemble tangents that match central differences of their residuals
-// (formulation.md §6.1: (4.2) with (3.9), (4.9)–(4.10)), and run the active set (§3.5) and the face
+// (docs/theory.md §6.1: (4.2) with (3.9), (4.9)–(4.10)), and run the active set (§3.5) and the face
 // switch (§3.4) as specified. Scene: one hex8 cube over a 2 × 2 plate, its bottom nodes on different faces.
 #include <gtest/gtest.h>
 

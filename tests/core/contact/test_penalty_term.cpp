@@ -1,5 +1,5 @@
 // The penalty contact term shall assemble h·(5.2) with a tangent that matches central differences of
-// its residual in stick and in slip (formulation.md §6.1), commit the friction history only in
+// its residual in stick and in slip (docs/theory.md §6.1), commit the friction history only in
 // end_step and reset it when a contact opens (§5.2 item 7), and never run the return mapping of a
 // frictionless pair (§5.1, μ = 0). Scene: one hex8 cube pressed into a 2 × 2 plate, sliding along x.
 #include <gtest/gtest.h>

@@ -7,9 +7,9 @@
 #include "core/contact/projection.hpp"
 #include "core/contact/variations.hpp"
 
-// Cross-implementation check: the numbers of the Python prototype (../shared/reference/prototype,
-// nts.py: cpp, geometry, dNs_dx, invariants, g_of_pi, discrete_gradient, mixed_element, and
-// model.py's ntsmid element) for one fixed, deterministic state, printed with 17 digits. The
+// Cross-implementation check: the numbers of an independent Python/NumPy implementation of
+// docs/theory.md §3–4 (the design prototype, not shipped: its cpp, geometry, dNs_dx, invariants,
+// g_of_pi, discrete_gradient, mixed_element and midpoint NTS element) for one fixed, deterministic state, printed with 17 digits. The
 // vectors w, v probe the matrices: K w. Bound: 1e-12 relative (different summation orders, and the
 // CPP stops at |Δξ| < 1e-13 in both).
 

@@ -1,4 +1,4 @@
-// The hex8 SVK kernels against finite differences and analytic answers (formulation.md §1, §2.3, §6.1).
+// The hex8 SVK kernels against finite differences and analytic answers (docs/theory.md §1, §2.3, §6.1).
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>

@@ -1,4 +1,4 @@
-// Requirements for the mesh generators (formulation.md §1.1, §7).
+// Requirements for the mesh generators (docs/theory.md §1.1, §7).
 #include "core/mesh/generators.hpp"
 
 #include <gtest/gtest.h>
@@ -29,7 +29,7 @@ double min_det_j0(const BodyMesh& m) {
   return lowest;
 }
 
-/// Σ_e Σ_g w_g det J0 (weights 1): the discrete volume, = Σ_IJ M_IJ for ρ = 1 (formulation.md (1.9)).
+/// Σ_e Σ_g w_g det J0 (weights 1): the discrete volume, = Σ_IJ M_IJ for ρ = 1 (docs/theory.md (1.9)).
 double volume(const BodyMesh& m) {
   double v = 0;
   for (const Hex& h : m.hex8)
@@ -128,7 +128,7 @@ TEST(Box, SurfacesTogetherAreTheBoundary) {
 }
 
 TEST(Box, SingleElementFollowsTheReferenceNodeOrder) {
-  // Local node I sits at corner (ξ_I, η_I, ζ_I) of formulation.md §1.1.
+  // Local node I sits at corner (ξ_I, η_I, ζ_I) of docs/theory.md §1.1.
   const BodyMesh m = box(Vector3d(0, 0, 0), Vector3d(1, 1, 1), {1, 1, 1});
   const int corner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
                             {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
@@ -151,7 +151,7 @@ BodyMesh seed_ball() {
 }
 
 TEST(HollowSphere, SeedBallHasThePublishedCounts) {
-  // formulation.md §7: 654 nodes, 432 hex8, 218 slave nodes on the outer surface.
+  // docs/theory.md §7: 654 nodes, 432 hex8, 218 slave nodes on the outer surface.
   const BodyMesh m = seed_ball();
   EXPECT_EQ(m.nodes.size(), 654u);
   EXPECT_EQ(m.hex8.size(), 432u);

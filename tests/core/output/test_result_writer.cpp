@@ -60,7 +60,7 @@ TEST_F(ResultWriterTest, CompletedRunStoresEverySeriesRowExactly) {
   EXPECT_FALSE(file.series_is_integer("kinetic_energy"));
 }
 
-// The root attributes shall describe the run (service.md §3) and mark it complete.
+// The root attributes shall describe the run (docs/results.md) and mark it complete.
 TEST_F(ResultWriterTest, CompletedRunHasRootAttributes) {
   const model::Model m = write_tiny(true);
   const ResultFile file = ResultFile::open(dir / result_file_name);
