@@ -7,6 +7,8 @@
 #include <memory>
 #include <sstream>
 
+#include <sys/resource.h>
+
 #include "core/contact/contact.hpp"
 #include "core/fem/assembly.hpp"
 #include "core/time/integrator.hpp"
@@ -22,6 +24,13 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+/// Peak resident set of this process so far (getrusage ru_maxrss, kB on Linux), in bytes.
+double peak_resident_bytes() {
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return 0;
+  return double(usage.ru_maxrss) * 1024.0;
+}
+
 /// Everything a run builds from the model: only the terms the scene calls for.
 struct Problem {
   std::vector<fem::ElementGeometry> geometry;
@@ -32,6 +41,8 @@ struct Problem {
   std::vector<char> fixed;
   double total_mass = 0;
   double length_scale = 1;
+  double setup_contact_seconds = 0;  ///< building the contact terms
+  double setup_seconds = 0;          ///< the rest of build_problem: geometry, mass, elasticity
 };
 
 double bounding_box_diagonal(const mesh::Mesh& mesh) {
@@ -53,9 +64,12 @@ std::vector<char> fixed_dofs(const Model& m) {
 }
 
 Problem build_problem(const Model& m) {
+  const auto t0 = Clock::now();
   Problem p;
   for (const model::ContactPair& pair : m.contact)
     p.contact.push_back(contact::make_pair_term(m, pair));
+  if (!m.contact.empty()) p.setup_contact_seconds = seconds_since(t0);
+  const auto t1 = Clock::now();
   p.geometry = fem::precompute_mesh(m.mesh);
   std::vector<double> density;
   std::vector<fem::SaintVenantKirchhoff> material;
@@ -71,6 +85,7 @@ Problem build_problem(const Model& m) {
   p.fixed = fixed_dofs(m);
   p.total_mass = p.mass.sum() / 3;
   p.length_scale = bounding_box_diagonal(m.mesh);
+  p.setup_seconds = seconds_since(t1);
   return p;
 }
 
@@ -278,6 +293,7 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
   Problem p = build_problem(m);
   std::vector<time::Term*> terms{p.elasticity.get()};
   if (p.gravity) terms.push_back(p.gravity.get());
+  const size_t first_contact = terms.size();
   for (const auto& c : p.contact) terms.push_back(c.get());
   time::Integrator integrator(p.mass, terms, p.fixed, time::make_scheme(m.time.scheme, m.time.alpha),
                               newton_options(m), p.length_scale, p.total_mass);
@@ -289,10 +305,13 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
 
   const model::SeriesLayout layout = series_layout(m);
   const int steps = m.time.steps();
+  double output_seconds = 0;  // series rows, frames and the observer's calls
+  auto t_out = Clock::now();
   observer.begin(m, layout);
   const Balance b0 = balance(p, s);
   observer.step(step_row(s, b0, contact_row(p, nullptr), layout, nullptr, 0.0));
   observer.frame(frame_of(s, p));
+  output_seconds += seconds_since(t_out);
 
   model::Summary sum;
   sum.initial_energy = b0.total();
@@ -303,6 +322,13 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
     sum.newton_iterations_per_step = s.step > 0 ? double(sum.newton_iterations) / s.step : 0.0;
     sum.wall_seconds = seconds_since(wall0);
     sum.linear_solver_seconds = integrator.linear_solver_seconds();
+    // Terms in the order given to the integrator: elasticity, gravity if any, then the contact pairs.
+    sum.assembly_seconds = p.setup_seconds + integrator.inertia_seconds();
+    sum.contact_seconds = p.setup_contact_seconds;
+    for (size_t k = 0; k < terms.size(); ++k)
+      (k < first_contact ? sum.assembly_seconds : sum.contact_seconds) += integrator.term_seconds(k);
+    sum.output_seconds = output_seconds;
+    sum.peak_memory_bytes = peak_resident_bytes();
     observer.end(sum);
     return sum;
   };
@@ -323,6 +349,7 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
       throw SolverError(message);
     }
     sum.newton_iterations += r.iterations;
+    t_out = Clock::now();
     const Balance b = balance(p, s);
     update_drifts(sum, b0, b);
     sum.max_penetration = std::max(sum.max_penetration, c.max_penetration);
@@ -330,6 +357,7 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
     sum.max_faceted_penetration = std::max(sum.max_faceted_penetration, c.faceted_penetration);
     observer.step(step_row(s, b, c, layout, &r, seconds_since(t0)));
     if (frame_due(m, n, steps)) observer.frame(frame_of(s, p));
+    output_seconds += seconds_since(t_out);
   }
   return finish(true);
 }

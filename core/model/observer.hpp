@@ -53,7 +53,17 @@ struct Summary {
   int newton_iterations = 0;            ///< total
   double newton_iterations_per_step = 0;
   double wall_seconds = 0;
+  /// Where wall_seconds went (each ≤ it; the rest is Newton's own vector work, the velocity
+  /// correction and the like). Assembly: the model's setup (geometry, mass), the inertia rows, the
+  /// elasticity and gravity terms, the Jacobian pattern. Contact: everything the contact terms do
+  /// (setup, search, residual and Jacobian rows, active sets). Linear solver: analysis,
+  /// factorisations and solves. Output: energies and momenta per step, frames, the observer's calls.
+  double assembly_seconds = 0;
+  double contact_seconds = 0;
   double linear_solver_seconds = 0;
+  double output_seconds = 0;
+  /// Peak resident set of the process running the job (getrusage), so far at the end of the run.
+  double peak_memory_bytes = 0;
 };
 
 /// Receives a run as it happens. The HDF5 writer is one observer, a job's progress another.

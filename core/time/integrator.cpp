@@ -1,10 +1,24 @@
 #include "core/time/integrator.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace stoss::time {
 namespace {
+
+/// Adds the wall time of its scope to `total` (the timing hooks of the run summary).
+class Stopwatch {
+ public:
+  explicit Stopwatch(double& total) : total_(total), t0_(std::chrono::steady_clock::now()) {}
+  ~Stopwatch() { total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(); }
+  Stopwatch(const Stopwatch&) = delete;
+  Stopwatch& operator=(const Stopwatch&) = delete;
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point t0_;
+};
 
 /// Appends a later Newton solve of the same step to the step's record.
 void merge(solve::NewtonResult& total, const solve::NewtonResult& pass) {
@@ -35,7 +49,8 @@ Integrator::Integrator(const solve::SparseMatrix& mass, std::vector<Term*> terms
       scheme_(std::move(scheme)),
       options_(options),
       length_scale_(length_scale),
-      total_mass_(total_mass) {}
+      total_mass_(total_mass),
+      term_seconds_(terms_.size(), 0.0) {}
 
 double Integrator::potential_energy(const Eigen::VectorXd& x) const {
   double V = 0;
@@ -56,9 +71,16 @@ int Integrator::prepare_unknowns() {
 }
 
 void Integrator::rebuild_pattern(int n) {
-  pattern_.clear();
-  mass_block_ = pattern_.add_sparse(mass_);
-  for (Term* t : terms_) t->register_blocks(pattern_);
+  {
+    Stopwatch assembly(inertia_seconds_);
+    pattern_.clear();
+    mass_block_ = pattern_.add_sparse(mass_);
+  }
+  for (size_t k = 0; k < terms_.size(); ++k) {
+    Stopwatch term(term_seconds_[k]);
+    terms_[k]->register_blocks(pattern_);
+  }
+  Stopwatch assembly(inertia_seconds_);  // the pattern's build: no term runs below
   pattern_.build(n);
   fixed_.resize(mass_.rows());
   fixed_.resize(n, 0);
@@ -72,9 +94,15 @@ void Integrator::initialize(State& s) {
   // M a_0 = f_ext − f_int(x_0): the terms' midpoint force at x_1 = x_n, divided by h = 1.
   const StepContext at_rest{s.x, s.v, 1.0, ForceRule::midpoint, 0.0};
   Eigen::VectorXd z = s.x;
-  for (Term* t : terms_) t->begin_step(at_rest, z);
+  for (size_t k = 0; k < terms_.size(); ++k) {
+    Stopwatch term(term_seconds_[k]);
+    terms_[k]->begin_step(at_rest, z);
+  }
   Eigen::VectorXd R = Eigen::VectorXd::Zero(s.x.size());
-  for (const Term* t : terms_) t->add(at_rest, s.x, R, nullptr);
+  for (size_t k = 0; k < terms_.size(); ++k) {
+    Stopwatch term(term_seconds_[k]);
+    terms_[k]->add(at_rest, s.x, R, nullptr);
+  }
   solve::BlockPattern M;
   const int block = M.add_sparse(mass_);
   M.build(static_cast<int>(mass_.rows()));
@@ -85,12 +113,16 @@ void Integrator::initialize(State& s) {
   solve::LinearSolver lu;
   lu.factorize(M);
   s.a = -lu.solve(R);
+  initial_solve_seconds_ += lu.seconds();
 }
 
 Eigen::VectorXd Integrator::relayout(const Eigen::VectorXd& positions) {
   Eigen::VectorXd z = Eigen::VectorXd::Zero(prepare_unknowns());
   z.head(positions.size()) = positions;
-  for (Term* t : terms_) t->initialize_auxiliaries(*context_, z);
+  for (size_t k = 0; k < terms_.size(); ++k) {
+    Stopwatch term(term_seconds_[k]);
+    terms_[k]->initialize_auxiliaries(*context_, z);
+  }
   return z;
 }
 
@@ -101,7 +133,10 @@ solve::NewtonResult Integrator::solve_with_active_set(Eigen::VectorXd& z, const 
     merge(total, solve::newton_solve(*this, z, pattern_, solver_, options_, log));
     if (!total.converged) return total;
     bool changed = false;
-    for (Term* t : terms_) changed = t->update_active_set(*context_, z) || changed;  // §3.5
+    for (size_t k = 0; k < terms_.size(); ++k) {  // §3.5
+      Stopwatch term(term_seconds_[k]);
+      changed = terms_[k]->update_active_set(*context_, z) || changed;
+    }
     if (!changed) return total;
     if (passes_ == max_active_set_passes) {
       total.converged = false;
@@ -117,21 +152,30 @@ solve::NewtonResult Integrator::step(State& s, double h, const LogFunction& log)
       StepContext{s.x, s.v, h, scheme_->force_rule(), scheme_->alpha(), log ? &log : nullptr});
   state_ = &s;
   correction_energy_ = 0;
-  for (Term* t : terms_) t->prepare_step(*context_);
+  for (size_t k = 0; k < terms_.size(); ++k) {
+    Stopwatch term(term_seconds_[k]);
+    terms_[k]->prepare_step(*context_);
+  }
   const int n = prepare_unknowns();
   Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
   z.head(s.x.size()) = s.x + h * s.v;  // predictor
   for (Eigen::Index i = 0; i < s.x.size(); ++i)
     if (fixed_[i]) z[i] = s.x[i];
-  for (Term* t : terms_) t->begin_step(*context_, z);
+  for (size_t k = 0; k < terms_.size(); ++k) {
+    Stopwatch term(term_seconds_[k]);
+    terms_[k]->begin_step(*context_, z);
+  }
   residual_scale_ = 2 * (mass_ * s.v).norm();
   scale_pending_ = true;
   solve::NewtonResult result = solve_with_active_set(z, log);
   if (result.converged) {
     Eigen::VectorXd impulse = Eigen::VectorXd::Zero(s.x.size());
     double jump = 0;
-    for (const Term* t : terms_) t->add_impact_impulse(*context_, z, impulse, jump);
-    for (Term* t : terms_) t->end_step(*context_, z);
+    for (size_t k = 0; k < terms_.size(); ++k) {
+      Stopwatch term(term_seconds_[k]);
+      terms_[k]->add_impact_impulse(*context_, z, impulse, jump);
+      terms_[k]->end_step(*context_, z);
+    }
     scheme_->advance(s, h, z.head(s.x.size()));
     if (impulse.squaredNorm() > 0) correct_velocity(s, std::move(impulse), jump);
     s.t += h;
@@ -143,13 +187,20 @@ solve::NewtonResult Integrator::step(State& s, double h, const LogFunction& log)
 
 void Integrator::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& R, solve::BlockPattern* A) {
   const double h = context_->h;
-  R.setZero(z.size());
-  scheme_->add_inertia(*state_, h, mass_, z.head(state_->x.size()), R);
-  if (A) {
-    A->zero();
-    A->scatter_sparse(mass_block_, mass_, scheme_->inertia_jacobian_factor(h));
+  {
+    Stopwatch assembly(inertia_seconds_);
+    R.setZero(z.size());
+    scheme_->add_inertia(*state_, h, mass_, z.head(state_->x.size()), R);
+    if (A) {
+      A->zero();
+      A->scatter_sparse(mass_block_, mass_, scheme_->inertia_jacobian_factor(h));
+    }
   }
-  for (const Term* t : terms_) t->add(*context_, z, R, A);
+  for (size_t k = 0; k < terms_.size(); ++k) {
+    Stopwatch term(term_seconds_[k]);
+    terms_[k]->add(*context_, z, R, A);
+  }
+  Stopwatch assembly(inertia_seconds_);
   for (Eigen::Index i = 0; i < R.size(); ++i)
     if (fixed_[i]) R[i] = 0;
   if (A) A->eliminate(fixed_);

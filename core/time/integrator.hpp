@@ -37,7 +37,14 @@ class Integrator : private solve::NonlinearSystem {
   /// Σ of the terms' potential energies at x.
   double potential_energy(const Eigen::VectorXd& x) const;
   const Scheme& scheme() const { return *scheme_; }
-  double linear_solver_seconds() const { return solver_.seconds(); }
+  /// Seconds in the linear solver (analysis, factorisations, solves), the initial HHT solve included.
+  double linear_solver_seconds() const { return solver_.seconds() + initial_solve_seconds_; }
+  /// Seconds spent inside term k's calls (terms in constructor order): residual and Jacobian
+  /// contributions, block registration, and the per-step hooks (prepare, begin, active set, end).
+  double term_seconds(size_t k) const { return term_seconds_.at(k); }
+  /// Seconds in the scheme's inertia rows, the mass block of the Jacobian, the pattern's zeroing,
+  /// rebuilds and elimination of fixed rows: the assembly that belongs to no term.
+  double inertia_seconds() const { return inertia_seconds_; }
   /// Newton solves in the last step (1 + active-set changes).
   int active_set_passes() const { return passes_; }
   /// Kinetic energy added by the velocity correction (4.12) in the last step (0 if none).
@@ -81,6 +88,11 @@ class Integrator : private solve::NonlinearSystem {
   bool scale_pending_ = false;
   int passes_ = 0;
   double correction_energy_ = 0;
+
+  // Timing hooks (wall clock, for the summary's split of the run time).
+  std::vector<double> term_seconds_;
+  double inertia_seconds_ = 0;
+  double initial_solve_seconds_ = 0;
 };
 
 }  // namespace stoss::time

@@ -1,5 +1,6 @@
 #include "server/cli/commands.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -37,6 +38,11 @@ void print_summary(const model::Model& m, const model::Summary& s) {
                 s.max_own_face_penetration);
   std::printf("newton iterations %d (%.2f per step)\n", s.newton_iterations, s.newton_iterations_per_step);
   std::printf("wall %.3f s (linear solver %.3f s)\n", s.wall_seconds, s.linear_solver_seconds);
+  const double other = std::max(0.0, s.wall_seconds - s.assembly_seconds - s.contact_seconds -
+                                         s.linear_solver_seconds - s.output_seconds);
+  std::printf("time: assembly %.3f s, contact %.3f s, linear solver %.3f s, output %.3f s, other %.3f s\n",
+              s.assembly_seconds, s.contact_seconds, s.linear_solver_seconds, s.output_seconds, other);
+  std::printf("peak memory %.1f MB (resident)\n", s.peak_memory_bytes / 1e6);
 }
 
 int usage(const char* text) {

@@ -63,7 +63,11 @@ nlohmann::json summary_json(const model::Summary& s, const model::Model& model) 
                       {"newton_iterations", s.newton_iterations},
                       {"newton_iterations_per_step", s.newton_iterations_per_step},
                       {"wall_seconds", s.wall_seconds},
-                      {"linear_solver_seconds", s.linear_solver_seconds}};
+                      {"linear_solver_seconds", s.linear_solver_seconds},
+                      {"assembly_seconds", s.assembly_seconds},
+                      {"contact_seconds", s.contact_seconds},
+                      {"output_seconds", s.output_seconds},
+                      {"peak_memory_mb", s.peak_memory_bytes / 1e6}};
   if (!model.contact.empty()) j["max_penetration"] = s.max_penetration;
   return j;
 }

@@ -231,3 +231,45 @@ TEST(Simulate, AStepThatDoesNotConvergeIsAnErrorWithItsHistory) {
 
 }  // namespace
 }  // namespace stoss
+
+namespace stoss {
+namespace {
+
+void expect_parts_within_wall(const model::Summary& s) {
+  for (double part : {s.assembly_seconds, s.contact_seconds, s.linear_solver_seconds, s.output_seconds})
+    EXPECT_GE(part, 0.0);
+  // The parts are disjoint intervals inside the run: their sum cannot exceed its wall time (slack for
+  // the clock reads themselves).
+  EXPECT_LE(s.assembly_seconds + s.contact_seconds + s.linear_solver_seconds + s.output_seconds,
+            s.wall_seconds + 1e-3);
+  EXPECT_GT(s.assembly_seconds, 0.0) << "elasticity is assembled at every Newton iteration";
+  EXPECT_GT(s.linear_solver_seconds, 0.0);
+  EXPECT_GT(s.output_seconds, 0.0) << "every step writes a series row";
+}
+
+TEST(Simulate, SummaryReportsPeakResidentMemory) {
+  RecordingObserver r;
+  const model::Summary s = simulate(tumbling_bar(model::Scheme::energy_momentum, 0.05, 5), r);
+  ASSERT_TRUE(s.completed);
+  EXPECT_GT(s.peak_memory_bytes, 1e6) << "a process holding a model and an LU uses more than 1 MB";
+  EXPECT_LT(s.peak_memory_bytes, 100e9);
+}
+
+TEST(Simulate, WallTimeSplitsIntoAssemblyLinearSolverAndOutputWithoutContact) {
+  RecordingObserver r;
+  const model::Summary s = simulate(tumbling_bar(model::Scheme::energy_momentum, 0.05, 20), r);
+  ASSERT_TRUE(s.completed);
+  expect_parts_within_wall(s);
+  EXPECT_EQ(s.contact_seconds, 0.0) << "no contact term, nothing timed as contact";
+}
+
+TEST(Simulate, WallTimeOfAContactRunCountsTheContactTerms) {
+  RecordingObserver r;
+  const model::Summary s = simulate(cube_onto_clamped_plate(model::Scheme::energy_momentum), r);
+  ASSERT_TRUE(s.completed);
+  expect_parts_within_wall(s);
+  EXPECT_GT(s.contact_seconds, 0.0);
+}
+
+}  // namespace
+}  // namespace stoss
