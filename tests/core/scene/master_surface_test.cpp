@@ -112,3 +112,18 @@ TEST(MasterSurface, ExplicitFacetedIsKeptWithTheClampRule) {
 
 }  // namespace
 }  // namespace stoss::scene
+
+namespace stoss::scene {
+namespace {
+
+// A pair that the contact module cannot run is refused at validation, not in the worker.
+TEST(ContactScheme, PenaltyWithHhtIsRefusedAtValidation) {
+  json scene = ball_and_plate("plate/top");
+  scene["time"]["scheme"] = "hht";
+  scene["contact"][0]["enforcement"] = "penalty";
+  EXPECT_EQ(refusal(scene), "/contact/0/enforcement: \"penalty\" is not implemented with time.scheme \"hht\"; use "
+                            "energy_momentum or midpoint");
+}
+
+}  // namespace
+}  // namespace stoss::scene
