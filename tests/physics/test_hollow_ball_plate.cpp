@@ -200,5 +200,20 @@ TEST(HollowBallPlate, MidpointCompletesWithMomentaAndRecordsItsEnergyError) {
               r.summary.energy_drift, r.summary.max_penetration, r.summary.newton_iterations_per_step);
 }
 
+TEST(HollowBallPlate, SmoothSurfaceMidpointAndHhtCompleteWithTheirMomentaAndRecordTheirEnergy) {
+  for (model::Scheme scheme : {model::Scheme::midpoint, model::Scheme::hht}) {
+    const RecordingObserver& r = run(scheme, MasterSurface::smooth);
+    ASSERT_TRUE(r.summary.completed) << model::to_string(scheme);
+    EXPECT_LT(r.vector_drift("linear_momentum"), 1e-10) << model::to_string(scheme);
+    if (scheme == model::Scheme::midpoint) EXPECT_LT(r.vector_drift("angular_momentum"), 1e-10);  // §4.2
+    EXPECT_LT(r.summary.max_penetration, 1e-8 * ball_radius) << model::to_string(scheme);
+    const auto unprojected = r.series("unprojected_nodes");
+    EXPECT_EQ(*std::max_element(unprojected.begin(), unprojected.end()), 0);
+    std::printf("smooth %s: max |H − H0|/H0 = %.3e, penetration %.1e, Newton its/step %.2f\n",
+                model::to_string(scheme).c_str(), r.summary.energy_drift, r.summary.max_penetration,
+                r.summary.newton_iterations_per_step);
+  }
+}
+
 }  // namespace
 }  // namespace stoss
