@@ -5,9 +5,6 @@
 
 namespace stoss::contact {
 namespace {
-Eigen::VectorXd as_vector(const std::vector<double>& v) {
-  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
-}
 
 SegmentFrame as_segment_frame(const PatchFrame& f) {
   SegmentFrame s;

@@ -6,10 +6,6 @@
 namespace stoss::contact {
 namespace {
 
-Eigen::VectorXd as_vector(const std::vector<double>& v) {
-  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
-}
-
 /// [a; −c_K a] over the element vector, for node values c.
 Eigen::RowVectorXd slave_minus_master(const Eigen::Vector3d& a, const Eigen::VectorXd& c) {
   Eigen::RowVectorXd row(3 + 3 * c.size());

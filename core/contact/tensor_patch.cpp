@@ -48,10 +48,7 @@ BasisCurvatures patch_curvatures(const TensorPatch& p, const Eigen::Vector2d& xi
       B12[i + n * j] = du * dv;
       B22[i + n * j] = u * factor(p.family, j, xi[1], 2);
     }
-  const auto nodes = [&p](const std::vector<double>& slots) {
-    const std::vector<double> v = detail::to_nodes(p, slots);
-    return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(v.data(), v.size()));
-  };
+  const auto nodes = [&p](const std::vector<double>& slots) { return as_vector(detail::to_nodes(p, slots)); };
   return {nodes(B11), nodes(B12), nodes(B22)};
 }
 

@@ -290,6 +290,11 @@ BasisValues<T> patch_divided(const TensorPatch& p, int direction, const T& a, co
   return direction == 0 ? detail::tensor(p, divided, fixed) : detail::tensor(p, fixed, divided);
 }
 
+/// Node values as an Eigen vector.
+inline Eigen::VectorXd as_vector(const std::vector<double>& v) {
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
 /// N_{K,11}, N_{K,12}, N_{K,22} at ξ.
 BasisCurvatures patch_curvatures(const TensorPatch& p, const Eigen::Vector2d& xi);
 

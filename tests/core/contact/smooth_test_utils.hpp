@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/contact/smooth_surface.hpp"
 #include "core/mesh/generators.hpp"
 #include "core/mesh/mesh.hpp"
 
@@ -52,5 +53,35 @@ struct Grid {
     });
   }
 };
+
+/// A parameterised element case: a face of the curved 4 × 4 grid at (face_i, face_j) and ξ, its
+/// bilinear face, or (sphere) the first face with an extraordinary corner at (u, v) = xi from it.
+struct PatchCase {
+  const char* name;
+  int face_i, face_j;
+  Eigen::Vector2d xi;
+  bool bilinear = false, sphere = false;
+};
+
+/// The grid, the patch and the face coordinates ξ of a case.
+struct PickedPatch {
+  Grid grid;
+  TensorPatch patch;
+  Eigen::Vector2d xi;
+};
+
+inline PickedPatch pick(const PatchCase& c) {
+  PickedPatch out{c.sphere ? Grid::sphere(4) : Grid::curved(4, 4), {}, c.xi};
+  if (c.sphere) {
+    for (const TensorPatch& p : smooth_surface(out.grid.faces).patches)
+      if (p.pieces && !out.patch.pieces) out.patch = p;
+    out.xi = detail::corner_rotation(out.patch.pieces->corner).transpose() *
+             Eigen::Vector2d(2 * c.xi[0] - 1, 2 * c.xi[1] - 1);
+  } else {
+    const int f = out.grid.face(c.face_i, c.face_j);
+    out.patch = c.bilinear ? bilinear_patch(out.grid.faces[f]) : smooth_surface(out.grid.faces).patches[f];
+  }
+  return out;
+}
 
 }  // namespace stoss::contact::test

@@ -18,28 +18,16 @@ namespace {
 
 using test::Grid;
 
-struct Case {
-  const char* name;
-  int face_i, face_j;  ///< on the sphere: face_i = −1 picks the first face with an extraordinary corner
-  Eigen::Vector2d xi;  ///< on the sphere: (u, v) from that corner
-  bool bilinear = false;
-  bool sphere = false;
-};
+using Case = test::PatchCase;
 
 class PatchMixedElement : public ::testing::TestWithParam<Case> {
  protected:
   void SetUp() override {
     const Case& c = GetParam();
-    grid = c.sphere ? Grid::sphere(4) : Grid::curved(4, 4);
-    Eigen::Vector2d xi = c.xi;
-    if (c.sphere) {
-      for (const TensorPatch& p : smooth_surface(grid.faces).patches)
-        if (p.pieces && !patch.pieces) patch = p;
-      xi = detail::corner_rotation(patch.pieces->corner).transpose() * Eigen::Vector2d(2 * c.xi[0] - 1, 2 * c.xi[1] - 1);
-    } else {
-      const int f = grid.face(c.face_i, c.face_j);
-      patch = c.bilinear ? bilinear_patch(grid.faces[f]) : smooth_surface(grid.faces).patches[f];
-    }
+    test::PickedPatch picked = test::pick(c);
+    grid = std::move(picked.grid);
+    patch = std::move(picked.patch);
+    const Eigen::Vector2d xi = picked.xi;
     std::mt19937 rng(7 + c.face_i + 5 * c.face_j);
     std::normal_distribution<double> n(0, 1);
     const auto jitter = [&](double s) -> Eigen::Vector3d { return Eigen::Vector3d(n(rng), n(rng), n(rng)) * s; };

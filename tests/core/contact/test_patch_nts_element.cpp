@@ -16,28 +16,15 @@ namespace {
 
 using test::Grid;
 
-struct Case {
-  const char* name;
-  int face_i, face_j;
-  Eigen::Vector2d xi;
-  bool bilinear = false, sphere = false;
-};
+using Case = test::PatchCase;
 
 class PatchNtsElement : public ::testing::TestWithParam<Case> {
  protected:
   void SetUp() override {
-    const Case& c = GetParam();
-    const Grid grid = c.sphere ? Grid::sphere(4) : Grid::curved(4, 4);
-    Eigen::Vector2d xi = c.xi;
-    TensorPatch patch;
-    if (c.sphere) {
-      for (const TensorPatch& p : smooth_surface(grid.faces).patches)
-        if (p.pieces && !patch.pieces) patch = p;
-      xi = detail::corner_rotation(patch.pieces->corner).transpose() * Eigen::Vector2d(2 * c.xi[0] - 1, 2 * c.xi[1] - 1);
-    } else {
-      const int f = grid.face(c.face_i, c.face_j);
-      patch = c.bilinear ? bilinear_patch(grid.faces[f]) : smooth_surface(grid.faces).patches[f];
-    }
+    const test::PickedPatch picked = test::pick(GetParam());
+    const Grid& grid = picked.grid;
+    const TensorPatch& patch = picked.patch;
+    const Eigen::Vector2d xi = picked.xi;
     const PatchFrame on = patch_frame(patch, grid.x, xi);
     local = local_patch(patch);
     x_n.resize(3 + 3 * patch.size());
