@@ -74,6 +74,14 @@ class AddressInUse : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// cpp-httplib listens with a backlog of 5 (CPPHTTPLIB_LISTEN_BACKLOG, compiled into the library): 50
+/// clients connecting at once overflow it, and the kernel's SYN retries then cost them 1 s, 3 s, ... before
+/// the first byte. listen() again on the bound socket raises the backlog.
+class Server : public httplib::Server {
+ public:
+  bool raise_backlog(int backlog) { return ::listen(svr_sock_, backlog) == 0; }
+};
+
 /// Binds `server` to host:port with SO_REUSEADDR only (no SO_REUSEPORT: a second server on the same port
 /// must fail, not share the connections). Returns the port; throws AddressInUse or runtime_error.
 int bind_server(httplib::Server& server, const std::string& host, int port) {
@@ -107,7 +115,7 @@ int run(const ServeOptions& options) {
   if (options.token_file) auth = BearerAuth::from_file(*options.token_file);
   App app{store, pool, files, options.limits, auth, {}};
 
-  httplib::Server server;
+  Server server;
   server.set_payload_max_length(options.limits.max_body_bytes);
   // The head and the body of a response go out in two writes; with Nagle a kept-alive client waits for
   // the ACK of the first (~40 ms) before the second. TCP_NODELAY is set on the listening socket, and
@@ -124,6 +132,7 @@ int run(const ServeOptions& options) {
   install_error_handling(server, app.metrics, options.limits);
   install_routes(server, app);
   const int port = bind_server(server, options.host, options.port);
+  if (!server.raise_backlog(1024)) std::cerr << "stoss serve: cannot raise the listen backlog" << std::endl;
 
   jobs::Rescuer rescuer(store, clock, options.max_attempts);
   rescuer.run_once();  // jobs of a dead process whose lease already ran out go back to the queue first
