@@ -4,8 +4,10 @@
 // memory it prints is that size's alone. Records s/step, Newton iterations/step, peak memory and the
 // shares of the wall time (linear solver, assembly, output) from the run's summary.
 // Writes bench/results/scaling.csv and bench/results/scaling.png (gnuplot).
-// Run: ./build/bench_scaling [--large] [--stoss PATH]
+// Run: ./build/bench_scaling [--large] [--iterative] [--stoss PATH]
 //   default sizes about 1k, 8k and 27k elements; --large adds about 64k and 100k.
+//   --iterative: the runs use the Krylov path (STOSS_LINEAR_SOLVER=iterative) and the results go to
+//   scaling_iterative.{csv,png}, with the Krylov iterations per solve.
 //   stoss defaults to the stoss next to this executable (build it first: --target stoss).
 #include <array>
 #include <cmath>
@@ -36,6 +38,7 @@ struct Size {
 struct Row {
   int divisions = 0, layers = 0, elements = 0, dofs = 0, steps = 0;
   double wall = 0, linear = 0, assembly = 0, contact = 0, output = 0, newton_per_step = 0, peak_mb = 0;
+  double krylov_per_solve = 0;
 };
 
 std::string run_capture(const std::string& command, int& status) {
@@ -77,7 +80,7 @@ fs::path write_scene(const Size& size, const fs::path& dir) {
   return path;
 }
 
-Row measure(const fs::path& stoss, const Size& size, const fs::path& work) {
+Row measure(const fs::path& stoss, const Size& size, const fs::path& work, bool iterative) {
   Row r;
   r.divisions = size.divisions;
   r.layers = size.layers;
@@ -91,7 +94,8 @@ Row measure(const fs::path& stoss, const Size& size, const fs::path& work) {
   r.elements = int(match(validated, R"(elements (\d+))"));
   r.dofs = int(match(validated, R"(dofs (\d+))"));
   const fs::path out = work / ("out_" + std::to_string(size.divisions));
-  const std::string ran = run_capture(stoss.string() + " run " + scene.string() + " -o " + out.string() + " 2>/dev/null", status);
+  const std::string environment = iterative ? "STOSS_LINEAR_SOLVER=iterative " : "";
+  const std::string ran = run_capture(environment + stoss.string() + " run " + scene.string() + " -o " + out.string() + " 2>/dev/null", status);
   if (status != 0) {
     std::cerr << "bench_scaling: stoss run failed (status " << status << "):\n" << ran;
     std::exit(1);
@@ -104,18 +108,20 @@ Row measure(const fs::path& stoss, const Size& size, const fs::path& work) {
   r.linear = match(ran, R"(, linear solver ([0-9.]+) s, output)");
   r.output = match(ran, R"(output ([0-9.]+) s)");
   r.peak_mb = match(ran, R"(peak memory ([0-9.]+) MB)");
+  if (iterative) r.krylov_per_solve = match(ran, R"(krylov iterations ([0-9.]+) per solve)");
   fs::remove_all(out);
   return r;
 }
 
-void write_plot(const fs::path& csv, const fs::path& png) {
-  const fs::path script = results_dir / "scaling.gnuplot";
+void write_plot(const fs::path& csv, const fs::path& png, const std::string& solver) {
+  fs::path script = png;
+  script.replace_extension(".gnuplot");
   const std::string c = "'" + csv.string() + "'";
   std::ofstream(script)
       << "set datafile separator ','\n"
       << "set terminal pngcairo size 1200,480 noenhanced font ',11'\n"
       << "set output '" << png.string() << "'\n"
-      << "set multiplot layout 1,2 title 'tumbling hollow sphere, energy_momentum, h = 0.01, 5 steps (2 cores, UMFPACK)'\n"
+      << "set multiplot layout 1,2 title 'tumbling hollow sphere, energy_momentum, h = 0.01, 5 steps (2 cores, " << solver << ")'\n"
       << "set logscale xy\nset grid\nset xlabel 'elements (hex8)'\nset key inside top left box opaque\n"
       << "set title 'seconds per step'\nset ylabel 's/step'\n"
       << "plot " << c << " using 3:8 with linespoints lw 2 pt 7 lc rgb '#1f77b4' title 'whole step', "
@@ -130,14 +136,15 @@ void write_plot(const fs::path& csv, const fs::path& png) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool large = false;
+  bool large = false, iterative = false;
   fs::path stoss = fs::read_symlink("/proc/self/exe").parent_path() / "stoss";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--large") large = true;
+    else if (a == "--iterative") iterative = true;
     else if (a == "--stoss" && i + 1 < argc) stoss = argv[++i];
     else {
-      std::cerr << "usage: bench_scaling [--large] [--stoss PATH]\n";
+      std::cerr << "usage: bench_scaling [--large] [--iterative] [--stoss PATH]\n";
       return 2;
     }
   }
@@ -154,28 +161,29 @@ int main(int argc, char** argv) {
   const fs::path work = fs::temp_directory_path() / ("stoss_scaling_" + std::to_string(::getpid()));
   fs::create_directories(work);
   fs::create_directories(results_dir);
-  const fs::path csv = results_dir / "scaling.csv", png = results_dir / "scaling.png";
+  const std::string base = iterative ? "scaling_iterative" : "scaling";
+  const fs::path csv = results_dir / (base + ".csv"), png = results_dir / (base + ".png");
   std::ofstream out(csv);
   out << "divisions,layers,elements,dofs,steps,wall_seconds,newton_per_step,s_per_step,linear_solver_seconds,"
-         "linear_solver_share,assembly_share,contact_share,output_share,peak_memory_mb\n";
-  std::printf("| elements | dofs | s/step | Newton its/step | peak memory MB | linear solver | assembly | output |\n");
-  std::printf("|---|---|---|---|---|---|---|---|\n");
+         "linear_solver_share,assembly_share,contact_share,output_share,peak_memory_mb,krylov_per_solve\n";
+  std::printf("| elements | dofs | s/step | Newton its/step | peak memory MB | linear solver | assembly | output | Krylov its/solve |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|\n");
   for (const Size& size : sizes) {
-    const Row r = measure(stoss, size, work);
+    const Row r = measure(stoss, size, work, iterative);
     const double per_step = r.wall / r.steps;
     char line[512];
-    std::snprintf(line, sizeof line, "%d,%d,%d,%d,%d,%.4f,%.3f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%.1f\n", r.divisions,
+    std::snprintf(line, sizeof line, "%d,%d,%d,%d,%d,%.4f,%.3f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%.1f,%.1f\n", r.divisions,
                   r.layers, r.elements, r.dofs, r.steps, r.wall, r.newton_per_step, per_step, r.linear,
-                  r.linear / r.wall, r.assembly / r.wall, r.contact / r.wall, r.output / r.wall, r.peak_mb);
+                  r.linear / r.wall, r.assembly / r.wall, r.contact / r.wall, r.output / r.wall, r.peak_mb, r.krylov_per_solve);
     out << line << std::flush;
-    std::printf("| %d | %d | %.3f | %.1f | %.0f | %.0f %% | %.0f %% | %.1f %% |\n", r.elements, r.dofs, per_step,
-                r.newton_per_step, r.peak_mb, 100 * r.linear / r.wall, 100 * r.assembly / r.wall,
-                100 * r.output / r.wall);
+    std::printf("| %d | %d | %.3f | %.1f | %.0f | %.0f %% | %.0f %% | %.1f %% | %s |\n", r.elements, r.dofs,
+                per_step, r.newton_per_step, r.peak_mb, 100 * r.linear / r.wall, 100 * r.assembly / r.wall,
+                100 * r.output / r.wall, iterative ? std::to_string(r.krylov_per_solve).c_str() : "–");
     std::fflush(stdout);
   }
   out.close();
   fs::remove_all(work);
-  write_plot(csv, png);
+  write_plot(csv, png, iterative ? "BiCGSTAB + Jacobi" : "UMFPACK");
   std::printf("wrote %s and %s\n", csv.c_str(), png.c_str());
   return 0;
 }

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <cstdlib>
 #include <sstream>
 
 #include <sys/resource.h>
@@ -261,8 +262,16 @@ constexpr int max_step_halvings = 4;
 /// Newton from the scene's solver settings. Factorisations are kept while they contract the residual
 /// by half per iteration (and reach the tolerance within the budget): on the contact scenes a
 /// refactorisation costs as much as ~20 reused solves (bench/contact_ball.cpp).
+/// The linear solver: direct (UMFPACK) unless the environment says STOSS_LINEAR_SOLVER=iterative.
+/// An interim switch for benchmarks and tests until the scene has a solver.linear setting.
+solve::LinearMethod linear_method() {
+  const char* name = std::getenv("STOSS_LINEAR_SOLVER");
+  return name && std::string(name) == "iterative" ? solve::LinearMethod::iterative : solve::LinearMethod::direct;
+}
+
 solve::NewtonOptions newton_options(const Model& m) {
   solve::NewtonOptions o;
+  o.linear = linear_method();
   o.tolerance = m.solver.tolerance;
   o.max_iterations = m.solver.max_iterations;
   o.reuse_contraction = 0.5;
@@ -308,6 +317,8 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
   double output_seconds = 0;  // series rows, frames and the observer's calls
   auto t_out = Clock::now();
   observer.begin(m, layout);
+  if (newton_options(m).linear == solve::LinearMethod::iterative)
+    observer.log("linear solver: iterative (BiCGSTAB, Jacobi preconditioner; STOSS_LINEAR_SOLVER)");
   const Balance b0 = balance(p, s);
   observer.step(step_row(s, b0, contact_row(p, nullptr), layout, nullptr, 0.0));
   observer.frame(frame_of(s, p));
@@ -329,6 +340,10 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
       (k < first_contact ? sum.assembly_seconds : sum.contact_seconds) += integrator.term_seconds(k);
     sum.output_seconds = output_seconds;
     sum.peak_memory_bytes = peak_resident_bytes();
+    const solve::LinearSolver& linear = integrator.linear_solver();
+    if (linear.krylov_solves() > 0)
+      sum.krylov_iterations_per_solve = double(linear.krylov_iterations()) / double(linear.krylov_solves());
+    sum.krylov_fallbacks = int(linear.krylov_fallbacks());
     observer.end(sum);
     return sum;
   };

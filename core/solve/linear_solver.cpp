@@ -2,6 +2,7 @@
 
 #include <malloc.h>
 
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/UmfPackSupport>
 #include <chrono>
 #include <mutex>
@@ -35,13 +36,44 @@ struct LinearSolver::Impl {
   Eigen::UmfPackLU<SparseMatrix> lu;
 };
 
-LinearSolver::LinearSolver() : impl_(std::make_unique<Impl>()) {}
+/// The iterative path: a copy of the matrix (Newton may reuse a "factorisation" after the pattern's
+/// values moved on) and BiCGSTAB preconditioned by its diagonal. An LU of the copy (Impl) is built
+/// only when a Krylov solve fails. Jacobi, not AMG: measured 138 iterations per solve at 1152 hex8 and
+/// 234 at 7680 on the tumbling sphere; Eigen's IncompleteLUT (droptol 1e-4, fill 4) took 6.2 and 13.0
+/// but its factorisations made the 7680 run 84 s against 46 s with Jacobi and 13.5 s with UMFPACK.
+struct LinearSolver::Krylov {
+  SparseMatrix A;
+  Eigen::BiCGSTAB<SparseMatrix, Eigen::DiagonalPreconditioner<double>> bicgstab;
+  bool lu_ready = false;
+};
+
+LinearSolver::LinearSolver(LinearMethod method) : impl_(std::make_unique<Impl>()), method_(method) {}
 LinearSolver::~LinearSolver() = default;
 LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
 LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
 
+void LinearSolver::set_method(LinearMethod method) {
+  if (method == method_) return;
+  method_ = method;
+  analyzed_generation_ = -1;
+  factorized_generation_ = -1;
+}
+
 bool LinearSolver::factorize(const BlockPattern& A) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (method_ == LinearMethod::iterative) {
+    if (!krylov_) krylov_ = std::make_unique<Krylov>();
+    krylov_->A = A.matrix();
+    krylov_->lu_ready = false;
+    krylov_->bicgstab.setTolerance(krylov_tolerance);
+    krylov_->bicgstab.setMaxIterations(max_krylov_iterations);
+    krylov_->bicgstab.compute(krylov_->A);
+    seconds_ += seconds_since(t0);
+    ++factorizations_;
+    const bool ok = krylov_->bicgstab.info() == Eigen::Success;
+    factorized_generation_ = ok ? A.generation() : -1;
+    return ok;
+  }
   if (analyzed_generation_ != A.generation()) {
     impl_->lu.analyzePattern(A.matrix());
     analyzed_generation_ = A.generation();
@@ -56,6 +88,23 @@ bool LinearSolver::factorize(const BlockPattern& A) {
 
 Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) const {
   const auto t0 = std::chrono::steady_clock::now();
+  if (method_ == LinearMethod::iterative) {
+    Eigen::VectorXd x = krylov_->bicgstab.solve(b);
+    ++krylov_solves_;
+    krylov_iterations_ += krylov_->bicgstab.iterations();
+    if (krylov_->bicgstab.info() != Eigen::Success || !x.allFinite()) {
+      // No convergence (an indefinite or badly scaled system, e.g. contact multipliers): solve this
+      // matrix directly rather than hand Newton a poor increment.
+      ++krylov_fallbacks_;
+      if (!krylov_->lu_ready) {
+        impl_->lu.compute(krylov_->A);
+        krylov_->lu_ready = true;
+      }
+      x = impl_->lu.solve(b);
+    }
+    seconds_ += seconds_since(t0);
+    return x;
+  }
   Eigen::VectorXd x = impl_->lu.solve(b);
   seconds_ += seconds_since(t0);
   return x;

@@ -1,5 +1,6 @@
 #pragma once
-/// @file Sparse direct solver facade over SuiteSparse (UMFPACK through Eigen's support module).
+/// @file Sparse linear solver facade: SuiteSparse UMFPACK (direct, the default) or a preconditioned
+/// Krylov method (iterative, Eigen's BiCGSTAB).
 
 #include <Eigen/Core>
 #include <memory>
@@ -8,16 +9,26 @@
 
 namespace stoss::solve {
 
-/// LU solver for general (non-symmetric, indefinite) sparse systems. The symbolic analysis is
-/// redone only when the pattern's generation changes; every call refactorises numerically.
+/// How LinearSolver solves. `iterative` is BiCGSTAB with a Jacobi preconditioner on a copy of the
+/// factorised matrix (no AMG: see README, "Performance"); a solve that does not reach its tolerance
+/// falls back to an LU of the same matrix, so Newton always receives a solution of that matrix.
+enum class LinearMethod { direct, iterative };
+
+/// Solver for general (non-symmetric, indefinite) sparse systems. Direct: LU, the symbolic analysis
+/// redone only when the pattern's generation changes, every factorize() refactorises numerically.
+/// Iterative: factorize() keeps the matrix and its preconditioner, solve() runs BiCGSTAB.
 class LinearSolver {
  public:
-  LinearSolver();
+  explicit LinearSolver(LinearMethod method = LinearMethod::direct);
   ~LinearSolver();
   LinearSolver(LinearSolver&&) noexcept;
   LinearSolver& operator=(LinearSolver&&) noexcept;
 
-  /// Factorises A; returns false if the matrix is numerically singular.
+  /// Switches the method; the next solve needs a new factorize().
+  void set_method(LinearMethod method);
+  LinearMethod method() const { return method_; }
+  /// Factorises A (iterative: keeps a copy of A and builds the preconditioner); returns false if the
+  /// matrix is numerically singular.
   bool factorize(const BlockPattern& A);
   /// Whether a factorisation exists for a matrix of this pattern generation.
   bool ready_for(const BlockPattern& A) const { return factorized_generation_ == A.generation(); }
@@ -28,13 +39,26 @@ class LinearSolver {
   /// Seconds spent in analysis, factorisation and solves since construction.
   double seconds() const { return seconds_; }
 
+  /// Iterative method: relative residual ‖b − A x‖ / ‖b‖ a Krylov solve stops at.
+  static constexpr double krylov_tolerance = 1e-10;
+  /// Iterative method: Krylov iterations a solve may take before it falls back to LU.
+  static constexpr int max_krylov_iterations = 1000;
+  /// Iterative method: solves so far, their Krylov iterations in total, and those that fell back to LU.
+  long krylov_solves() const { return krylov_solves_; }
+  long krylov_iterations() const { return krylov_iterations_; }
+  long krylov_fallbacks() const { return krylov_fallbacks_; }
+
  private:
   struct Impl;
+  struct Krylov;
   std::unique_ptr<Impl> impl_;
+  std::unique_ptr<Krylov> krylov_;
+  LinearMethod method_ = LinearMethod::direct;
   int analyzed_generation_ = -1;
   int factorized_generation_ = -1;
   int factorizations_ = 0;
   mutable double seconds_ = 0;
+  mutable long krylov_solves_ = 0, krylov_iterations_ = 0, krylov_fallbacks_ = 0;
 };
 
 }  // namespace stoss::solve

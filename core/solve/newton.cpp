@@ -49,6 +49,7 @@ std::string format_history(const std::vector<double>& residuals) {
 NewtonResult newton_solve(NonlinearSystem& system, Eigen::VectorXd& z, BlockPattern& A, LinearSolver& solver,
                           const NewtonOptions& options, const std::function<void(const std::string&)>& log) {
   NewtonResult result;
+  solver.set_method(options.linear);  // a no-op unless the method changed
   Iterate current{z, Eigen::VectorXd(z.size()), 0};
   system.evaluate(current.z, current.R, nullptr);
   current.r = system.residual_measure(current.R);

@@ -35,6 +35,8 @@ struct NewtonOptions {
   /// least `reuse_contraction` per iteration; refactorise with a fresh Jacobian otherwise.
   bool reuse_factorization = true;
   double reuse_contraction = 0.25;
+  /// How the linear systems are solved (LinearSolver::set_method): direct LU or a Krylov method.
+  LinearMethod linear = LinearMethod::direct;
 };
 
 struct NewtonResult {

@@ -45,6 +45,8 @@ class Integrator : private solve::NonlinearSystem {
   /// Seconds in the scheme's inertia rows, the mass block of the Jacobian, the pattern's zeroing,
   /// rebuilds and elimination of fixed rows: the assembly that belongs to no term.
   double inertia_seconds() const { return inertia_seconds_; }
+  /// The step solver's linear solver, for its counters (Krylov iterations).
+  const solve::LinearSolver& linear_solver() const { return solver_; }
   /// Newton solves in the last step (1 + active-set changes).
   int active_set_passes() const { return passes_; }
   /// Kinetic energy added by the velocity correction (4.12) in the last step (0 if none).

@@ -273,3 +273,59 @@ TEST(Simulate, WallTimeOfAContactRunCountsTheContactTerms) {
 
 }  // namespace
 }  // namespace stoss
+
+namespace stoss {
+namespace {
+
+/// api/examples/tumbling_sphere.json at 96 hex8 (divisions 4, layers 1), 10 steps of h = 0.01.
+model::Model small_tumbling_sphere() {
+  model::Model m;
+  m.mesh.add_body("ball", mesh::hollow_sphere({0, 0, 1.3}, 1.0, 0.8, 4, 1));
+  model::BodySpec b;
+  b.name = "ball";
+  b.material = {"saint_venant_kirchhoff", 1e4, 0.4, 1};
+  b.initial_velocity = {0, 1, -1};
+  b.initial_angular_velocity = {2.0 / 3, 4.0 / 3, 4.0 / 3};
+  b.center = Eigen::Vector3d(0, 0, 1.3);
+  m.bodies.push_back(b);
+  m.time = {model::Scheme::energy_momentum, 0.01, 0.1};
+  m.solver.tolerance = 1e-12;
+  m.output.every = 5;
+  m.effects = model::resolve_effects(m);
+  return m;
+}
+
+/// Sets STOSS_LINEAR_SOLVER for the scope of a test.
+class LinearSolverEnvironment {
+ public:
+  explicit LinearSolverEnvironment(const char* method) { setenv("STOSS_LINEAR_SOLVER", method, 1); }
+  ~LinearSolverEnvironment() { unsetenv("STOSS_LINEAR_SOLVER"); }
+};
+
+TEST(Simulate, IterativeLinearSolverGivesTheDirectAnswerToTheNewtonTolerance) {
+  const model::Model m = small_tumbling_sphere();
+  RecordingObserver direct, iterative;
+  const model::Summary sd = simulate(m, direct);
+  model::Summary si;
+  {
+    LinearSolverEnvironment env("iterative");
+    si = simulate(m, iterative);
+  }
+  ASSERT_TRUE(sd.completed);
+  ASSERT_TRUE(si.completed);
+  EXPECT_EQ(sd.krylov_iterations_per_solve, 0.0);
+  EXPECT_GT(si.krylov_iterations_per_solve, 1.0) << "the iterative run really used the Krylov solver";
+  EXPECT_EQ(si.krylov_fallbacks, 0);
+  ASSERT_EQ(direct.frames.size(), iterative.frames.size());
+  // Both Newton solves stop at increments ≤ 1e-12 of the model size (diagonal ≈ 2); ten steps of such
+  // differences stay far below 1e-9.
+  const model::Frame &fd = direct.frames.back(), &fi = iterative.frames.back();
+  EXPECT_LT((fd.position - fi.position).lpNorm<Eigen::Infinity>(), 1e-9);
+  EXPECT_LT((fd.velocity - fi.velocity).lpNorm<Eigen::Infinity>(), 1e-7);
+  const auto Hd = direct.series("total_energy"), Hi = iterative.series("total_energy");
+  EXPECT_LT(std::abs(Hd.back() - Hi.back()), 1e-9 * std::abs(Hd.front()));
+  EXPECT_GT((fd.position - direct.frames.front().position).norm(), 0.1) << "the sphere moved";
+}
+
+}  // namespace
+}  // namespace stoss
