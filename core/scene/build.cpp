@@ -87,17 +87,23 @@ double min_jacobian_determinant(const std::vector<Eigen::Vector3d>& nodes, const
   return *std::min_element(det.begin(), det.end());
 }
 
+/// A generated body with its whole boundary as the surface "boundary", like every other mesh.
+mesh::BodyMesh with_boundary(mesh::BodyMesh body) {
+  body.surfaces["boundary"] = mesh::boundary_faces(body.hex8);
+  return body;
+}
+
 mesh::BodyMesh body_mesh(const json& m, const std::optional<std::filesystem::path>& mesh_directory) {
   if (m.contains("file")) return file_body_mesh(m, mesh_directory);
   if (m.contains("box")) {
     const json& b = m["box"];
-    return mesh::box(vector3(b["min"]), vector3(b["max"]), b["divisions"].get<std::array<int, 3>>());
+    return with_boundary(mesh::box(vector3(b["min"]), vector3(b["max"]), b["divisions"].get<std::array<int, 3>>()));
   }
   if (m.contains("hollow_sphere")) {
     const json& s = m["hollow_sphere"];
-    return mesh::hollow_sphere(vector3(s["center"]), s["outer_radius"].get<double>(),
-                               s["inner_radius"].get<double>(), s["divisions"].get<int>(),
-                               s["layers"].get<int>());
+    return with_boundary(mesh::hollow_sphere(vector3(s["center"]), s["outer_radius"].get<double>(),
+                                             s["inner_radius"].get<double>(), s["divisions"].get<int>(),
+                                             s["layers"].get<int>()));
   }
   return inline_mesh(m);
 }

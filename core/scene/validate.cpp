@@ -136,10 +136,11 @@ Surfaces check_mesh(json& mesh, const std::string& p, const std::optional<std::s
   if (inline_mesh) return check_inline_mesh(mesh, p, c);
   if (mesh.contains("box")) {
     check_box(mesh["box"], child(p, "box"), c);
-    if (c.mark() == start) return std::set<std::string>{"xmin", "xmax", "ymin", "ymax", "bottom", "top"};
+    if (c.mark() == start)  // "boundary": the body's whole boundary, as for every mesh (build.cpp)
+      return std::set<std::string>{"xmin", "xmax", "ymin", "ymax", "bottom", "top", "boundary"};
   } else {
     check_hollow_sphere(mesh["hollow_sphere"], child(p, "hollow_sphere"), c);
-    if (c.mark() == start) return std::set<std::string>{"outer", "inner"};
+    if (c.mark() == start) return std::set<std::string>{"outer", "inner", "boundary"};
   }
   return std::nullopt;
 }

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "../core/recording_observer.hpp"
 #include "core/scene/scene.hpp"
@@ -198,6 +200,31 @@ TEST(HollowBallPlate, MidpointCompletesWithMomentaAndRecordsItsEnergyError) {
   RecordProperty("midpoint_energy_error", std::to_string(r.summary.energy_drift));
   std::printf("midpoint: max |H − H0|/H0 = %.3e, penetration any face %.1e, Newton its/step %.2f\n",
               r.summary.energy_drift, r.summary.max_penetration, r.summary.newton_iterations_per_step);
+}
+
+// The ball lands on the plate's edge with the plate's whole boundary as the master: one smooth
+// surface across the edge between top and xmax (and past the extraordinary corners), no energy jump
+// at the edge, no blind spot.
+TEST(HollowBallPlate, SmoothWholeBoundaryMasterTakesTheBallOnItsEdgeExactly) {
+  nlohmann::json scene = nlohmann::json::parse(std::ifstream(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json"));
+  scene["bodies"][0]["mesh"]["hollow_sphere"]["center"] = {2.0, 0.5, 1.3};  // the pole over the edge x = 2
+  scene["bodies"][0]["initial_velocity"] = {0, 0, -1};
+  scene["contact"][0]["master"] = "plate/boundary";
+  scene["time"]["end"] = 0.6;
+  const model::Model m = scene::load(scene);
+  ASSERT_EQ(m.contact.at(0).master_surface, MasterSurface::smooth);
+  RecordingObserver r;
+  ASSERT_TRUE(simulate(m, r).completed);
+  const auto active = r.series("active_contacts"), unprojected = r.series("unprojected_nodes");
+  EXPECT_GT(*std::max_element(active.begin(), active.end()), 0);
+  EXPECT_EQ(*std::max_element(unprojected.begin(), unprojected.end()), 0);
+  EXPECT_LT(r.summary.energy_drift, 1e-9);
+  EXPECT_LT(r.vector_drift("linear_momentum"), 1e-10);
+  EXPECT_LT(r.vector_drift("angular_momentum"), 1e-10);
+  EXPECT_LT(r.summary.max_penetration, 0.0025 * master_face_size);
+  std::printf("edge impact, whole-boundary master: energy %.1e, max active %g, penetration %.1e, %.1f its/step\n",
+              r.summary.energy_drift, *std::max_element(active.begin(), active.end()), r.summary.max_penetration,
+              r.summary.newton_iterations_per_step);
 }
 
 TEST(HollowBallPlate, SmoothSurfaceMidpointAndHhtCompleteWithTheirMomentaAndRecordTheirEnergy) {

@@ -127,3 +127,19 @@ TEST(ContactScheme, PenaltyWithHhtIsRefusedAtValidation) {
 
 }  // namespace
 }  // namespace stoss::scene
+
+namespace stoss::scene {
+namespace {
+
+// Every body has its whole boundary as the surface "boundary"; as a master it is one smooth surface
+// across the edges between the named surfaces (a box: top, xmax, … joined, corners extraordinary).
+TEST(MasterSurface, ABoxsWholeBoundaryIsOneSmoothMaster) {
+  json scene = ball_and_plate("plate/boundary");
+  scene["bodies"][1]["mesh"]["box"]["divisions"] = {4, 4, 2};  // ≤ 1 extraordinary corner per face
+  const model::Model m = load(scene);
+  EXPECT_EQ(m.contact.at(0).master_surface, model::MasterSurface::smooth);
+  EXPECT_EQ(m.mesh.surface("plate/boundary").size(), 2u * (16 + 8 + 8));
+}
+
+}  // namespace
+}  // namespace stoss::scene

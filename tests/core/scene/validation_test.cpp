@@ -192,7 +192,7 @@ INSTANTIATE_TEST_SUITE_P(Rules, SceneRule, ::testing::Values(
   Violation{"surface reference body", {{"/contact/0/master", "table/top"}}, "/contact/0/master",
             R"(no body named "table")"},
   Violation{"surface reference surface", {{"/contact/0/master", "plate/side"}}, "/contact/0/master",
-            R"(body "plate" has no surface "side" (it has bottom, top, xmax, xmin, ymax, ymin))"},
+            R"(body "plate" has no surface "side" (it has bottom, boundary, top, xmax, xmin, ymax, ymin))"},
   Violation{"inline surfaces include boundary", {{"/contact/0/master", "cube/bottom"}}, "/contact/0/master",
             R"(body "cube" has no surface "bottom" (it has boundary, top))"},
   Violation{"slave and master bodies differ", {{"/contact/0/master", "ball/inner"}}, "/contact/0/master",
@@ -221,7 +221,7 @@ INSTANTIATE_TEST_SUITE_P(Rules, SceneRule, ::testing::Values(
   // boundary
   Violation{"boundary surface required", {{"/boundary/0/surface", nullptr, true}}, "/boundary/0/surface", "required"},
   Violation{"boundary surface exists", {{"/boundary/0/surface", "plate/base"}}, "/boundary/0/surface",
-            R"(body "plate" has no surface "base" (it has bottom, top, xmax, xmin, ymax, ymin))"},
+            R"(body "plate" has no surface "base" (it has bottom, boundary, top, xmax, xmin, ymax, ymin))"},
   Violation{"fix distinct", {{"/boundary/0/fix", "xx"}}, "/boundary/0/fix", R"(must be distinct letters from "xyz", got "xx")"},
   Violation{"fix letters", {{"/boundary/0/fix", "xw"}}, "/boundary/0/fix", R"(must be distinct letters from "xyz", got "xw")"},
   Violation{"fix non-empty", {{"/boundary/0/fix", ""}}, "/boundary/0/fix", R"(must be distinct letters from "xyz", got "")"},
