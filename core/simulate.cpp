@@ -152,7 +152,7 @@ struct Balance {
   double total() const { return kinetic + strain + potential + contact; }  // H of (5.4)
 };
 
-/// The contact series of one step (service.md §3), summed or maximised over the pairs.
+/// The contact series of one step (docs/results.md), summed or maximised over the pairs.
 struct ContactRow {
   int active = 0, slipping = 0, switches = 0, unprojected = 0;
   double max_penetration = 0, own_face_penetration = 0, faceted_penetration = 0, energy_jump = 0;

@@ -9,14 +9,14 @@
 
 namespace stoss::model {
 
-/// One named time series (service.md §3 /series/<name>): `components` values per step.
+/// One named time series (docs/results.md /series/<name>): `components` values per step.
 struct SeriesSpec {
   std::string name;
   int components = 1;    ///< 1 → dataset [S], 3 → [S,3]
   bool integer = false;  ///< stored as int32
 };
 
-/// The series a run writes; only those of effects the scene calls for (service.md §3).
+/// The series a run writes; only those of effects the scene calls for (docs/results.md).
 struct SeriesLayout {
   std::vector<SeriesSpec> series;
   int index_of(const std::string& name) const;  ///< -1 if absent
@@ -30,7 +30,7 @@ struct StepRow {
   std::vector<double> values;  ///< row_size() values, components of a series contiguous
 };
 
-/// Node fields written as a frame (service.md §3 /frames).
+/// Node fields written as a frame (docs/results.md /frames).
 struct Frame {
   double time = 0;
   Eigen::VectorXd position;          ///< 3 per node
@@ -38,7 +38,7 @@ struct Frame {
   Eigen::VectorXd contact_pressure;  ///< 1 per node; empty when the scene has no contact
 };
 
-/// What a finished (or stopped) run reports: the job summary of service.md §2.
+/// What a finished (or stopped) run reports: the job summary of docs/api.md.
 struct Summary {
   bool completed = false;  ///< false when canceled or failed
   int steps = 0;           ///< converged steps

@@ -1,6 +1,6 @@
 #pragma once
 /// @file One time step: the scheme's inertia plus every term, solved by Newton inside the active-set
-/// loop of the contact terms (formulation.md (2.3), §3.5).
+/// loop of the contact terms (docs/theory.md (2.3), §3.5).
 
 #include <Eigen/SparseCholesky>
 #include <functional>

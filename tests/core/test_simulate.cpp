@@ -14,7 +14,7 @@ namespace {
 
 using testing::RecordingObserver;
 
-/// formulation.md §6.3 B4: a jittered 2×1×1 bar, E = 100, ν = 0.3, ρ = 1, tumbling with ω = (1, 2, 4)
+/// docs/theory.md §6.3 B4: a jittered 2×1×1 bar, E = 100, ν = 0.3, ρ = 1, tumbling with ω = (1, 2, 4)
 /// plus a translation and a deformation velocity.
 model::Model tumbling_bar(model::Scheme scheme, double h, int steps) {
   model::Model m;
