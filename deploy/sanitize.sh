@@ -15,7 +15,8 @@ cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 nice -n 10 cmake --build "$BUILD" -j"$JOBS" --target stoss test_scene test_server
 
 # halt on the first report; leaks are not checked (LeakSanitizer needs ptrace, which containers often deny).
-export ASAN_OPTIONS="halt_on_error=1:detect_leaks=0:abort_on_error=0:exitcode=99"
+# handle_segv=0: a test sends SIGSEGV to a job process on purpose and expects it to die of it.
+export ASAN_OPTIONS="halt_on_error=1:detect_leaks=0:abort_on_error=0:exitcode=99:handle_segv=0"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:exitcode=99"
 # Fewer fuzz inputs than CI's Release run: instrumented code is ~10x slower.
 export STOSS_FUZZ_INPUTS="${STOSS_FUZZ_INPUTS:-30000}"
