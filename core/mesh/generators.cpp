@@ -56,10 +56,17 @@ class NodeMerger {
     }
   };
 
+  /// The cell index of a scaled coordinate, clamped to ±1e18 (NaN to 0) so that the conversion and
+  /// the ±1 neighbours never overflow; the distance test in index_of still decides a match.
+  static long long cell_index(double s) {
+    constexpr double limit = 1e18;
+    if (!(std::abs(s) < limit)) return s > 0 ? 1'000'000'000'000'000'000LL : s < 0 ? -1'000'000'000'000'000'000LL : 0;
+    return static_cast<long long>(std::floor(s));
+  }
+
   Cell cell_of(const Eigen::Vector3d& x) const {
     const Eigen::Vector3d s = (x - origin_) / tolerance_;
-    return {static_cast<long long>(std::floor(s[0])), static_cast<long long>(std::floor(s[1])),
-            static_cast<long long>(std::floor(s[2]))};
+    return {cell_index(s[0]), cell_index(s[1]), cell_index(s[2])};
   }
 
   std::vector<Eigen::Vector3d>& nodes_;
