@@ -110,12 +110,6 @@ TEST(MasterSurface, ExplicitFacetedIsKeptWithTheClampRule) {
   EXPECT_EQ(m.contact.at(0).switch_gap, model::SwitchGap::clamp);
 }
 
-}  // namespace
-}  // namespace stoss::scene
-
-namespace stoss::scene {
-namespace {
-
 // A pair that the contact module cannot run is refused at validation, not in the worker.
 TEST(ContactScheme, PenaltyWithHhtIsRefusedAtValidation) {
   json scene = ball_and_plate("plate/top");
@@ -124,12 +118,6 @@ TEST(ContactScheme, PenaltyWithHhtIsRefusedAtValidation) {
   EXPECT_EQ(refusal(scene), "/contact/0/enforcement: \"penalty\" is not implemented with time.scheme \"hht\"; use "
                             "energy_momentum or midpoint");
 }
-
-}  // namespace
-}  // namespace stoss::scene
-
-namespace stoss::scene {
-namespace {
 
 // Every body has its whole boundary as the surface "boundary"; as a master it is one smooth surface
 // across the edges between the named surfaces (a box: top, xmax, … joined, corners extraordinary).
