@@ -12,7 +12,9 @@ namespace stoss::solve {
 /// How LinearSolver solves. `iterative` is BiCGSTAB with a Jacobi preconditioner on a copy of the
 /// factorised matrix (no AMG: see README, "Performance"); a solve that does not reach its tolerance
 /// falls back to an LU of the same matrix, so Newton always receives a solution of that matrix.
-enum class LinearMethod { direct, iterative };
+/// `petsc_gamg` is GMRES preconditioned by PETSc's algebraic multigrid (GAMG) with the rigid-body
+/// modes as near-null space (core/solve/petsc_solver.hpp), with the same LU fallback.
+enum class LinearMethod { direct, iterative, petsc_gamg };
 
 /// Solver for general (non-symmetric, indefinite) sparse systems. Direct: LU, the symbolic analysis
 /// redone only when the pattern's generation changes, every factorize() refactorises numerically.
@@ -32,6 +34,9 @@ class LinearSolver {
   bool factorize(const BlockPattern& A);
   /// Whether a factorisation exists for a matrix of this pattern generation.
   bool ready_for(const BlockPattern& A) const { return factorized_generation_ == A.generation(); }
+  /// Positions of the nodes (3 per node) whose dofs come first in every matrix; the AMG path builds
+  /// the rigid-body modes from them. The other methods ignore them.
+  void set_coordinates(const Eigen::VectorXd& positions) { coordinates_ = positions; }
   /// Number of numeric factorisations so far.
   int factorizations() const { return factorizations_; }
   /// Solves A x = b with the last factorisation.
@@ -53,6 +58,7 @@ class LinearSolver {
   struct Krylov;
   std::unique_ptr<Impl> impl_;
   std::unique_ptr<Krylov> krylov_;
+  Eigen::VectorXd coordinates_;
   LinearMethod method_ = LinearMethod::direct;
   int analyzed_generation_ = -1;
   int factorized_generation_ = -1;

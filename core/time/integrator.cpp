@@ -167,6 +167,7 @@ solve::NewtonResult Integrator::step(State& s, double h, const LogFunction& log)
   }
   residual_scale_ = 2 * (mass_ * s.v).norm();
   scale_pending_ = true;
+  solver_.set_coordinates(s.x);  // rigid-body modes for an AMG linear solver
   solve::NewtonResult result = solve_with_active_set(z, log);
   if (result.converged) {
     Eigen::VectorXd impulse = Eigen::VectorXd::Zero(s.x.size());
