@@ -4,8 +4,11 @@
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/UmfPackSupport>
+#include <algorithm>
 #include <chrono>
 #include <mutex>
+
+#include "core/solve/petsc_solver.hpp"
 
 namespace stoss::solve {
 namespace {
@@ -47,6 +50,12 @@ struct LinearSolver::Krylov {
   bool lu_ready = false;
 };
 
+/// The PETSc path (petsc_solver.hpp), loaded on first use; an LU of its matrix only when a solve fails.
+struct LinearSolver::Amg {
+  std::unique_ptr<AmgSolver> solver = make_petsc_amg_solver();
+  bool lu_ready = false;
+};
+
 LinearSolver::LinearSolver(LinearMethod method) : impl_(std::make_unique<Impl>()), method_(method) {}
 LinearSolver::~LinearSolver() = default;
 LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
@@ -60,6 +69,7 @@ void LinearSolver::set_method(LinearMethod method) {
 }
 
 bool LinearSolver::factorize(const BlockPattern& A) {
+  if (method_ == LinearMethod::petsc_gamg) return factorize_amg(A);
   const auto t0 = std::chrono::steady_clock::now();
   if (method_ == LinearMethod::iterative) {
     if (!krylov_) krylov_ = std::make_unique<Krylov>();
@@ -87,11 +97,13 @@ bool LinearSolver::factorize(const BlockPattern& A) {
 }
 
 Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) const {
+  if (method_ == LinearMethod::petsc_gamg) return solve_amg(b);
   const auto t0 = std::chrono::steady_clock::now();
   if (method_ == LinearMethod::iterative) {
     Eigen::VectorXd x = krylov_->bicgstab.solve(b);
     ++krylov_solves_;
     krylov_iterations_ += krylov_->bicgstab.iterations();
+    krylov_max_iterations_ = std::max(krylov_max_iterations_, int(krylov_->bicgstab.iterations()));
     if (krylov_->bicgstab.info() != Eigen::Success || !x.allFinite()) {
       // No convergence (an indefinite or badly scaled system, e.g. contact multipliers): solve this
       // matrix directly rather than hand Newton a poor increment.
@@ -108,6 +120,40 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) const {
   Eigen::VectorXd x = impl_->lu.solve(b);
   seconds_ += seconds_since(t0);
   return x;
+}
+
+bool LinearSolver::factorize_amg(const BlockPattern& A) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!amg_) amg_ = std::make_unique<Amg>();
+  amg_->lu_ready = false;
+  const bool ok = amg_->solver->factorize(A.matrix(), A.generation(), coordinates_);
+  seconds_ += seconds_since(t0);
+  ++factorizations_;
+  factorized_generation_ = ok ? A.generation() : -1;
+  return ok;
+}
+
+Eigen::VectorXd LinearSolver::solve_amg(const Eigen::VectorXd& b) const {
+  const auto t0 = std::chrono::steady_clock::now();
+  Eigen::VectorXd x;
+  const KrylovOutcome outcome = amg_->solver->solve(b, x);
+  ++krylov_solves_;
+  krylov_iterations_ += outcome.iterations;
+  krylov_max_iterations_ = std::max(krylov_max_iterations_, outcome.iterations);
+  if (!outcome.converged || !x.allFinite()) {
+    ++krylov_fallbacks_;  // Newton gets a solution of this matrix either way
+    if (!amg_->lu_ready) {
+      impl_->lu.compute(amg_->solver->matrix());
+      amg_->lu_ready = true;
+    }
+    x = impl_->lu.solve(b);
+  }
+  seconds_ += seconds_since(t0);
+  return x;
+}
+
+std::string LinearSolver::preconditioner_description() const {
+  return amg_ && method_ == LinearMethod::petsc_gamg ? amg_->solver->description() : std::string();
 }
 
 }  // namespace stoss::solve

@@ -1,9 +1,10 @@
 #pragma once
-/// @file Sparse linear solver facade: SuiteSparse UMFPACK (direct, the default) or a preconditioned
-/// Krylov method (iterative, Eigen's BiCGSTAB).
+/// @file Sparse linear solver facade: SuiteSparse UMFPACK (direct, the default), a preconditioned
+/// Krylov method (iterative, Eigen's BiCGSTAB), or GMRES with PETSc's algebraic multigrid (petsc_gamg).
 
 #include <Eigen/Core>
 #include <memory>
+#include <string>
 
 #include "core/solve/block_pattern.hpp"
 
@@ -48,16 +49,24 @@ class LinearSolver {
   static constexpr double krylov_tolerance = 1e-10;
   /// Iterative method: Krylov iterations a solve may take before it falls back to LU.
   static constexpr int max_krylov_iterations = 1000;
-  /// Iterative method: solves so far, their Krylov iterations in total, and those that fell back to LU.
+  /// Iterative methods: solves so far, their Krylov iterations in total and the most one solve took,
+  /// and the solves that fell back to LU.
   long krylov_solves() const { return krylov_solves_; }
   long krylov_iterations() const { return krylov_iterations_; }
+  int krylov_max_iterations() const { return krylov_max_iterations_; }
   long krylov_fallbacks() const { return krylov_fallbacks_; }
+  /// petsc_gamg: the Krylov method and preconditioner of the last factorisation (empty otherwise).
+  std::string preconditioner_description() const;
 
  private:
   struct Impl;
   struct Krylov;
+  struct Amg;
+  bool factorize_amg(const BlockPattern& A);
+  Eigen::VectorXd solve_amg(const Eigen::VectorXd& b) const;
   std::unique_ptr<Impl> impl_;
   std::unique_ptr<Krylov> krylov_;
+  std::unique_ptr<Amg> amg_;
   Eigen::VectorXd coordinates_;
   LinearMethod method_ = LinearMethod::direct;
   int analyzed_generation_ = -1;
@@ -65,6 +74,7 @@ class LinearSolver {
   int factorizations_ = 0;
   mutable double seconds_ = 0;
   mutable long krylov_solves_ = 0, krylov_iterations_ = 0, krylov_fallbacks_ = 0;
+  mutable int krylov_max_iterations_ = 0;
 };
 
 }  // namespace stoss::solve

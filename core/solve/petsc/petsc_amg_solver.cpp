@@ -1,0 +1,257 @@
+// The PETSc module (libstoss_petsc.so) behind core/solve/petsc_solver.hpp; loaded with dlopen.
+#include <petscksp.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+#include <vector>
+
+#include "core/solve/petsc_solver.hpp"
+
+namespace stoss::solve {
+namespace {
+
+using RowMajorMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
+constexpr PetscErrorCode success = 0;  // PETSC_SUCCESS arrives with PETSc 3.19
+
+/// PETSc (and MPI, as a singleton) for the rest of the process. No signal handlers: the job process
+/// turns SIGTERM into a cancel and a crash must stay a crash. PETSC_OPTIONS still applies.
+void initialize_petsc() {
+  PetscBool initialized = PETSC_FALSE;
+  PetscInitialized(&initialized);
+  if (initialized) return;
+  static char name[] = "stoss", no_handler[] = "-no_signal_handler", left[] = "-options_left", no[] = "no";
+  static char* arguments[] = {name, no_handler, left, no, nullptr};
+  static int argc = 4;
+  static char** argv = arguments;
+  if (PetscInitialize(&argc, &argv, nullptr, nullptr) != 0) throw std::runtime_error("PetscInitialize failed");
+  std::atexit([] { PetscFinalize(); });
+}
+
+/// Sets an option of this solver unless the user set it already (PETSC_OPTIONS="-stoss_...").
+PetscErrorCode default_option(const std::string& name, const char* value) {
+  PetscBool set = PETSC_FALSE;
+  PetscCall(PetscOptionsHasName(nullptr, nullptr, name.c_str(), &set));
+  if (!set) PetscCall(PetscOptionsSetValue(nullptr, name.c_str(), value));
+  return success;
+}
+
+/// GAMG for elasticity: the graph of a non-symmetric tangent symmetrised, weak couplings (< 1 % of
+/// the diagonal scale) dropped when aggregating.
+PetscErrorCode default_gamg_options(const std::string& prefix) {
+  PetscCall(default_option(prefix + "pc_gamg_sym_graph", "true"));
+  PetscCall(default_option(prefix + "pc_gamg_threshold", "0.01"));
+  return success;
+}
+
+constexpr const char* prefix = "stoss_";
+
+PetscErrorCode set_default_options() {
+  PetscCall(default_gamg_options(std::string("-") + prefix));
+  PetscCall(default_gamg_options(std::string("-") + prefix + "fieldsplit_0_"));
+  PetscCall(default_option(std::string("-") + prefix + "fieldsplit_0_ksp_type", "preonly"));
+  PetscCall(default_option(std::string("-") + prefix + "fieldsplit_0_pc_type", "gamg"));
+  PetscCall(default_option(std::string("-") + prefix + "fieldsplit_1_ksp_type", "preonly"));
+  PetscCall(default_option(std::string("-") + prefix + "fieldsplit_1_pc_type", "lu"));
+  return success;
+}
+
+void check(PetscErrorCode code, const char* what) {
+  if (code != success) throw std::runtime_error(std::string("PETSc: ") + what + " failed");
+}
+
+class PetscAmgSolver final : public AmgSolver {
+ public:
+  PetscAmgSolver() {
+    initialize_petsc();
+    check(set_default_options(), "setting the default options");
+  }
+  ~PetscAmgSolver() override { destroy(); }
+
+  bool factorize(const SparseMatrix& A, int generation, const Eigen::VectorXd& positions) override {
+    const RowMajorMatrix R = A;  // PETSc's AIJ is CSR
+    const int m = positions.size() % 3 == 0 && positions.size() <= R.rows() ? int(positions.size()) : 0;
+    if (generation != generation_ || R.rows() != rows_ || R.nonZeros() != nonzeros_ || m != positions_) {
+      destroy();
+      if (create(R, positions.head(m)) != success) return destroy(), false;
+      generation_ = generation;
+    } else if (refill(R) != success) {
+      return false;
+    }
+    return setup() == success;
+  }
+
+  KrylovOutcome solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
+    KrylovOutcome outcome;
+    x.resize(b.size());
+    if (run(b, x, outcome) != success) outcome.converged = false;
+    return outcome;
+  }
+
+  SparseMatrix matrix() const override {
+    PetscInt n = 0;
+    const PetscInt *ia = nullptr, *ja = nullptr;
+    PetscBool done = PETSC_FALSE;
+    const PetscScalar* values = nullptr;
+    check(MatGetRowIJ(A_, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done), "MatGetRowIJ");
+    check(MatSeqAIJGetArrayRead(A_, &values), "MatSeqAIJGetArrayRead");
+    std::vector<int> outer(ia, ia + n + 1), inner(ja, ja + ia[n]);
+    const SparseMatrix copy = Eigen::Map<const RowMajorMatrix>(n, n, ia[n], outer.data(), inner.data(), values);
+    check(MatSeqAIJRestoreArrayRead(A_, &values), "MatSeqAIJRestoreArrayRead");
+    check(MatRestoreRowIJ(A_, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done), "MatRestoreRowIJ");
+    return copy;
+  }
+
+  std::string description() const override {
+    char rtol[16];
+    std::snprintf(rtol, sizeof rtol, "%.0e", amg_tolerance);
+    std::string text = std::string("GMRES(100), right-preconditioned, rtol ") + rtol + "; ";
+    if (positions_ == rows_) return text + "GAMG (" + levels_of(pc()) + " levels) with 6 rigid-body modes";
+    KSP* sub = nullptr;
+    PetscInt count = 0;
+    PC pc0 = nullptr;
+    if (PCFieldSplitGetSubKSP(pc(), &count, &sub) == success && count > 0) {
+      KSPGetPC(sub[0], &pc0);
+      PetscFree(sub);
+    }
+    return text + "Schur field split (full): GAMG (" + levels_of(pc0) + " levels, rigid-body modes) on " +
+           std::to_string(positions_) + " position dofs, LU of the selfp Schur complement on " +
+           std::to_string(rows_ - positions_) + " contact unknowns";
+  }
+
+ private:
+  PC pc() const {
+    PC pc = nullptr;
+    KSPGetPC(ksp_, &pc);
+    return pc;
+  }
+
+  static std::string levels_of(PC pc) {
+    PetscInt levels = 0;
+    if (!pc || PCMGGetLevels(pc, &levels) != success) return "?";
+    return std::to_string(levels);
+  }
+
+  PetscErrorCode create(const RowMajorMatrix& R, const Eigen::VectorXd& positions) {
+    rows_ = int(R.rows());
+    nonzeros_ = R.nonZeros();
+    positions_ = int(positions.size());
+    PetscCall(MatCreate(PETSC_COMM_SELF, &A_));
+    PetscCall(MatSetSizes(A_, rows_, rows_, rows_, rows_));
+    PetscCall(MatSetType(A_, MATSEQAIJ));
+    if (positions_ == rows_) PetscCall(MatSetBlockSize(A_, 3));
+    const std::vector<PetscInt> ia(R.outerIndexPtr(), R.outerIndexPtr() + rows_ + 1),
+        ja(R.innerIndexPtr(), R.innerIndexPtr() + nonzeros_);
+    PetscCall(MatSeqAIJSetPreallocationCSR(A_, ia.data(), ja.data(), R.valuePtr()));
+    PetscCall(VecCreateSeq(PETSC_COMM_SELF, rows_, &b_));
+    PetscCall(VecDuplicate(b_, &x_));
+    if (positions_ > 0) PetscCall(rigid_body_modes(positions));
+
+    PetscCall(KSPCreate(PETSC_COMM_SELF, &ksp_));
+    PetscCall(KSPSetOptionsPrefix(ksp_, prefix));
+    PetscCall(KSPSetType(ksp_, KSPGMRES));
+    PetscCall(KSPGMRESSetRestart(ksp_, 100));
+    PetscCall(KSPSetPCSide(ksp_, PC_RIGHT));
+    PetscCall(KSPSetTolerances(ksp_, amg_tolerance, 1e-300, PETSC_DEFAULT, amg_max_iterations));
+    PetscCall(KSPSetOperators(ksp_, A_, A_));
+    if (positions_ == rows_ || positions_ == 0) {
+      if (near_null_) PetscCall(MatSetNearNullSpace(A_, near_null_));
+      PetscCall(PCSetType(pc(), PCGAMG));
+    } else {
+      PetscCall(field_split());
+    }
+    PetscCall(KSPSetFromOptions(ksp_));
+    return success;
+  }
+
+  /// Translations and rotations about the origin of the current positions (block size 3).
+  PetscErrorCode rigid_body_modes(const Eigen::VectorXd& positions) {
+    Vec coordinates;
+    PetscCall(VecCreateSeq(PETSC_COMM_SELF, positions_, &coordinates));
+    PetscCall(VecSetBlockSize(coordinates, 3));
+    PetscScalar* p = nullptr;
+    PetscCall(VecGetArray(coordinates, &p));
+    std::copy(positions.data(), positions.data() + positions_, p);
+    PetscCall(VecRestoreArray(coordinates, &p));
+    PetscCall(MatNullSpaceCreateRigidBody(coordinates, &near_null_));
+    PetscCall(VecDestroy(&coordinates));
+    return success;
+  }
+
+  /// Positions first (GAMG with the rigid-body modes, attached to the split's index set so the
+  /// extracted block carries them), then the contact unknowns (LU of the selfp Schur complement).
+  PetscErrorCode field_split() {
+    PetscCall(ISCreateStride(PETSC_COMM_SELF, positions_, 0, 1, &fields_[0]));
+    PetscCall(ISSetBlockSize(fields_[0], 3));
+    if (near_null_) PetscCall(PetscObjectCompose((PetscObject)fields_[0], "nearnullspace", (PetscObject)near_null_));
+    PetscCall(ISCreateStride(PETSC_COMM_SELF, rows_ - positions_, positions_, 1, &fields_[1]));
+    PC split = pc();
+    PetscCall(PCSetType(split, PCFIELDSPLIT));
+    PetscCall(PCFieldSplitSetIS(split, "0", fields_[0]));
+    PetscCall(PCFieldSplitSetIS(split, "1", fields_[1]));
+    PetscCall(PCFieldSplitSetType(split, PC_COMPOSITE_SCHUR));
+    PetscCall(PCFieldSplitSetSchurFactType(split, PC_FIELDSPLIT_SCHUR_FACT_FULL));
+    PetscCall(PCFieldSplitSetSchurPre(split, PC_FIELDSPLIT_SCHUR_PRE_SELFP, nullptr));
+    return success;
+  }
+
+  /// Same pattern: the values only, in PETSc's CSR order (both sorted by column within a row).
+  PetscErrorCode refill(const RowMajorMatrix& R) {
+    PetscScalar* values = nullptr;
+    PetscCall(MatSeqAIJGetArray(A_, &values));
+    std::copy(R.valuePtr(), R.valuePtr() + nonzeros_, values);
+    PetscCall(MatSeqAIJRestoreArray(A_, &values));
+    PetscCall(KSPSetOperators(ksp_, A_, A_));
+    return success;
+  }
+
+  PetscErrorCode setup() {
+    PetscCall(KSPSetUp(ksp_));
+    return success;
+  }
+
+  PetscErrorCode run(const Eigen::VectorXd& b, Eigen::VectorXd& x, KrylovOutcome& outcome) {
+    PetscScalar* p = nullptr;
+    PetscCall(VecGetArray(b_, &p));
+    std::copy(b.data(), b.data() + b.size(), p);
+    PetscCall(VecRestoreArray(b_, &p));
+    PetscCall(KSPSolve(ksp_, b_, x_));
+    KSPConvergedReason reason;
+    PetscInt iterations = 0;
+    PetscCall(KSPGetConvergedReason(ksp_, &reason));
+    PetscCall(KSPGetIterationNumber(ksp_, &iterations));
+    outcome.converged = reason > 0;
+    outcome.iterations = int(iterations);
+    const PetscScalar* q = nullptr;
+    PetscCall(VecGetArrayRead(x_, &q));
+    std::copy(q, q + x.size(), x.data());
+    PetscCall(VecRestoreArrayRead(x_, &q));
+    return success;
+  }
+
+  void destroy() {
+    KSPDestroy(&ksp_);
+    ISDestroy(&fields_[0]);
+    ISDestroy(&fields_[1]);
+    MatNullSpaceDestroy(&near_null_);
+    VecDestroy(&b_);
+    VecDestroy(&x_);
+    MatDestroy(&A_);
+    generation_ = rows_ = positions_ = -1;
+    nonzeros_ = -1;
+  }
+
+  Mat A_ = nullptr;
+  KSP ksp_ = nullptr;
+  Vec b_ = nullptr, x_ = nullptr;
+  IS fields_[2] = {nullptr, nullptr};
+  MatNullSpace near_null_ = nullptr;
+  int generation_ = -1, rows_ = -1, positions_ = -1;
+  Eigen::Index nonzeros_ = -1;
+};
+
+}  // namespace
+}  // namespace stoss::solve
+
+extern "C" stoss::solve::AmgSolver* stoss_make_petsc_amg_solver() { return new stoss::solve::PetscAmgSolver(); }

@@ -1,0 +1,53 @@
+#pragma once
+/// @file The PETSc path of LinearSolver: GMRES preconditioned by PETSc's smoothed-aggregation
+/// algebraic multigrid (GAMG), with the rigid-body modes of the nodes as near-null space.
+///
+/// The PETSc code lives in a module of its own (core/solve/petsc/, `libstoss_petsc.so`), loaded with
+/// dlopen on first use: PETSc and MPI cost ~40 ms of dynamic loading per process, which every run
+/// that does not ask for this path would pay otherwise.
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+
+#include "core/solve/block_pattern.hpp"
+
+namespace stoss::solve {
+
+/// One Krylov solve: converged (relative residual ≤ the tolerance) in `iterations` iterations.
+struct KrylovOutcome {
+  bool converged = false;
+  int iterations = 0;
+};
+
+/// A Krylov solver with an algebraic multigrid preconditioner on one matrix at a time.
+///
+/// Unknowns: the first `positions.size()` rows are node positions (3 per node, x y z); the rows after
+/// them (contact multipliers and mixed contact unknowns) form a second field. With no such rows the
+/// preconditioner is GAMG on the whole matrix (block size 3). With them it is a Schur-complement
+/// field split (full factorisation): GAMG on the position block, and an LU of the approximate Schur
+/// complement S ≈ A₁₁ − A₁₀ diag(A₀₀)⁻¹ A₀₁ for the contact unknowns (PETSc's "selfp").
+class AmgSolver {
+ public:
+  virtual ~AmgSolver() = default;
+  /// Takes A (values copied; the pattern kept while `generation` stays the same) and sets up the
+  /// preconditioner. `positions` gives the rigid-body modes (MatNullSpaceCreateRigidBody); when
+  /// empty, GAMG uses its default near-null space (translations). Returns false on a PETSc error.
+  virtual bool factorize(const SparseMatrix& A, int generation, const Eigen::VectorXd& positions) = 0;
+  /// Solves A x = b with GMRES (right preconditioned, so the test is on ‖b − A x‖ / ‖b‖).
+  virtual KrylovOutcome solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
+  /// The matrix of the last factorize() (for a direct fallback).
+  virtual SparseMatrix matrix() const = 0;
+  /// One line: the Krylov method, the preconditioner and the GAMG levels of the last setup.
+  virtual std::string description() const = 0;
+};
+
+/// Relative residual a solve stops at, and its iteration budget (then LinearSolver falls back to LU).
+constexpr double amg_tolerance = 1e-10;
+constexpr int amg_max_iterations = 200;
+
+/// Loads the PETSc module (initialising PETSc and MPI once per process) and makes a solver.
+/// Throws std::runtime_error naming the module path and the loader's message if it cannot.
+std::unique_ptr<AmgSolver> make_petsc_amg_solver();
+
+}  // namespace stoss::solve
