@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <cstdlib>
 #include <sstream>
@@ -262,16 +263,26 @@ constexpr int max_step_halvings = 4;
 /// Newton from the scene's solver settings. Factorisations are kept while they contract the residual
 /// by half per iteration (and reach the tolerance within the budget): on the contact scenes a
 /// refactorisation costs as much as ~20 reused solves (bench/contact_ball.cpp).
-/// The linear solver: direct (UMFPACK) unless the environment says STOSS_LINEAR_SOLVER=iterative.
-/// An interim switch for benchmarks and tests until the scene has a solver.linear setting.
-solve::LinearMethod linear_method() {
-  const char* name = std::getenv("STOSS_LINEAR_SOLVER");
-  return name && std::string(name) == "iterative" ? solve::LinearMethod::iterative : solve::LinearMethod::direct;
+/// The linear solver named by solver.linear (validated by the scene: direct, iterative, petsc_gamg).
+solve::LinearMethod linear_method(const Model& m) {
+  if (m.solver.linear == "iterative") return solve::LinearMethod::iterative;
+  if (m.solver.linear == "petsc_gamg") return solve::LinearMethod::petsc_gamg;
+  return solve::LinearMethod::direct;
+}
+
+/// The log's line on the Krylov solves of a run (none with the direct solver).
+std::string krylov_line(const solve::LinearSolver& linear) {
+  char line[200];
+  std::snprintf(line, sizeof line,
+                "linear solver: %ld Krylov solves, %.1f iterations per solve, at most %d, %ld fell back to LU",
+                linear.krylov_solves(), double(linear.krylov_iterations()) / double(linear.krylov_solves()),
+                linear.krylov_max_iterations(), linear.krylov_fallbacks());
+  return line;
 }
 
 solve::NewtonOptions newton_options(const Model& m) {
   solve::NewtonOptions o;
-  o.linear = linear_method();
+  o.linear = linear_method(m);
   o.tolerance = m.solver.tolerance;
   o.max_iterations = m.solver.max_iterations;
   o.reuse_contraction = 0.5;
@@ -317,8 +328,9 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
   double output_seconds = 0;  // series rows, frames and the observer's calls
   auto t_out = Clock::now();
   observer.begin(m, layout);
-  if (newton_options(m).linear == solve::LinearMethod::iterative)
-    observer.log("linear solver: iterative (BiCGSTAB, Jacobi preconditioner; STOSS_LINEAR_SOLVER)");
+  if (m.solver.linear == "iterative") observer.log("linear solver: iterative (BiCGSTAB, Jacobi preconditioner)");
+  if (m.solver.linear == "petsc_gamg")
+    observer.log("linear solver: petsc_gamg (PETSc GMRES + GAMG, rigid-body modes)");
   const Balance b0 = balance(p, s);
   observer.step(step_row(s, b0, contact_row(p, nullptr), layout, nullptr, 0.0));
   observer.frame(frame_of(s, p));
@@ -344,6 +356,9 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
     if (linear.krylov_solves() > 0)
       sum.krylov_iterations_per_solve = double(linear.krylov_iterations()) / double(linear.krylov_solves());
     sum.krylov_fallbacks = int(linear.krylov_fallbacks());
+    if (linear.krylov_solves() > 0) observer.log(krylov_line(linear));
+    if (!linear.preconditioner_description().empty())
+      observer.log("linear solver: " + linear.preconditioner_description());
     observer.end(sum);
     return sum;
   };

@@ -82,6 +82,7 @@ struct TimeSpec {
 struct SolverSpec {
   double tolerance = 1e-10;            ///< relative residual and increment tolerance of Newton
   int max_iterations = 25;
+  std::string linear = "direct";       ///< solver.linear: direct | iterative | petsc_gamg (docs/scene.md)
 };
 
 struct OutputSpec {

@@ -64,7 +64,7 @@ struct Summary {
   double output_seconds = 0;
   /// Peak resident set of the process running the job (getrusage), so far at the end of the run.
   double peak_memory_bytes = 0;
-  /// With the iterative linear solver (STOSS_LINEAR_SOLVER=iterative): Krylov iterations per linear
+  /// With an iterative linear solver (solver.linear iterative or petsc_gamg): Krylov iterations per linear
   /// solve, and the solves that did not converge and fell back to LU. 0 with the direct solver.
   double krylov_iterations_per_solve = 0;
   int krylov_fallbacks = 0;

@@ -121,7 +121,8 @@ model::Model build_model(const json& scene, const std::optional<std::filesystem:
   const Eigen::Vector3d g = vector3(scene["gravity"]);
   if (g.norm() > 0) m.gravity = g;
   m.time = time_spec(scene["time"]);
-  m.solver = {scene["solver"]["tolerance"].get<double>(), scene["solver"]["max_iterations"].get<int>()};
+  m.solver = {scene["solver"]["tolerance"].get<double>(), scene["solver"]["max_iterations"].get<int>(),
+              scene["solver"]["linear"].get<std::string>()};
   m.output = {scene["output"]["every"].get<int>()};
   m.effects = model::resolve_effects(m);
   return m;

@@ -38,7 +38,8 @@ class AmgSolver {
   virtual KrylovOutcome solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
   /// The matrix of the last factorize() (for a direct fallback).
   virtual SparseMatrix matrix() const = 0;
-  /// One line: the Krylov method, the preconditioner and the GAMG levels of the last setup.
+  /// One line: the Krylov method, how many setups used GAMG on the whole matrix and how many the field
+  /// split, with the GAMG levels of the last of each.
   virtual std::string description() const = 0;
 };
 

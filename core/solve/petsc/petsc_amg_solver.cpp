@@ -54,6 +54,8 @@ PetscErrorCode set_default_options() {
   PetscCall(default_option(std::string("-") + prefix + "fieldsplit_0_pc_type", "gamg"));
   PetscCall(default_option(std::string("-") + prefix + "fieldsplit_1_ksp_type", "preonly"));
   PetscCall(default_option(std::string("-") + prefix + "fieldsplit_1_pc_type", "lu"));
+  // The contact block is indefinite (multiplier rows): an LU that pivots (PETSc's own does not).
+  PetscCall(default_option(std::string("-") + prefix + "fieldsplit_1_pc_factor_mat_solver_type", "umfpack"));
   return success;
 }
 
@@ -106,8 +108,21 @@ class PetscAmgSolver final : public AmgSolver {
   std::string description() const override {
     char rtol[16];
     std::snprintf(rtol, sizeof rtol, "%.0e", amg_tolerance);
-    std::string text = std::string("GMRES(100), right-preconditioned, rtol ") + rtol + "; ";
-    if (positions_ == rows_) return text + "GAMG (" + levels_of(pc()) + " levels) with 6 rigid-body modes";
+    std::string text = std::string("GMRES(100), right-preconditioned, rtol ") + rtol;
+    if (whole_setups_ > 0) text += "; " + std::to_string(whole_setups_) + " setups of " + whole_;
+    if (split_setups_ > 0) text += "; " + std::to_string(split_setups_) + " setups of " + split_ + " (the last)";
+    return text;
+  }
+
+ private:
+  /// Counts a setup and describes it (GAMG levels exist only once set up).
+  void describe_setup() {
+    if (positions_ == rows_ || positions_ <= 0) {
+      ++whole_setups_;
+      whole_ = "GAMG (" + levels_of(pc()) + " levels)" + (near_null_ ? " with 6 rigid-body modes" : "");
+      return;
+    }
+    ++split_setups_;
     KSP* sub = nullptr;
     PetscInt count = 0;
     PC pc0 = nullptr;
@@ -115,12 +130,11 @@ class PetscAmgSolver final : public AmgSolver {
       KSPGetPC(sub[0], &pc0);
       PetscFree(sub);
     }
-    return text + "Schur field split (full): GAMG (" + levels_of(pc0) + " levels, rigid-body modes) on " +
-           std::to_string(positions_) + " position dofs, LU of the selfp Schur complement on " +
-           std::to_string(rows_ - positions_) + " contact unknowns";
+    split_ = "a Schur field split (full): GAMG (" + levels_of(pc0) + " levels, rigid-body modes) on " +
+             std::to_string(positions_) + " position dofs, LU of the selfp Schur complement on " +
+             std::to_string(rows_ - positions_) + " contact unknowns";
   }
 
- private:
   PC pc() const {
     PC pc = nullptr;
     KSPGetPC(ksp_, &pc);
@@ -208,6 +222,7 @@ class PetscAmgSolver final : public AmgSolver {
 
   PetscErrorCode setup() {
     PetscCall(KSPSetUp(ksp_));
+    describe_setup();
     return success;
   }
 
@@ -249,6 +264,8 @@ class PetscAmgSolver final : public AmgSolver {
   MatNullSpace near_null_ = nullptr;
   int generation_ = -1, rows_ = -1, positions_ = -1;
   Eigen::Index nonzeros_ = -1;
+  int whole_setups_ = 0, split_setups_ = 0;
+  std::string whole_, split_;  ///< the last setup of each kind, described
 };
 
 }  // namespace

@@ -245,6 +245,8 @@ INSTANTIATE_TEST_SUITE_P(Rules, SceneRule, ::testing::Values(
   Violation{"max iterations integer", {{"/solver/max_iterations", 2.5}}, "/solver/max_iterations",
             "must be an integer, got 2.5"},
   Violation{"solver object", {{"/solver", "newton"}}, "/solver", R"(must be an object, got "newton")"},
+  Violation{"linear solver name", {{"/solver/linear", "amg"}}, "/solver/linear",
+            R"(must be one of direct, iterative, petsc_gamg, got "amg")"},
   Violation{"output every", {{"/output/every", 0}}, "/output/every", "must be >= 1, got 0"}));
 // clang-format on
 
