@@ -1,9 +1,10 @@
-// stoss: run | validate | study | serve (and run-job, the process of one job of `serve`).
+// stoss: run | validate | study | serve | worker (and run-job, the process of one job of `serve`).
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "server/cli/commands.hpp"
+#include "server/cli/worker.hpp"
 #include "server/http/serve.hpp"
 #include "server/jobs/process_executor.hpp"
 
@@ -14,7 +15,8 @@ constexpr const char* usage_text =
     "  validate SCENE.json [--json] check a scene: effects, node/DOF counts, steps, or every error\n"
     "  study SCENE.json --steps h1,h2,... [--schemes a,b] [--reference H] [--csv|--json]\n"
     "                              error and wall time per scheme and step size against a fine reference\n"
-    "  serve [--listen HOST:PORT] [--data DIR] [--workers N] [--token-file F]   the job service\n"
+    "  serve [--listen HOST:PORT] [--data DIR] [--store STORE] [--workers N] [--token-file F]   the job service\n"
+    "  worker --store STORE --data DIR [--workers N]   run queued jobs of a shared store, without HTTP\n"
     "  --help, --version\n"
     "`stoss <command> --help` describes a command.\n";
 }
@@ -30,6 +32,7 @@ int main(int argc, char** argv) {
   if (command == "study") return stoss::cli::study_command(args);
   if (command == "validate") return stoss::cli::validate_command(args);
   if (command == "serve") return stoss::server::serve_command(args);
+  if (command == "worker") return stoss::cli::worker_command(args);
   if (command == "run-job") return stoss::server::jobs::run_job_command(args);
   if (command == "--help" || command == "-h" || command == "help") {
     std::cout << usage_text;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <set>
 
 namespace stoss::server::http {
 
@@ -43,12 +44,21 @@ void parse_listen(const std::string& text, ServeOptions& o) {
   o.port = static_cast<int>(parse_integer("--listen port", text.substr(colon + 1), 0, 65535));
 }
 
+jobs::StoreLocation parse_store(const std::string& text) {
+  try {
+    return jobs::parse_store_location(text);
+  } catch (const jobs::StoreError& e) {
+    throw UsageError(e.what());
+  }
+}
+
 using Setter = std::function<void(const std::string& flag, const std::string& value, ServeOptions& o)>;
 
 const std::map<std::string, Setter>& setters() {
   static const std::map<std::string, Setter> table = {
       {"--listen", [](auto&, auto& v, auto& o) { parse_listen(v, o); }},
       {"--data", [](auto&, auto& v, auto& o) { o.data = v; }},
+      {"--store", [](auto&, auto& v, auto& o) { o.store = parse_store(v); }},
       {"--token-file", [](auto&, auto& v, auto& o) { o.token_file = v; }},
       {"--workers", [](auto& f, auto& v, auto& o) { o.pool.workers = int(parse_integer(f, v, 0, 256)); }},
       {"--lease-seconds", [](auto& f, auto& v, auto& o) { o.pool.lease = parse_seconds(f, v); }},
@@ -80,9 +90,15 @@ const std::map<std::string, Setter>& setters() {
   return table;
 }
 
-}  // namespace
+/// The flags `stoss worker` takes (a subset of serve's).
+bool is_worker_flag(const std::string& flag) {
+  static const std::set<std::string> flags = {"--store",          "--data",         "--workers",
+                                              "--lease-seconds",  "--renew-seconds", "--max-attempts",
+                                              "--job-timeout",    "--job-memory"};
+  return flags.count(flag) > 0;
+}
 
-ServeOptions parse_serve_options(const std::vector<std::string>& args) {
+ServeOptions parse_options(const std::vector<std::string>& args, bool worker) {
   ServeOptions options;
   for (std::size_t i = 0; i < args.size(); ++i) {
     std::string flag = args[i], value;
@@ -90,7 +106,8 @@ ServeOptions parse_serve_options(const std::vector<std::string>& args) {
     const bool inline_value = equals != std::string::npos;
     if (inline_value) value = flag.substr(equals + 1), flag = flag.substr(0, equals);
     auto setter = setters().find(flag);
-    if (setter == setters().end()) throw UsageError("unknown option '" + flag + "'");
+    if (setter == setters().end() || (worker && !is_worker_flag(flag)))
+      throw UsageError("unknown option '" + flag + "'");
     if (!inline_value) {
       if (i + 1 >= args.size()) throw UsageError(flag + " needs a value");
       value = args[++i];
@@ -99,7 +116,22 @@ ServeOptions parse_serve_options(const std::vector<std::string>& args) {
   }
   if (options.pool.renew_every >= options.pool.lease)
     throw UsageError("--renew-seconds must be shorter than --lease-seconds");
+  if (worker && options.pool.workers == 0) throw UsageError("--workers needs an integer in [1, 256], got '0'");
   return options;
+}
+
+}  // namespace
+
+ServeOptions parse_serve_options(const std::vector<std::string>& args) {
+  return parse_options(args, false);
+}
+
+ServeOptions parse_worker_options(const std::vector<std::string>& args) {
+  return parse_options(args, true);
+}
+
+jobs::StoreLocation store_location(const ServeOptions& options) {
+  return options.store ? *options.store : jobs::default_store_location(options.data);
 }
 
 std::string serve_usage() {
@@ -109,7 +141,10 @@ Runs the job service (HTTP/JSON, see api/openapi.yaml) until SIGINT or SIGTERM.
 
   --listen HOST:PORT     address to bind (default 127.0.0.1:8080; port 0 picks a free one)
   --data DIR             job database (DIR/jobs.db) and results (DIR/jobs/<id>/) (default ./var)
-  --workers N            jobs run at once in this process (default 2; 0 only queues)
+  --store STORE          the job store: sqlite:PATH (default sqlite:DIR/jobs.db) or
+                         postgresql://USER[:PASSWORD]@HOST:PORT/DB, shared by many serve and worker
+                         processes on many hosts (they must share DIR too; see README "More than one machine")
+  --workers N            jobs run at once in this process (default 2; 0 only queues: an API-only front end)
   --token-file F         require "Authorization: Bearer <first line of F>" on every route but /healthz
   --max-body-bytes N     largest request body (default 16777216)
   --max-nodes N          most mesh nodes in a scene (default 200000)
@@ -121,6 +156,25 @@ Runs the job service (HTTP/JSON, see api/openapi.yaml) until SIGINT or SIGTERM.
   --read-timeout S       longest wait for the next bytes of a request's head or body (default 5)
   --job-timeout S        wall-time limit of one job attempt; 0: none (default 0); a scene may set a
                          lower one in solver.max_wall_seconds
+  --job-memory BYTES     address-space limit (RLIMIT_AS) of a job's process; 0: none (default 0)
+  --lease-seconds S      a running job's lease; a job whose worker died reruns after it (default 10)
+  --renew-seconds S      lease renewal interval (default 2)
+  --max-attempts N       runs a job may start before an expired lease fails it (default 3)
+)";
+}
+
+std::string worker_usage() {
+  return R"(usage: stoss worker --store STORE [options]
+
+Runs queued jobs without HTTP until SIGINT or SIGTERM (then gives running jobs back to the queue).
+API processes (`stoss serve`, possibly with --workers 0) queue the jobs; every process shares the store
+and the data directory.
+
+  --store STORE          sqlite:PATH or postgresql://USER[:PASSWORD]@HOST:PORT/DB (default sqlite:DIR/jobs.db);
+                         libpq's PG* variables and PGPASSFILE fill what the URL leaves out
+  --data DIR             results and logs (DIR/jobs/<id>/), shared with the API processes (default ./var)
+  --workers N            jobs run at once in this process (default 2)
+  --job-timeout S        wall-time limit of one job attempt; 0: none (default 0)
   --job-memory BYTES     address-space limit (RLIMIT_AS) of a job's process; 0: none (default 0)
   --lease-seconds S      a running job's lease; a job whose worker died reruns after it (default 10)
   --renew-seconds S      lease renewal interval (default 2)

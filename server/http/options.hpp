@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "server/http/limits.hpp"
+#include "server/jobs/open_store.hpp"
 #include "server/jobs/worker_pool.hpp"
 
 namespace stoss::server::http {
@@ -16,6 +17,7 @@ struct ServeOptions {
   std::string host = "127.0.0.1";                   ///< --listen HOST:PORT
   int port = 8080;                                  ///< 0: any free port (printed at start)
   std::filesystem::path data = "var";               ///< --data DIR: jobs.db and jobs/<id>/
+  std::optional<jobs::StoreLocation> store;         ///< --store; unset: sqlite:DATA/jobs.db
   std::optional<std::filesystem::path> token_file;  ///< --token-file F
   jobs::WorkerPoolOptions pool;                     ///< --workers, --lease-seconds, --renew-seconds
   int max_attempts = 3;  ///< --max-attempts: runs before an expired lease fails a job
@@ -40,5 +42,16 @@ ServeOptions parse_serve_options(const std::vector<std::string>& args);
 
 /// The usage text of `stoss serve` with every flag and its default.
 std::string serve_usage();
+
+/// Parses the arguments after `stoss worker`: the flags of `serve` that concern running jobs (--store,
+/// --data, --workers, --lease-seconds, --renew-seconds, --max-attempts, --job-timeout, --job-memory).
+/// Throws UsageError, also for a flag only `serve` has.
+ServeOptions parse_worker_options(const std::vector<std::string>& args);
+
+/// The usage text of `stoss worker`.
+std::string worker_usage();
+
+/// The store the options name: --store, or sqlite:DATA/jobs.db.
+jobs::StoreLocation store_location(const ServeOptions& options);
 
 }  // namespace stoss::server::http

@@ -520,6 +520,12 @@ void install_error_handling(httplib::Server& server, Metrics& metrics, const Lim
     std::string what = "unknown exception";
     try {
       std::rethrow_exception(error);
+    } catch (const jobs::StoreUnavailable& e) {  // the database is away (restarting): 503, Retry-After
+      std::cerr << "stoss: " << req.method << " " << req.path << ": job store unavailable: " << e.what() << std::endl;
+      return Problem{503, "urn:stoss:problem:store-unavailable", "Job store unavailable",
+                     "the job store cannot be reached just now; retry later (a POST retried with the same "
+                     "Idempotency-Key is not queued twice)"}
+          .write(res);
     } catch (const std::exception& e) {
       what = e.what();
     } catch (...) {

@@ -20,7 +20,7 @@
 #include "server/jobs/process_executor.hpp"
 #include "server/jobs/periodic.hpp"
 #include "server/jobs/rescuer.hpp"
-#include "server/jobs/sqlite_store.hpp"
+#include "server/jobs/open_store.hpp"
 
 namespace stoss::server {
 
@@ -102,15 +102,18 @@ int bind_server(httplib::Server& server, const std::string& host, int port) {
 
 int run(const ServeOptions& options) {
   SignalWaiter signals;
-  std::filesystem::create_directories(options.data / "jobs");
   jobs::SystemClock clock;
-  jobs::SqliteStore store(options.data / "jobs.db", clock);
+  const jobs::StoreLocation location = store_location(options);
+  const std::unique_ptr<jobs::JobStore> opened = jobs::open_store(location, clock);
+  jobs::JobStore& store = *opened;
+  std::filesystem::create_directories(options.data / "jobs");
   jobs::JobFiles files(options.data);
   // Each job runs in a process of its own (this binary, `stoss run-job`): a job that crashes or runs
   // over a limit fails alone.
   jobs::ProcessExecutor executor(files, options.data, std::filesystem::read_symlink("/proc/self/exe"),
                                  {options.job_timeout, options.job_memory});
-  jobs::WorkerPool pool(store, executor, options.pool);
+  jobs::WorkerPool pool(store, executor, jobs::pool_options_for(location, options.pool));
+  const auto subscription = store.on_queued([&pool] { pool.notify(); });  // jobs queued by other processes
   std::optional<BearerAuth> auth;
   if (options.token_file) auth = BearerAuth::from_file(*options.token_file);
   App app{store, pool, files, options.limits, auth, {}};
@@ -142,7 +145,8 @@ int run(const ServeOptions& options) {
   signals.start(server);
   pool.start();
   std::cout << "stoss serve: listening on http://" << options.host << ":" << port << " (data "
-            << options.data.string() << ", " << options.pool.workers << " workers)" << std::endl;
+            << options.data.string() << (options.store ? ", store " + location.describe() : std::string())
+            << ", " << options.pool.workers << " workers)" << std::endl;
   server.listen_after_bind();
   signals.stop();
   pool.stop();
@@ -161,6 +165,9 @@ int serve_command(const std::vector<std::string>& args) {
     return run(parse_serve_options(args));
   } catch (const UsageError& e) {
     std::cerr << "stoss serve: " << e.what() << "\n\n" << serve_usage();
+    return 2;
+  } catch (const jobs::StoreOpenError& e) {
+    std::cerr << "stoss serve: " << e.what() << std::endl;
     return 2;
   } catch (const AddressInUse& e) {
     std::cerr << "stoss serve: " << e.what() << std::endl;

@@ -1,16 +1,39 @@
 #pragma once
 /// @file JobStore: the state of the queue (what exists, who runs what, how it ended), behind one seam.
-/// SQLite implements it today (sqlite_store.hpp); another database can later, without touching HTTP.
+/// SQLite implements it (sqlite_store.hpp, one host) and PostgreSQL (pg_store.hpp, many hosts).
 
 #include <cstdint>
+#include <functional>
 #include <map>
+#include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "server/jobs/job.hpp"
 
 namespace stoss::server::jobs {
+
+/// The store cannot do what was asked; the message says why.
+class StoreError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The store is away for now (its database server is down or restarting): nothing was changed, and the
+/// same call may succeed later. The HTTP layer answers 503 with Retry-After.
+class StoreUnavailable : public StoreError {
+ public:
+  using StoreError::StoreError;
+};
+
+/// While it lives, a store calls back when jobs may have been queued (by any process); destroying it
+/// stops the calls.
+class Subscription {
+ public:
+  virtual ~Subscription() = default;
+};
 
 /// What POST /v1/jobs (or POST /v1/studies) asks the store to keep.
 struct NewJob {
@@ -111,6 +134,11 @@ class JobStore {
 
   /// Number of jobs in each status (every status present, possibly 0).
   virtual std::map<Status, std::int64_t> count_by_status() = 0;
+
+  /// Calls `wake` (from a thread of the store's) whenever another process may have queued a job, and
+  /// after a lost connection came back. Returns nullptr when the store has no such signal: then workers
+  /// must poll.
+  virtual std::unique_ptr<Subscription> on_queued(std::function<void()> wake) { return nullptr; }
 };
 
 }  // namespace stoss::server::jobs

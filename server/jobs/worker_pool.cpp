@@ -49,6 +49,10 @@ void WorkerPool::stop() {
 }
 
 void WorkerPool::notify() {
+  {
+    std::lock_guard lock(mutex_);
+    ++wakes_;
+  }
   wake_.notify_all();
 }
 
@@ -78,11 +82,14 @@ void WorkerPool::work(int index) {
   const std::string worker = name_ + "/" + std::to_string(index);
   std::unique_lock lock(mutex_);
   while (!stopping_) {
+    const std::uint64_t seen = wakes_;
     lock.unlock();
     std::optional<Job> job = claim(worker);
     if (job) run_claimed(*job);
     lock.lock();
-    if (!job) wake_.wait_for(lock, std::chrono::milliseconds(options_.idle_poll));
+    if (!job)
+      wake_.wait_for(lock, std::chrono::milliseconds(options_.idle_poll),
+                     [&] { return stopping_ || wakes_ != seen; });
   }
 }
 
@@ -107,16 +114,25 @@ void WorkerPool::run_claimed(const Job& job) {
 }
 
 void WorkerPool::report(const Running& running, const Outcome& outcome) {
-  try {
-    const Stop why = running.why.load();
-    if (why == Stop::lease_lost) return;  // another worker owns the job now
-    if (why == Stop::shutdown && outcome.status == Status::canceled) {
-      store_.release(running.id, running.worker);
+  // A store that is away for a moment (a database restart) gets the report when it is back, as long as
+  // the lease may still hold; after that the rescuer requeues the job.
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::milliseconds(options_.lease);
+  for (;;) {
+    try {
+      const Stop why = running.why.load();
+      if (why == Stop::lease_lost) return;  // another worker owns the job now
+      if (why == Stop::shutdown && outcome.status == Status::canceled) {
+        store_.release(running.id, running.worker);
+        return;
+      }
+      store_.finish(running.id, running.worker, outcome);
       return;
+    } catch (const StoreUnavailable& e) {
+      if (std::chrono::steady_clock::now() > give_up) return warn("reporting job " + running.id.str(), e);
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    } catch (const std::exception& e) {
+      return warn("reporting job " + running.id.str(), e);  // the lease expires and the rescuer requeues it
     }
-    store_.finish(running.id, running.worker, outcome);
-  } catch (const std::exception& e) {
-    warn("reporting job " + running.id.str(), e);  // the lease expires and the rescuer requeues it
   }
 }
 

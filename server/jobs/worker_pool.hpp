@@ -22,7 +22,9 @@ struct WorkerPoolOptions {
   int workers = 2;        ///< concurrent runs (0: this process only queues)
   Millis lease = 10'000;  ///< a claim holds the job this long unless renewed
   Millis renew_every = 2'000;
-  Millis idle_poll = 500;  ///< an idle worker looks for work this often even when not notified
+  /// An idle worker looks for work this often even when not notified (a store that announces queued jobs
+  /// itself, PostgreSQL's NOTIFY, needs only a rare fallback: pool_options_for).
+  Millis idle_poll = 500;
 };
 
 class WorkerPool {
@@ -71,6 +73,7 @@ class WorkerPool {
   mutable std::mutex mutex_;
   std::condition_variable wake_;
   bool stopping_ = false;
+  std::uint64_t wakes_ = 0;  ///< notify() calls so far: a wake during a claim is not lost
   std::map<JobId, std::shared_ptr<Running>> running_;
   std::vector<std::thread> threads_;
   std::unique_ptr<Periodic> lease_keeper_;
