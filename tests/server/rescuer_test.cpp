@@ -4,19 +4,19 @@
 
 #include <gtest/gtest.h>
 
-#include "server/jobs/sqlite_store.hpp"
-#include "tests/server/live_server.hpp"
+#include "tests/server/pg_cluster.hpp"
 
 namespace stoss::server::jobs {
 namespace {
 
 constexpr Millis lease = 10'000;
 
-class RescuerTest : public ::testing::Test {
+/// Every test runs against both stores.
+class RescuerTest : public ::testing::TestWithParam<test::Backend> {
  protected:
-  test::TempDir dir;
   ManualClock clock;
-  SqliteStore store{dir.path() / "jobs.db", clock};
+  test::StoreUnderTest backing{GetParam(), clock};
+  JobStore& store = backing.store();
   Rescuer rescuer{store, clock, 3};
 
   JobId queue_one() {
@@ -25,7 +25,11 @@ class RescuerTest : public ::testing::Test {
   }
 };
 
-TEST_F(RescuerTest, LeavesLiveLeasesAlone) {
+INSTANTIATE_TEST_SUITE_P(BothStores, RescuerTest,
+                         ::testing::Values(test::Backend::sqlite, test::Backend::postgresql),
+                         [](const auto& info) { return test::to_string(info.param); });
+
+TEST_P(RescuerTest, LeavesLiveLeasesAlone) {
   const JobId id = queue_one();
   store.claim("w", lease);
   clock.advance(lease - 1);
@@ -33,7 +37,7 @@ TEST_F(RescuerTest, LeavesLiveLeasesAlone) {
   EXPECT_EQ(store.get(id)->status, Status::running);
 }
 
-TEST_F(RescuerTest, RenewedLeasesSurvivePastTheFirstExpiry) {
+TEST_P(RescuerTest, RenewedLeasesSurvivePastTheFirstExpiry) {
   const JobId id = queue_one();
   store.claim("w", lease);
   for (int i = 0; i < 10; ++i) {
@@ -44,7 +48,7 @@ TEST_F(RescuerTest, RenewedLeasesSurvivePastTheFirstExpiry) {
   EXPECT_EQ(store.get(id)->status, Status::running);
 }
 
-TEST_F(RescuerTest, RequeuesAJobWhoseLeaseExpired) {
+TEST_P(RescuerTest, RequeuesAJobWhoseLeaseExpired) {
   const JobId id = queue_one();
   store.claim("dead worker", lease);
   store.progress(id, "dead worker", {7, 30, 0.07, 0.3, 2.0});
@@ -63,7 +67,7 @@ TEST_F(RescuerTest, RequeuesAJobWhoseLeaseExpired) {
   EXPECT_EQ(again.attempt, 2);
 }
 
-TEST_F(RescuerTest, FailsAJobWithTheReasonAfterMaxAttempts) {
+TEST_P(RescuerTest, FailsAJobWithTheReasonAfterMaxAttempts) {
   const JobId id = queue_one();
   for (int attempt = 1; attempt <= 3; ++attempt) {
     ASSERT_EQ(store.claim(std::string("w").append(std::to_string(attempt)), lease)->attempt, attempt);
@@ -80,7 +84,7 @@ TEST_F(RescuerTest, FailsAJobWithTheReasonAfterMaxAttempts) {
   EXPECT_FALSE(store.claim("w4", lease));
 }
 
-TEST_F(RescuerTest, CancelsAnExpiredJobWhoseCancelWasRequested) {
+TEST_P(RescuerTest, CancelsAnExpiredJobWhoseCancelWasRequested) {
   const JobId id = queue_one();
   store.claim("w", lease);
   store.request_cancel(id);

@@ -1,14 +1,18 @@
-// The SQLite job store: the system shall keep every accepted job, hand each queued job to exactly one
-// worker, honour leases, and migrate its own schema.
+// The job store contract, for the SQLite and the PostgreSQL store alike: the system shall keep every
+// accepted job, hand each queued job to exactly one worker, honour leases, and migrate its own schema.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <set>
 #include <thread>
 
+#include "server/jobs/pg.hpp"
+#include "server/jobs/pg_store.hpp"
 #include "server/jobs/sha256.hpp"
 #include "server/jobs/sqlite.hpp"
 #include "server/jobs/sqlite_store.hpp"
 #include "tests/server/live_server.hpp"
+#include "tests/server/pg_cluster.hpp"
 
 namespace stoss::server::jobs {
 namespace {
@@ -25,16 +29,26 @@ NewJob new_job(const std::string& name, std::optional<std::string> key = std::nu
   return job;
 }
 
-class StoreTest : public ::testing::Test {
+using test::Backend;
+
+std::string backend_name(const ::testing::TestParamInfo<Backend>& info) {
+  return test::to_string(info.param);
+}
+
+/// Every test of this fixture runs against both stores.
+class StoreTest : public ::testing::TestWithParam<Backend> {
  protected:
-  test::TempDir dir;
   ManualClock clock;
-  SqliteStore store{dir.path() / "jobs.db", clock};
+  test::StoreUnderTest backing{GetParam(), clock};
+  JobStore& store = backing.store();
 
   Job create(const std::string& name) { return *store.create(new_job(name), 1000).job; }
 };
 
-TEST_F(StoreTest, CreatesAQueuedJobAndReadsItBack) {
+INSTANTIATE_TEST_SUITE_P(BothStores, StoreTest, ::testing::Values(Backend::sqlite, Backend::postgresql),
+                         backend_name);
+
+TEST_P(StoreTest, CreatesAQueuedJobAndReadsItBack) {
   const CreateResult r = store.create(new_job("a"), 10);
   ASSERT_EQ(r.outcome, Outcome::created);
   const Job job = *store.get(r.job->id);
@@ -47,7 +61,7 @@ TEST_F(StoreTest, CreatesAQueuedJobAndReadsItBack) {
   EXPECT_FALSE(job.started);
 }
 
-TEST_F(StoreTest, KeepsTheKindAndTheStudyParameters) {
+TEST_P(StoreTest, KeepsTheKindAndTheStudyParameters) {
   EXPECT_EQ(create("a").kind, Kind::simulation);
   NewJob study = new_job("s");
   study.kind = Kind::study;
@@ -63,11 +77,11 @@ TEST_F(StoreTest, KeepsTheKindAndTheStudyParameters) {
   EXPECT_EQ(claimed.scene["name"], "s");
 }
 
-TEST_F(StoreTest, UnknownIdIsAbsent) {
+TEST_P(StoreTest, UnknownIdIsAbsent) {
   EXPECT_FALSE(store.get(JobId::random()));
 }
 
-TEST_F(StoreTest, SameIdempotencyKeyAndBodyReturnsTheOriginalJob) {
+TEST_P(StoreTest, SameIdempotencyKeyAndBodyReturnsTheOriginalJob) {
   const Job first = *store.create(new_job("a", "key-1"), 10).job;
   const CreateResult again = store.create(new_job("a", "key-1"), 10);
   EXPECT_EQ(again.outcome, Outcome::existing);
@@ -77,7 +91,7 @@ TEST_F(StoreTest, SameIdempotencyKeyAndBodyReturnsTheOriginalJob) {
   EXPECT_EQ(store.list(std::nullopt, 10, std::nullopt).jobs.size(), 1u);
 }
 
-TEST_F(StoreTest, RefusesWhenTheQueueIsFull) {
+TEST_P(StoreTest, RefusesWhenTheQueueIsFull) {
   create("a");
   create("b");
   EXPECT_EQ(store.create(new_job("c"), 2).outcome, Outcome::queue_full);
@@ -85,7 +99,7 @@ TEST_F(StoreTest, RefusesWhenTheQueueIsFull) {
   EXPECT_EQ(store.create(new_job("c"), 2).outcome, Outcome::created);
 }
 
-TEST_F(StoreTest, ListsNewestFirstInPagesAndByStatus) {
+TEST_P(StoreTest, ListsNewestFirstInPagesAndByStatus) {
   std::vector<JobId> ids;
   for (int i = 0; i < 5; ++i) ids.push_back(create(std::string("job").append(std::to_string(i))).id);
   Page first = store.list(std::nullopt, 2, std::nullopt);
@@ -106,7 +120,7 @@ TEST_F(StoreTest, ListsNewestFirstInPagesAndByStatus) {
   EXPECT_FALSE(running.next_cursor);
 }
 
-TEST_F(StoreTest, ClaimsOldestFirstWithALeaseAndTheScene) {
+TEST_P(StoreTest, ClaimsOldestFirstWithALeaseAndTheScene) {
   const Job a = create("a");
   create("b");
   const Job claimed = *store.claim("worker-1", 10'000);
@@ -120,7 +134,7 @@ TEST_F(StoreTest, ClaimsOldestFirstWithALeaseAndTheScene) {
   EXPECT_FALSE(store.claim("worker-3", 10'000));
 }
 
-TEST_F(StoreTest, OnlyTheLeaseHolderRenewsReportsAndFinishes) {
+TEST_P(StoreTest, OnlyTheLeaseHolderRenewsReportsAndFinishes) {
   const JobId id = create("a").id;
   store.claim("w1", 10'000);
   clock.advance(5'000);
@@ -140,7 +154,7 @@ TEST_F(StoreTest, OnlyTheLeaseHolderRenewsReportsAndFinishes) {
   EXPECT_EQ(store.renew(id, "w1", 10'000), Lease::lost);
 }
 
-TEST_F(StoreTest, CancelStopsAQueuedJobAtOnceAndFlagsARunningOne) {
+TEST_P(StoreTest, CancelStopsAQueuedJobAtOnceAndFlagsARunningOne) {
   const JobId queued = create("q").id;
   const JobId running = create("r").id;
   ASSERT_EQ(store.claim("w", 10'000)->id, queued);  // oldest first: claim the first, requeue trick below
@@ -162,7 +176,7 @@ TEST_F(StoreTest, CancelStopsAQueuedJobAtOnceAndFlagsARunningOne) {
   EXPECT_EQ(store.request_cancel(JobId::random()).outcome, CancelResult::Outcome::not_found);
 }
 
-TEST_F(StoreTest, RemovesOnlyFinishedJobs) {
+TEST_P(StoreTest, RemovesOnlyFinishedJobs) {
   const JobId id = create("a").id;
   EXPECT_EQ(store.remove(id), RemoveOutcome::not_finished);
   store.request_cancel(id);
@@ -171,7 +185,7 @@ TEST_F(StoreTest, RemovesOnlyFinishedJobs) {
   EXPECT_EQ(store.remove(id), RemoveOutcome::not_found);
 }
 
-TEST_F(StoreTest, CountsJobsByStatus) {
+TEST_P(StoreTest, CountsJobsByStatus) {
   create("a");
   create("b");
   store.claim("w", 10'000);
@@ -182,13 +196,16 @@ TEST_F(StoreTest, CountsJobsByStatus) {
   EXPECT_EQ(counts.size(), 5u);
 }
 
-TEST_F(StoreTest, KeepsJobsAcrossReopening) {
+TEST_P(StoreTest, KeepsJobsAcrossReopening) {
   const JobId id = create("a").id;
-  SqliteStore reopened(dir.path() / "jobs.db", clock);
-  EXPECT_EQ(reopened.get(id)->status, Status::queued);
+  const auto reopened = backing.open_again();
+  EXPECT_EQ(reopened->get(id)->status, Status::queued);
 }
 
-TEST_F(StoreTest, IsInWalModeAtTheLatestSchemaVersion) {
+TEST(SqliteStore, IsInWalModeAtTheLatestSchemaVersion) {
+  test::TempDir dir;
+  ManualClock clock;
+  SqliteStore store{dir.path() / "jobs.db", clock};
   EXPECT_EQ(store.schema_version(), SqliteStore::latest_schema_version());
   sqlite::Connection c(dir.path() / "jobs.db", 1000);
   sqlite::Statement s(c, "PRAGMA journal_mode");
@@ -246,10 +263,14 @@ TEST(StoreMigration, RefusesADatabaseFromANewerProgram) {
   }
 }
 
-TEST(StoreConcurrency, EveryQueuedJobIsClaimedExactlyOnce) {
-  test::TempDir dir;
+class StoreConcurrency : public ::testing::TestWithParam<Backend> {};
+INSTANTIATE_TEST_SUITE_P(BothStores, StoreConcurrency, ::testing::Values(Backend::sqlite, Backend::postgresql),
+                         backend_name);
+
+TEST_P(StoreConcurrency, EveryQueuedJobIsClaimedExactlyOnce) {
   SystemClock clock;
-  SqliteStore store(dir.path() / "jobs.db", clock);
+  test::StoreUnderTest backing(GetParam(), clock);
+  JobStore& store = backing.store();
   constexpr int jobs = 60, threads = 6;
   std::vector<std::thread> creators;
   for (int t = 0; t < threads; ++t)
@@ -271,6 +292,56 @@ TEST(StoreConcurrency, EveryQueuedJobIsClaimedExactlyOnce) {
   for (auto& t : workers) t.join();
   EXPECT_EQ(claimed.size(), static_cast<std::size_t>(jobs));
   EXPECT_EQ(std::set<std::string>(claimed.begin(), claimed.end()).size(), claimed.size());
+}
+
+TEST(PgStoreMigration, CreatesTheLatestSchemaOnceWhenManyProcessesStartTogether) {
+  test::PgCluster& cluster = test::PgCluster::shared();
+  const std::string db = cluster.create_database();
+  ManualClock clock;
+  std::vector<std::thread> starts;
+  std::atomic<int> opened{0};
+  for (int i = 0; i < 4; ++i)
+    starts.emplace_back([&] {
+      PgStore store(cluster.url(db), clock);
+      opened += store.schema_version() == PgStore::latest_schema_version();
+    });
+  for (auto& t : starts) t.join();
+  EXPECT_EQ(opened, 4);
+  pg::Connection c(cluster.url(db));
+  EXPECT_EQ(c.exec("SELECT count(*) FROM stoss_schema_version").int64(0, 0), PgStore::latest_schema_version());
+  cluster.drop_database(db);
+}
+
+TEST(PgStoreMigration, RefusesADatabaseFromANewerProgram) {
+  test::PgCluster& cluster = test::PgCluster::shared();
+  const std::string db = cluster.create_database();
+  ManualClock clock;
+  { PgStore store(cluster.url(db), clock); }
+  pg::Connection(cluster.url(db)).exec("INSERT INTO stoss_schema_version VALUES (999, 0)");
+  try {
+    PgStore store(cluster.url(db), clock);
+    ADD_FAILURE() << "opened a database of schema version 999";
+  } catch (const StoreError& e) {
+    EXPECT_NE(std::string(e.what()).find("database schema version 999 is newer than this program's (1)"),
+              std::string::npos)
+        << e.what();
+  }
+  cluster.drop_database(db);
+}
+
+TEST(PgStoreErrors, WrongCredentialsAndAnAbsentServerAreUnavailableWithLibpqsReason) {
+  test::PgCluster& cluster = test::PgCluster::shared();
+  ManualClock clock;
+  const std::string wrong = "postgresql://stoss:wrong@127.0.0.1:" + std::to_string(cluster.port()) + "/postgres";
+  try {
+    PgStore store(wrong, clock);
+    ADD_FAILURE() << "connected with a wrong password";
+  } catch (const StoreUnavailable& e) {
+    EXPECT_NE(std::string(e.what()).find("password authentication failed for user \"stoss\""), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(pg::redacted(wrong), "postgresql://stoss:***@127.0.0.1:" + std::to_string(cluster.port()) + "/postgres");
+  EXPECT_THROW(pg::check_url("postgresql://stoss@127.0.0.1:99999/db"), StoreError);
 }
 
 }  // namespace

@@ -1,0 +1,124 @@
+#include "tests/server/pg_cluster.hpp"
+
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <cstdio>
+#include <stdexcept>
+
+#include "server/jobs/id.hpp"
+#include "server/jobs/pg.hpp"
+#include "server/jobs/pg_store.hpp"
+#include "server/jobs/sqlite_store.hpp"
+
+namespace stoss::test {
+
+namespace {
+
+const std::string script = std::string(STOSS_SOURCE_DIR) + "/tests/server/pg_cluster.sh";
+
+/// Runs `command` through the shell; its stdout. Throws when it fails.
+std::string shell(const std::string& command) {
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) throw std::runtime_error("cannot run " + command);
+  std::string out;
+  std::array<char, 256> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe)) out += buffer.data();
+  if (pclose(pipe) != 0) throw std::runtime_error(command + " failed: " + out);
+  return out;
+}
+
+/// A loopback port nobody listens on now.
+int free_port() {
+  const int s = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t length = sizeof a;
+  bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a);
+  getsockname(s, reinterpret_cast<sockaddr*>(&a), &length);
+  close(s);
+  return ntohs(a.sin_port);
+}
+
+}  // namespace
+
+PgCluster::PgCluster() {
+  std::string pattern = "/tmp/stoss-pg-XXXXXX";  // /tmp: `nobody` must reach it
+  if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
+  dir_ = pattern;
+  port_ = free_port();
+  start();
+}
+
+PgCluster::~PgCluster() {
+  try {
+    shell(script + " remove " + dir_.string());
+  } catch (...) {
+  }
+}
+
+PgCluster& PgCluster::shared() {
+  static PgCluster cluster;
+  return cluster;
+}
+
+std::string PgCluster::url(const std::string& db) const {
+  return "postgresql://stoss:secret@127.0.0.1:" + std::to_string(port_) + "/" + db;
+}
+
+std::string PgCluster::create_database() {
+  const std::string name = "t_" + server::jobs::JobId::random().str().substr(0, 12);
+  server::jobs::pg::Connection(url()).exec("CREATE DATABASE " + name);
+  return name;
+}
+
+void PgCluster::drop_database(const std::string& db) {
+  server::jobs::pg::Connection(url()).exec("DROP DATABASE IF EXISTS " + db + " WITH (FORCE)");
+}
+
+void PgCluster::stop() {
+  shell(script + " stop " + dir_.string());
+}
+
+void PgCluster::start() {
+  shell(script + " start " + dir_.string() + " " + std::to_string(port_));
+}
+
+std::string to_string(Backend b) {
+  return b == Backend::sqlite ? "Sqlite" : "Postgresql";
+}
+
+StoreUnderTest::StoreUnderTest(Backend backend, const server::jobs::Clock& clock)
+    : backend_(backend), clock_(clock) {
+  if (backend == Backend::sqlite) {
+    std::string pattern = (std::filesystem::temp_directory_path() / "stoss-test-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
+    dir_ = pattern;
+  } else {
+    database_ = PgCluster::shared().create_database();
+  }
+  store_ = open_again();
+}
+
+StoreUnderTest::~StoreUnderTest() {
+  store_.reset();
+  std::error_code ignored;
+  if (!dir_.empty()) std::filesystem::remove_all(dir_, ignored);
+  if (!database_.empty()) {
+    try {
+      PgCluster::shared().drop_database(database_);
+    } catch (...) {
+    }
+  }
+}
+
+std::unique_ptr<server::jobs::JobStore> StoreUnderTest::open_again() const {
+  if (backend_ == Backend::sqlite) return std::make_unique<server::jobs::SqliteStore>(dir_ / "jobs.db", clock_);
+  return std::make_unique<server::jobs::PgStore>(PgCluster::shared().url(database_), clock_);
+}
+
+}  // namespace stoss::test

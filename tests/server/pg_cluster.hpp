@@ -1,0 +1,65 @@
+#pragma once
+/// @file Test support: a throwaway PostgreSQL cluster (tests/server/pg_cluster.sh: initdb into a temporary
+/// directory, as `nobody` when run as root, on a free loopback port, removed at the end), and a job store
+/// of either kind for the store contract tests.
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "server/jobs/clock.hpp"
+#include "server/jobs/store.hpp"
+
+namespace stoss::test {
+
+/// A PostgreSQL cluster of its own, started by the constructor and removed by the destructor.
+class PgCluster {
+ public:
+  PgCluster();
+  ~PgCluster();
+  PgCluster(const PgCluster&) = delete;
+  PgCluster& operator=(const PgCluster&) = delete;
+
+  /// The cluster of this test process, started on first use, removed at exit.
+  static PgCluster& shared();
+
+  int port() const { return port_; }
+  /// postgresql://stoss:secret@127.0.0.1:PORT/DB (the superuser).
+  std::string url(const std::string& db = "postgres") const;
+  /// A new empty database; its name.
+  std::string create_database();
+  /// Drops `db`, ending its connections.
+  void drop_database(const std::string& db);
+  /// Fast shutdown (every connection ends); start() brings the same data back on the same port.
+  void stop();
+  void start();
+
+ private:
+  std::filesystem::path dir_;
+  int port_ = 0;
+};
+
+/// Which JobStore a contract test runs against.
+enum class Backend { sqlite, postgresql };
+std::string to_string(Backend b);
+
+/// A fresh store of one kind: an SQLite file in a temporary directory, or a new database in the shared
+/// cluster (dropped at the end).
+class StoreUnderTest {
+ public:
+  StoreUnderTest(Backend backend, const server::jobs::Clock& clock);
+  ~StoreUnderTest();
+
+  server::jobs::JobStore& store() { return *store_; }
+  /// Another store object on the same database (as a restarted process, or a second process, opens it).
+  std::unique_ptr<server::jobs::JobStore> open_again() const;
+
+ private:
+  Backend backend_;
+  const server::jobs::Clock& clock_;
+  std::filesystem::path dir_;
+  std::string database_;
+  std::unique_ptr<server::jobs::JobStore> store_;
+};
+
+}  // namespace stoss::test
