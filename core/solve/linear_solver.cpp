@@ -125,6 +125,7 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) const {
 bool LinearSolver::factorize_amg(const BlockPattern& A) {
   const auto t0 = std::chrono::steady_clock::now();
   if (!amg_) amg_ = std::make_unique<Amg>();
+  if (amg_tolerance_ > 0) amg_->solver->set_tolerance(amg_tolerance_);
   amg_->lu_ready = false;
   const bool ok = amg_->solver->factorize(A.matrix(), A.generation(), coordinates_);
   seconds_ += seconds_since(t0);
@@ -150,6 +151,11 @@ Eigen::VectorXd LinearSolver::solve_amg(const Eigen::VectorXd& b) const {
   }
   seconds_ += seconds_since(t0);
   return x;
+}
+
+void LinearSolver::set_krylov_tolerance(double relative) {
+  amg_tolerance_ = relative;
+  if (amg_) amg_->solver->set_tolerance(relative);
 }
 
 std::string LinearSolver::preconditioner_description() const {

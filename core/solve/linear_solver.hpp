@@ -55,6 +55,9 @@ class LinearSolver {
   long krylov_iterations() const { return krylov_iterations_; }
   int krylov_max_iterations() const { return krylov_max_iterations_; }
   long krylov_fallbacks() const { return krylov_fallbacks_; }
+  /// petsc_gamg: relative residual its GMRES solves stop at (default amg_default_tolerance, 1e-4:
+  /// Newton corrects the rest, so the answer still meets the Newton tolerance).
+  void set_krylov_tolerance(double relative);
   /// petsc_gamg: the Krylov method and preconditioner of the last factorisation (empty otherwise).
   std::string preconditioner_description() const;
 
@@ -68,6 +71,7 @@ class LinearSolver {
   std::unique_ptr<Krylov> krylov_;
   std::unique_ptr<Amg> amg_;
   Eigen::VectorXd coordinates_;
+  double amg_tolerance_ = 0;  ///< 0: the AMG solver's default
   LinearMethod method_ = LinearMethod::direct;
   int analyzed_generation_ = -1;
   int factorized_generation_ = -1;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/solve/linear_solver.hpp"
+#include "core/solve/petsc_solver.hpp"
 
 namespace stoss::solve {
 namespace {
@@ -73,11 +74,13 @@ Eigen::VectorXd rhs(int n) {
   return b;
 }
 
-/// Solves with both methods and checks that they agree; returns the petsc solver for its counters.
+/// Solves with both methods, GMRES to a relative residual of 1e-10, and checks that they agree;
+/// returns the petsc solver for its counters.
 LinearSolver expect_same_solution(const BlockPattern& A, const Eigen::VectorXd& positions) {
   const Eigen::VectorXd b = rhs(A.matrix().rows());
   LinearSolver direct, amg(LinearMethod::petsc_gamg);
   amg.set_coordinates(positions);
+  amg.set_krylov_tolerance(1e-10);
   EXPECT_TRUE(direct.factorize(A));
   EXPECT_TRUE(amg.factorize(A));
   const Eigen::VectorXd x_direct = direct.solve(b), x_amg = amg.solve(b);
@@ -121,12 +124,27 @@ TEST(PetscGamg, RefactorisingWithTheSamePatternUsesTheNewValues) {
   BlockPattern A = elastic_system(l, 1e-3);
   LinearSolver amg(LinearMethod::petsc_gamg);
   amg.set_coordinates(l.positions);
+  amg.set_krylov_tolerance(1e-10);
   ASSERT_TRUE(amg.factorize(A));
   for (int i = 0; i < A.matrix().rows(); ++i) A.add_diagonal(i, 1.0);  // same pattern, new values
   ASSERT_TRUE(amg.factorize(A));
   const Eigen::VectorXd b = rhs(A.matrix().rows());
   EXPECT_LT((A.matrix() * amg.solve(b) - b).norm(), 1e-9 * b.norm());
   EXPECT_EQ(amg.factorizations(), 2);
+}
+
+TEST(PetscGamg, ByDefaultASolveStopsAtARelativeResidualOf1e4) {
+  const Lattice l = lattice(8);
+  const BlockPattern A = elastic_system(l, 1e-3);
+  const Eigen::VectorXd b = rhs(A.matrix().rows());
+  LinearSolver amg(LinearMethod::petsc_gamg);
+  amg.set_coordinates(l.positions);
+  ASSERT_TRUE(amg.factorize(A));
+  const double residual = (A.matrix() * amg.solve(b) - b).norm() / b.norm();
+  EXPECT_LT(residual, amg_default_tolerance);
+  EXPECT_GT(residual, 1e-10) << "an inexact solve: Newton corrects the rest";
+  EXPECT_NE(amg.preconditioner_description().find("rtol 1e-04"), std::string::npos)
+      << amg.preconditioner_description();
 }
 
 }  // namespace
