@@ -4,10 +4,12 @@
 // memory it prints is that size's alone. Records s/step, Newton iterations/step, peak memory and the
 // shares of the wall time (linear solver, assembly, output) from the run's summary.
 // Writes bench/results/scaling.csv and bench/results/scaling.png (gnuplot).
-// Run: ./build/bench_scaling [--large] [--iterative] [--stoss PATH]
-//   default sizes about 1k, 8k and 27k elements; --large adds about 64k and 100k.
-//   --iterative: the runs use the Krylov path (STOSS_LINEAR_SOLVER=iterative) and the results go to
-//   scaling_iterative.{csv,png}, with the Krylov iterations per solve.
+// Run: ./build/bench_scaling [--linear direct|iterative|petsc_gamg] [--large | --only-large] [--steps N]
+//                            [--stoss PATH]
+//   default sizes about 1k, 8k and 27k elements; --large adds 64k and 100k, --only-large runs just those
+//   (appending to the CSV). --linear sets the scene's solver.linear (default direct); other than direct
+//   the results go to scaling_<linear>.csv, with the Krylov iterations per solve and the most one took.
+//   scaling.png draws every scaling*.csv there is, one line per linear solver.
 //   stoss defaults to the stoss next to this executable (build it first: --target stoss).
 #include <array>
 #include <cmath>
@@ -38,7 +40,12 @@ struct Size {
 struct Row {
   int divisions = 0, layers = 0, elements = 0, dofs = 0, steps = 0;
   double wall = 0, linear = 0, assembly = 0, contact = 0, output = 0, newton_per_step = 0, peak_mb = 0;
-  double krylov_per_solve = 0;
+  double krylov_per_solve = 0, krylov_max = 0;
+};
+
+struct Options {
+  std::string linear = "direct";
+  int steps = 5;
 };
 
 std::string run_capture(const std::string& command, int& status) {
@@ -63,8 +70,8 @@ double match(const std::string& text, const std::string& pattern, int group = 1)
   return std::stod(m[group].str());
 }
 
-/// The example scene with a finer sphere, 5 steps, frames only at the ends.
-fs::path write_scene(const Size& size, const fs::path& dir) {
+/// The example scene with a finer sphere, `steps` steps, frames only at the ends.
+fs::path write_scene(const Size& size, const fs::path& dir, const Options& o) {
   std::ifstream in(source_dir / "api" / "examples" / "tumbling_sphere.json");
   nlohmann::json scene = nlohmann::json::parse(in);
   auto& sphere = scene["bodies"][0]["mesh"]["hollow_sphere"];
@@ -73,18 +80,19 @@ fs::path write_scene(const Size& size, const fs::path& dir) {
   scene["name"] = "scaling: tumbling hollow sphere " + std::to_string(size.divisions) + "x" +
                   std::to_string(size.layers);
   scene["time"]["step"] = 0.01;
-  scene["time"]["end"] = 0.05;
-  scene["output"]["every"] = 5;
+  scene["time"]["end"] = 0.01 * o.steps;
+  scene["output"]["every"] = o.steps;
+  scene["solver"]["linear"] = o.linear;
   const fs::path path = dir / ("sphere_" + std::to_string(size.divisions) + "_" + std::to_string(size.layers) + ".json");
   std::ofstream(path) << scene.dump(2);
   return path;
 }
 
-Row measure(const fs::path& stoss, const Size& size, const fs::path& work, bool iterative) {
+Row measure(const fs::path& stoss, const Size& size, const fs::path& work, const Options& o) {
   Row r;
   r.divisions = size.divisions;
   r.layers = size.layers;
-  const fs::path scene = write_scene(size, work);
+  const fs::path scene = write_scene(size, work, o);
   int status = 0;
   const std::string validated = run_capture(stoss.string() + " validate " + scene.string() + " 2>&1", status);
   if (status != 0) {
@@ -94,8 +102,8 @@ Row measure(const fs::path& stoss, const Size& size, const fs::path& work, bool 
   r.elements = int(match(validated, R"(elements (\d+))"));
   r.dofs = int(match(validated, R"(dofs (\d+))"));
   const fs::path out = work / ("out_" + std::to_string(size.divisions));
-  const std::string environment = iterative ? "STOSS_LINEAR_SOLVER=iterative " : "";
-  const std::string ran = run_capture(environment + stoss.string() + " run " + scene.string() + " -o " + out.string() + " 2>/dev/null", status);
+  // The log (stderr) carries the Krylov line; the progress line's carriage returns do no harm.
+  const std::string ran = run_capture(stoss.string() + " run " + scene.string() + " -o " + out.string() + " 2>&1", status);
   if (status != 0) {
     std::cerr << "bench_scaling: stoss run failed (status " << status << "):\n" << ran;
     std::exit(1);
@@ -108,43 +116,64 @@ Row measure(const fs::path& stoss, const Size& size, const fs::path& work, bool 
   r.linear = match(ran, R"(, linear solver ([0-9.]+) s, output)");
   r.output = match(ran, R"(output ([0-9.]+) s)");
   r.peak_mb = match(ran, R"(peak memory ([0-9.]+) MB)");
-  if (iterative) r.krylov_per_solve = match(ran, R"(krylov iterations ([0-9.]+) per solve)");
+  if (o.linear != "direct") {
+    r.krylov_per_solve = match(ran, R"(krylov iterations ([0-9.]+) per solve)");
+    r.krylov_max = match(ran, R"(per solve, at most (\d+))");
+  }
   fs::remove_all(out);
   return r;
 }
 
-void write_plot(const fs::path& csv, const fs::path& png, const std::string& solver) {
+/// One line per linear solver whose CSV exists (scaling.csv is UMFPACK's).
+void write_plot(const fs::path& png) {
+  const std::vector<std::pair<std::string, std::string>> series = {
+      {"scaling.csv", "UMFPACK (direct)"},
+      {"scaling_petsc_gamg.csv", "PETSc GMRES + GAMG (petsc_gamg)"},
+      {"scaling_iterative.csv", "BiCGSTAB + Jacobi (iterative)"}};
+  const std::vector<std::string> colours = {"#d62728", "#1f77b4", "#7f7f7f"};
+  std::string time_plot, memory_plot;
+  for (size_t k = 0; k < series.size(); ++k) {
+    const fs::path csv = results_dir / series[k].first;
+    if (!fs::exists(csv)) continue;
+    const std::string c = "'" + csv.string() + "'", style = " with linespoints lw 2 lc rgb '" + colours[k] + "'";
+    time_plot += std::string(time_plot.empty() ? "plot " : ", ") + c + " using 3:8" + style + " pt 7 title '" +
+                 series[k].second + "', " + c + " using 3:($8*$10)" + style + " dt 2 pt 6 title '  its linear solver'";
+    memory_plot += std::string(memory_plot.empty() ? "plot " : ", ") + c + " using 3:14" + style + " pt 7 title '" +
+                   series[k].second + "'";
+  }
   fs::path script = png;
   script.replace_extension(".gnuplot");
-  const std::string c = "'" + csv.string() + "'";
   std::ofstream(script)
       << "set datafile separator ','\n"
       << "set terminal pngcairo size 1200,480 noenhanced font ',11'\n"
       << "set output '" << png.string() << "'\n"
-      << "set multiplot layout 1,2 title 'tumbling hollow sphere, energy_momentum, h = 0.01, 5 steps (2 cores, " << solver << ")'\n"
+      << "set multiplot layout 1,2 title 'tumbling hollow sphere, energy_momentum, h = 0.01 (2 shared cores)'\n"
       << "set logscale xy\nset grid\nset xlabel 'elements (hex8)'\nset key inside top left box opaque\n"
       << "set title 'seconds per step'\nset ylabel 's/step'\n"
-      << "plot " << c << " using 3:8 with linespoints lw 2 pt 7 lc rgb '#1f77b4' title 'whole step', "
-      << c << " using 3:($8*$10) with linespoints lw 2 pt 5 lc rgb '#d62728' title 'linear solver'\n"
+      << time_plot << "\n"
       << "set title 'peak resident memory'\nset ylabel 'MB'\n"
-      << "plot " << c << " using 3:14 with linespoints lw 2 pt 7 lc rgb '#2ca02c' title 'peak RSS'\n"
+      << memory_plot << "\n"
       << "unset multiplot\n";
   const std::string command = "gnuplot " + script.string();
-  if (std::system(command.c_str()) != 0) std::cerr << "bench_scaling: gnuplot failed; " << csv << " is written\n";
+  if (std::system(command.c_str()) != 0) std::cerr << "bench_scaling: gnuplot failed; the CSV files are written\n";
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool large = false, iterative = false;
+  bool large = false, only_large = false;
+  Options o;
   fs::path stoss = fs::read_symlink("/proc/self/exe").parent_path() / "stoss";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--large") large = true;
-    else if (a == "--iterative") iterative = true;
+    else if (a == "--only-large") large = only_large = true;
+    else if (a == "--linear" && i + 1 < argc) o.linear = argv[++i];
+    else if (a == "--steps" && i + 1 < argc) o.steps = std::atoi(argv[++i]);
     else if (a == "--stoss" && i + 1 < argc) stoss = argv[++i];
     else {
-      std::cerr << "usage: bench_scaling [--large] [--iterative] [--stoss PATH]\n";
+      std::cerr << "usage: bench_scaling [--linear direct|iterative|petsc_gamg] [--large | --only-large] [--steps N] "
+                   "[--stoss PATH]\n";
       return 2;
     }
   }
@@ -153,7 +182,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   // layers ≈ divisions / 3, as in the issue's table (6·12²·4 = 3456, 6·24²·8 = 27648).
-  std::vector<Size> sizes = {{8, 3}, {16, 5}, {24, 8}};  // 1152, 7680, 27648 elements
+  std::vector<Size> sizes;
+  if (!only_large) sizes = {{8, 3}, {16, 5}, {24, 8}};  // 1152, 7680, 27648 elements
   if (large) {
     sizes.push_back({32, 10});  // 61440
     sizes.push_back({38, 12});  // 103968
@@ -161,29 +191,36 @@ int main(int argc, char** argv) {
   const fs::path work = fs::temp_directory_path() / ("stoss_scaling_" + std::to_string(::getpid()));
   fs::create_directories(work);
   fs::create_directories(results_dir);
-  const std::string base = iterative ? "scaling_iterative" : "scaling";
-  const fs::path csv = results_dir / (base + ".csv"), png = results_dir / (base + ".png");
-  std::ofstream out(csv);
-  out << "divisions,layers,elements,dofs,steps,wall_seconds,newton_per_step,s_per_step,linear_solver_seconds,"
-         "linear_solver_share,assembly_share,contact_share,output_share,peak_memory_mb,krylov_per_solve\n";
-  std::printf("| elements | dofs | s/step | Newton its/step | peak memory MB | linear solver | assembly | output | Krylov its/solve |\n");
+  const std::string base = o.linear == "direct" ? "scaling" : "scaling_" + o.linear;
+  const fs::path csv = results_dir / (base + ".csv"), png = results_dir / "scaling.png";
+  const bool append = only_large && fs::exists(csv);
+  std::ofstream out(csv, append ? std::ios::app : std::ios::trunc);
+  if (!append)
+    out << "divisions,layers,elements,dofs,steps,wall_seconds,newton_per_step,s_per_step,linear_solver_seconds,"
+           "linear_solver_share,assembly_share,contact_share,output_share,peak_memory_mb,krylov_per_solve,"
+           "krylov_max_per_solve\n";
+  std::printf("| elements | dofs | s/step | Newton its/step | peak memory MB | linear solver | assembly | output | "
+              "Krylov its/solve (max) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   for (const Size& size : sizes) {
-    const Row r = measure(stoss, size, work, iterative);
+    const Row r = measure(stoss, size, work, o);
     const double per_step = r.wall / r.steps;
     char line[512];
-    std::snprintf(line, sizeof line, "%d,%d,%d,%d,%d,%.4f,%.3f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%.1f,%.1f\n", r.divisions,
-                  r.layers, r.elements, r.dofs, r.steps, r.wall, r.newton_per_step, per_step, r.linear,
-                  r.linear / r.wall, r.assembly / r.wall, r.contact / r.wall, r.output / r.wall, r.peak_mb, r.krylov_per_solve);
+    std::snprintf(line, sizeof line, "%d,%d,%d,%d,%d,%.4f,%.3f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%.1f,%.1f,%.0f\n",
+                  r.divisions, r.layers, r.elements, r.dofs, r.steps, r.wall, r.newton_per_step, per_step, r.linear,
+                  r.linear / r.wall, r.assembly / r.wall, r.contact / r.wall, r.output / r.wall, r.peak_mb,
+                  r.krylov_per_solve, r.krylov_max);
     out << line << std::flush;
+    char krylov[64] = "–";
+    if (o.linear != "direct") std::snprintf(krylov, sizeof krylov, "%.1f (%.0f)", r.krylov_per_solve, r.krylov_max);
     std::printf("| %d | %d | %.3f | %.1f | %.0f | %.0f %% | %.0f %% | %.1f %% | %s |\n", r.elements, r.dofs,
                 per_step, r.newton_per_step, r.peak_mb, 100 * r.linear / r.wall, 100 * r.assembly / r.wall,
-                100 * r.output / r.wall, iterative ? std::to_string(r.krylov_per_solve).c_str() : "–");
+                100 * r.output / r.wall, krylov);
     std::fflush(stdout);
   }
   out.close();
   fs::remove_all(work);
-  write_plot(csv, png, iterative ? "BiCGSTAB + Jacobi" : "UMFPACK");
+  write_plot(png);
   std::printf("wrote %s and %s\n", csv.c_str(), png.c_str());
   return 0;
 }
