@@ -315,7 +315,7 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
   if (p.gravity) terms.push_back(p.gravity.get());
   const size_t first_contact = terms.size();
   for (const auto& c : p.contact) terms.push_back(c.get());
-  time::Integrator integrator(p.mass, terms, p.fixed, time::make_scheme(m.time.scheme, m.time.alpha),
+  time::Integrator integrator(p.mass, terms, p.fixed, time::make_scheme(m.time),
                               newton_options(m), p.length_scale, p.total_mass);
   time::State s;
   s.x = m.mesh.reference_positions();

@@ -6,20 +6,20 @@
 #include "core/contact/midpoint_term.hpp"
 #include "core/contact/mixed_term.hpp"
 #include "core/contact/penalty_term.hpp"
+#include "core/time/scheme.hpp"
 
 namespace stoss::contact {
 namespace {
 
+/// The scheme rules of model::contact_scheme_conflict, and what make_contact_term cannot build.
 void check_supported(const model::ContactPair& pair, model::Scheme scheme) {
   const std::string which = "contact pair " + pair.slave + " / " + pair.master + ": ";
   if (pair.enforcement != model::Enforcement::lagrange || pair.friction > 0)
     throw std::invalid_argument(which +
                                 "make_contact_term builds frictionless Lagrange terms only; friction > 0 "
                                 "needs enforcement \"penalty\" (make_pair_term)");
-  if (scheme != model::Scheme::energy_momentum && pair.impact == model::ImpactMode::velocity_correction)
-    throw std::invalid_argument(which +
-                                "impact \"velocity_correction\" needs the energy_momentum scheme; use "
-                                "\"persist\" or \"exact\" with " + model::to_string(scheme));
+  if (const auto conflict = model::contact_scheme_conflict(scheme, pair.enforcement, pair.impact))
+    throw std::invalid_argument(which + conflict->field + " " + conflict->reason);
 }
 
 std::string pair_label(const model::ContactPair& pair) {
@@ -38,10 +38,8 @@ double master_youngs_modulus(const model::Model& m, const model::ContactPair& pa
 
 std::unique_ptr<ContactTerm> make_pair_term(const model::Model& m, const model::ContactPair& pair) {
   if (pair.enforcement != model::Enforcement::penalty) return make_contact_term(m.mesh, pair, m.time.scheme);
-  if (m.time.scheme == model::Scheme::hht)
-    throw std::invalid_argument(pair_label(pair) +
-                                "penalty contact is not implemented for the hht scheme; use energy_momentum "
-                                "or midpoint");
+  if (const auto conflict = model::contact_scheme_conflict(m.time.scheme, pair.enforcement, pair.impact))
+    throw std::invalid_argument(pair_label(pair) + conflict->field + " " + conflict->reason);
   if (pair.master_surface == model::MasterSurface::smooth)
     throw std::invalid_argument(pair_label(pair) + "master_surface \"smooth\" is implemented for lagrange pairs "
                                                    "only so far; use \"faceted\" with penalty");
@@ -51,9 +49,13 @@ std::unique_ptr<ContactTerm> make_pair_term(const model::Model& m, const model::
 std::unique_ptr<LagrangeContactTerm> make_contact_term(const mesh::Mesh& mesh, const model::ContactPair& pair,
                                                        model::Scheme scheme) {
   check_supported(pair, scheme);
-  if (scheme == model::Scheme::energy_momentum) return std::make_unique<MixedContactTerm>(mesh, pair);
-  if (scheme == model::Scheme::hht) return std::make_unique<HhtContactTerm>(mesh, pair);  // (2.11)
-  return std::make_unique<MidpointContactTerm>(mesh, pair);
+  const time::ForceRule rule = time::make_scheme(model::TimeSpec{scheme})->force_rule();
+  if (rule.kind == time::ForceRule::Kind::discrete_gradient) return std::make_unique<MixedContactTerm>(mesh, pair);
+  if (rule.is_end_point()) return std::make_unique<HhtContactTerm>(mesh, pair);  // (2.11), (2.12)
+  if (rule.is_midpoint()) return std::make_unique<MidpointContactTerm>(mesh, pair);
+  throw std::invalid_argument(pair_label(pair) + "no Lagrange contact element evaluates forces at θ = " +
+                              std::to_string(rule.theta) + " with a t_n force (time.scheme " +
+                              model::to_string(scheme) + ")");
 }
 
 }  // namespace stoss::contact

@@ -9,17 +9,17 @@ Projection project(const Vector15& x, const Eigen::Vector2d& xi_start) {
 }
 }  // namespace
 
-HhtElementResult hht_element(const Vector15& x_1, double lambda, double f3, double h, double alpha,
+HhtElementResult hht_element(const Vector15& x_1, double lambda, double f3, double h, double weight,
                              const Eigen::Vector2d& xi_start) {
   HhtElementResult out;
   out.end = project(x_1, xi_start);
   out.converged = out.end.converged;
   const GapVariations end = gap_variations(out.end.frame, out.end.gap);
-  const double weight = h * (1 + alpha);  // (2.11): (1+α) on the t_{n+1} forces
-  out.Rx = weight * lambda * end.Ns;       // (2.11), (3.6)
+  const double step_weight = h * weight;  // (2.11), (2.12): w on the t_{n+1} forces
+  out.Rx = step_weight * lambda * end.Ns;       // (2.11), (3.6)
   out.Rl = out.end.gap - f3;               // (2.11): g(x_{n+1}) = 0 for active constraints
-  out.Kxx = weight * lambda * end.dNs;     // (3.9)
-  out.Kxl = weight * end.Ns;               // (3.6)
+  out.Kxx = step_weight * lambda * end.dNs;     // (3.9)
+  out.Kxl = step_weight * end.Ns;               // (3.6)
   out.Klx = end.Ns.transpose();            // (3.6)
   return out;
 }

@@ -23,9 +23,9 @@ struct HhtElementResult {
   Projection end;          ///< CPP of x_{n+1}
 };
 
-/// The element at x_{n+1} with multiplier λ_{n+1}, gap target f_3, step h and HHT parameter α; the CPP
-/// starts from `xi_start`.
-HhtElementResult hht_element(const Vector15& x_1, double lambda, double f3, double h, double alpha,
+/// The element at x_{n+1} with multiplier λ_{n+1}, gap target f_3, step h and the weight w of the
+/// t_{n+1} forces (HHT-α: 1+α (2.11); generalized-α: 1−α_f (2.12)); the CPP starts from `xi_start`.
+HhtElementResult hht_element(const Vector15& x_1, double lambda, double f3, double h, double weight,
                              const Eigen::Vector2d& xi_start);
 
 /// λ N_s(x) (3.6): the element's contact force at a converged configuration x (no h, no α weight); zero

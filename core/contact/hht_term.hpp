@@ -1,6 +1,7 @@
 #pragma once
-/// @file Frictionless Lagrange NTS contact for the HHT-α scheme (docs/theory.md §2.4, (2.11)): one
-/// multiplier per active element after x_{n+1} in z, like the midpoint form (§4.2).
+/// @file Frictionless Lagrange NTS contact for the α-weighted schemes, HHT-α (docs/theory.md §2.4,
+/// (2.11)) and generalized-α (§2.5, (2.12)): forces at t_{n+1} and t_n with the weights of the scheme's
+/// ForceRule (end point), one multiplier per active element after x_{n+1} in z, like the midpoint form (§4.2).
 
 #include <array>
 #include <utility>
@@ -10,8 +11,8 @@
 
 namespace stoss::contact {
 
-/// The contact term of the hht scheme, the G_ᵀλ part of (2.11) with G = N_sᵀ (3.6):
-///   momentum rows   h [(1+α) λ_{n+1} N_s(x_{n+1}) − α λ_n N_s(x_n)],
+/// The contact term of the end-point force rules, the Gᵀλ part of (2.11) and (2.12) with G = N_sᵀ (3.6):
+///   momentum rows   h [w λ_{n+1} N_s(x_{n+1}) + w_n λ_n N_s(x_n)]   (HHT-α: w = 1+α, w_n = −α),
 ///   constraint row  g_N(x_{n+1}) − f_3 = 0   (enforced at t_{n+1}).
 /// @note λ_n N_s(x_n) is the contact force of the last converged step, summed over the elements active
 ///       at its end (kept from end_step): an element activated in this step has λ_n = 0; an element

@@ -42,16 +42,16 @@ PatchNtsResult patch_midpoint_element(const TensorPatch& local, const Eigen::Vec
 }
 
 PatchNtsResult patch_hht_element(const TensorPatch& local, const Eigen::VectorXd& x_1, double lambda, double f3,
-                                 double h, double alpha, const Eigen::Vector2d& xi_start) {
+                                 double h, double weight, const Eigen::Vector2d& xi_start) {
   PatchNtsResult out;
   out.end = project(local, x_1, xi_start);
   out.converged = out.end.converged;
   const PatchGapVariations v = patch_gap_variations(local, x_1, out.end.xi, out.end.gap);
-  const double weight = h * (1 + alpha);  // (2.11): (1+α) on the t_{n+1} forces
-  out.Rx = weight * lambda * v.Ns;
+  const double step_weight = h * weight;  // (2.11), (2.12): w on the t_{n+1} forces
+  out.Rx = step_weight * lambda * v.Ns;
   out.Rl = out.end.gap - f3;
-  out.Kxx = weight * lambda * v.dNs;  // (3.9)
-  out.Kxl = weight * v.Ns;
+  out.Kxx = step_weight * lambda * v.dNs;  // (3.9)
+  out.Kxl = step_weight * v.Ns;
   out.Klx = v.Ns.transpose();
   return out;
 }

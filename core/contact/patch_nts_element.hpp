@@ -34,8 +34,9 @@ Eigen::VectorXd local_positions(int slave, const TensorPatch& p, const Eigen::Ve
 PatchNtsResult patch_midpoint_element(const TensorPatch& local, const Eigen::VectorXd& x_n, const Eigen::VectorXd& x_1,
                                       double lambda, double f3, double h, const Eigen::Vector2d& xi_start);
 
-/// HHT-α (2.11): h (1+α) λ N_s(x_{n+1}), g_N(x_{n+1}) − f_3.
+/// HHT-α (2.11) and generalized-α (2.12): h w λ N_s(x_{n+1}), g_N(x_{n+1}) − f_3, with the weight w of
+/// the t_{n+1} forces (1+α; 1−α_f).
 PatchNtsResult patch_hht_element(const TensorPatch& local, const Eigen::VectorXd& x_1, double lambda, double f3,
-                                 double h, double alpha, const Eigen::Vector2d& xi_start);
+                                 double h, double weight, const Eigen::Vector2d& xi_start);
 
 }  // namespace stoss::contact

@@ -64,7 +64,7 @@ void ElasticityTerm::register_blocks(solve::BlockPattern& pattern) {
 }
 
 void ElasticityTerm::begin_step(const time::StepContext& step, Eigen::VectorXd&) {
-  if (step.rule != time::ForceRule::hht) return;
+  if (step.rule.previous_weight == 0) return;
   force_n_.resize(hex8_.size());
   for (size_t e = 0; e < hex8_.size(); ++e)
     internal_force(geometry_[e], material_[e], gather(hex8_[e], step.x_n), force_n_[e], nullptr);
@@ -73,20 +73,15 @@ void ElasticityTerm::begin_step(const time::StepContext& step, Eigen::VectorXd&)
 void ElasticityTerm::element_step(const time::StepContext& step, int e, const Eigen::VectorXd& x_1, Vector24& f,
                                   Matrix24* K) const {
   const Matrix83 xe_1 = gather(hex8_[e], x_1);
-  switch (step.rule) {
-    case time::ForceRule::midpoint:
-      internal_force(geometry_[e], material_[e], 0.5 * (gather(hex8_[e], step.x_n) + xe_1), f, K);
-      if (K) *K *= 0.5;  // (2.5)
-      break;
-    case time::ForceRule::discrete_gradient:
-      discrete_gradient_force(geometry_[e], material_[e], gather(hex8_[e], step.x_n), xe_1, f, K);
-      break;
-    case time::ForceRule::hht:
-      internal_force(geometry_[e], material_[e], xe_1, f, K);
-      f = (1 + step.alpha) * f - step.alpha * force_n_[e];  // (2.11)
-      if (K) *K *= 1 + step.alpha;
-      break;
+  const time::ForceRule& rule = step.rule;
+  if (rule.kind == time::ForceRule::Kind::discrete_gradient) {
+    discrete_gradient_force(geometry_[e], material_[e], gather(hex8_[e], step.x_n), xe_1, f, K);  // (2.6)
+    return;
   }
+  internal_force(geometry_[e], material_[e], rule.evaluation_point(gather(hex8_[e], step.x_n), xe_1), f, K);
+  if (rule.weight != 1) f *= rule.weight;
+  if (rule.previous_weight != 0) f += rule.previous_weight * force_n_[e];  // (2.5), (2.11), (2.12)
+  if (K && rule.weight * rule.theta != 1) *K *= rule.weight * rule.theta;
 }
 
 void ElasticityTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,

@@ -10,13 +10,24 @@ std::string to_string(Scheme s) {
     case Scheme::midpoint: return "midpoint";
     case Scheme::energy_momentum: return "energy_momentum";
     case Scheme::hht: return "hht";
+    case Scheme::generalized_alpha: return "generalized_alpha";
   }
   return "unknown";
 }
 
 std::optional<Scheme> scheme_from_string(std::string_view name) {
-  for (Scheme s : {Scheme::energy_momentum, Scheme::midpoint, Scheme::hht})
+  for (Scheme s : all_schemes)
     if (to_string(s) == name) return s;
+  return std::nullopt;
+}
+
+std::optional<SchemeConflict> contact_scheme_conflict(Scheme scheme, Enforcement enforcement, ImpactMode impact) {
+  const std::string name = "\"" + to_string(scheme) + "\"";
+  if (impact == ImpactMode::velocity_correction && scheme != Scheme::energy_momentum)
+    return SchemeConflict{"impact", "\"velocity_correction\" needs time.scheme \"energy_momentum\", got " + name};
+  if (enforcement == Enforcement::penalty && (scheme == Scheme::hht || scheme == Scheme::generalized_alpha))
+    return SchemeConflict{"enforcement", "\"penalty\" is not implemented with time.scheme " + name +
+                                             "; use energy_momentum or midpoint"};
   return std::nullopt;
 }
 

@@ -13,9 +13,12 @@
 
 namespace stoss::model {
 
-enum class Scheme { midpoint, energy_momentum, hht };
+enum class Scheme { midpoint, energy_momentum, hht, generalized_alpha };
+/// Every scheme, in the order the docs list them.
+inline constexpr Scheme all_schemes[] = {Scheme::energy_momentum, Scheme::midpoint, Scheme::hht,
+                                         Scheme::generalized_alpha};
 std::string to_string(Scheme s);
-/// The scheme named `name` (energy_momentum, midpoint, hht), or nullopt.
+/// The scheme named `name` (energy_momentum, midpoint, hht, generalized_alpha), or nullopt.
 std::optional<Scheme> scheme_from_string(std::string_view name);
 
 /// St. Venant–Kirchhoff parameters (docs/theory.md (1.4)–(1.5)).
@@ -71,11 +74,24 @@ struct ContactPair {
   NormalTraction normal_traction = NormalTraction::discrete_derivative;
 };
 
+/// Why a contact pair cannot run with a time scheme: the pair's field at fault ("impact",
+/// "enforcement") and the rule, in words. The one place these rules live: scene validation refuses such
+/// a scene before it is queued, and the contact module refuses to build it.
+struct SchemeConflict {
+  std::string field;
+  std::string reason;
+};
+/// The conflict of a pair with `enforcement` and `impact` under `scheme`, or nullopt. Rules: the velocity
+/// correction (4.12) restores the identity (4.11) of the mixed energy–momentum form only; penalty contact
+/// has no α-weighted (hht, generalized_alpha) form.
+std::optional<SchemeConflict> contact_scheme_conflict(Scheme scheme, Enforcement enforcement, ImpactMode impact);
+
 struct TimeSpec {
   Scheme scheme = Scheme::energy_momentum;
   double step = 0;
   double end = 0;
   double alpha = -0.05;                ///< HHT-α only
+  double rho_infinity = 0.9;           ///< generalized-α only: spectral radius at infinite frequency
   int steps() const;                   ///< number of steps to reach `end`
 };
 

@@ -69,12 +69,11 @@ model::ContactPair contact_pair(const json& e) {
 
 model::TimeSpec time_spec(const json& t) {
   model::TimeSpec spec;
-  spec.scheme = t["scheme"] == "midpoint" ? model::Scheme::midpoint
-                : t["scheme"] == "hht"    ? model::Scheme::hht
-                                          : model::Scheme::energy_momentum;
+  spec.scheme = model::scheme_from_string(t["scheme"].get<std::string>()).value();
   spec.step = t["step"].get<double>();
   spec.end = t["end"].get<double>();
   if (t.contains("alpha")) spec.alpha = t["alpha"].get<double>();
+  if (t.contains("rho_infinity")) spec.rho_infinity = t["rho_infinity"].get<double>();
   return spec;
 }
 

@@ -114,7 +114,7 @@ std::optional<std::string> string(const json& value, const std::string& pointer,
 }
 
 std::optional<std::string> choice(const json& value, const std::string& pointer,
-                                  std::initializer_list<std::string_view> choices, Checker& checker) {
+                                  const std::vector<std::string_view>& choices, Checker& checker) {
   if (value.is_string() &&
       std::find(choices.begin(), choices.end(), value.get<std::string>()) != choices.end())
     return value.get<std::string>();
@@ -173,7 +173,7 @@ std::optional<long long> integer_field(json& object, const char* key, const std:
 
 std::optional<std::string> choice_field(json& object, const char* key, const std::string& pointer,
                                         const Presence& presence,
-                                        std::initializer_list<std::string_view> choices, Checker& checker) {
+                                        const std::vector<std::string_view>& choices, Checker& checker) {
   json* value = member(object, key, pointer, presence, checker);
   return value ? choice(*value, child(pointer, key), choices, checker) : std::nullopt;
 }

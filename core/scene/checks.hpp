@@ -86,7 +86,7 @@ std::optional<long long> integer(json& value, const std::string& pointer, const 
                                  Checker& checker);
 std::optional<std::string> string(const json& value, const std::string& pointer, Checker& checker);
 std::optional<std::string> choice(const json& value, const std::string& pointer,
-                                  std::initializer_list<std::string_view> choices, Checker& checker);
+                                  const std::vector<std::string_view>& choices, Checker& checker);
 std::optional<Eigen::Vector3d> vector3(const json& value, const std::string& pointer, Checker& checker);
 /// A string of [A-Za-z0-9_-]+ (body and surface names).
 std::optional<std::string> name(const json& value, const std::string& pointer, Checker& checker);
@@ -102,7 +102,7 @@ std::optional<long long> integer_field(json& object, const char* key, const std:
                                        const Presence& presence, const Interval& range, Checker& checker);
 std::optional<std::string> choice_field(json& object, const char* key, const std::string& pointer,
                                         const Presence& presence,
-                                        std::initializer_list<std::string_view> choices, Checker& checker);
+                                        const std::vector<std::string_view>& choices, Checker& checker);
 std::optional<Eigen::Vector3d> vector3_field(json& object, const char* key, const std::string& pointer,
                                              const Presence& presence, Checker& checker);
 

@@ -8,7 +8,7 @@ namespace stoss::time {
 /// Conserves energy (to the Newton tolerance) and both momenta of a free system.
 class EnergyMomentum : public MidpointKinematics {
  public:
-  ForceRule force_rule() const override { return ForceRule::discrete_gradient; }
+  ForceRule force_rule() const override { return ForceRule::discrete_gradient(); }
 };
 
 }  // namespace stoss::time

@@ -92,7 +92,7 @@ void Integrator::rebuild_pattern(int n) {
 void Integrator::initialize(State& s) {
   if (!scheme_->needs_initial_acceleration()) return;
   // M a_0 = f_ext − f_int(x_0): the terms' midpoint force at x_1 = x_n, divided by h = 1.
-  const StepContext at_rest{s.x, s.v, 1.0, ForceRule::midpoint, 0.0};
+  const StepContext at_rest{s.x, s.v, 1.0, ForceRule::midpoint()};
   Eigen::VectorXd z = s.x;
   for (size_t k = 0; k < terms_.size(); ++k) {
     Stopwatch term(term_seconds_[k]);
@@ -149,7 +149,7 @@ solve::NewtonResult Integrator::solve_with_active_set(Eigen::VectorXd& z, const 
 
 solve::NewtonResult Integrator::step(State& s, double h, const LogFunction& log) {
   context_ = std::make_unique<StepContext>(
-      StepContext{s.x, s.v, h, scheme_->force_rule(), scheme_->alpha(), log ? &log : nullptr});
+      StepContext{s.x, s.v, h, scheme_->force_rule(), log ? &log : nullptr});
   state_ = &s;
   correction_energy_ = 0;
   for (size_t k = 0; k < terms_.size(); ++k) {

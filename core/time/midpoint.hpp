@@ -17,7 +17,7 @@ class MidpointKinematics : public Scheme {
 /// Forces at the midpoint configuration (2.5): conserves momenta, not energy.
 class Midpoint : public MidpointKinematics {
  public:
-  ForceRule force_rule() const override { return ForceRule::midpoint; }
+  ForceRule force_rule() const override { return ForceRule::midpoint(); }
 };
 
 }  // namespace stoss::time

@@ -21,8 +21,8 @@ struct State {
 class Scheme {
  public:
   virtual ~Scheme() = default;
+  /// Where and with which weights the terms evaluate their force (term.hpp).
   virtual ForceRule force_rule() const = 0;
-  virtual double alpha() const { return 0; }
   /// Adds the inertia part of the residual (momentum units) at x_1 to R.
   virtual void add_inertia(const State& s, double h, const solve::SparseMatrix& M, const Eigen::VectorXd& x_1,
                            Eigen::VectorXd& R) const = 0;
@@ -34,7 +34,7 @@ class Scheme {
   virtual bool needs_initial_acceleration() const { return false; }
 };
 
-/// The scheme a model asks for.
-std::unique_ptr<Scheme> make_scheme(model::Scheme scheme, double alpha);
+/// The scheme a model asks for: the registry of schemes (scheme.cpp), one line each.
+std::unique_ptr<Scheme> make_scheme(const model::TimeSpec& time);
 
 }  // namespace stoss::time

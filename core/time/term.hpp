@@ -9,11 +9,32 @@
 
 namespace stoss::time {
 
-/// How a term evaluates its force inside a step; the scheme chooses (docs/theory.md §2).
-enum class ForceRule {
-  midpoint,           ///< f(x_m), tangent ½ K(x_m)                          (2.5)
-  discrete_gradient,  ///< energy–momentum: directional derivative of V       (2.6)
-  hht,                ///< (1+α) f(x_{n+1}) − α f(x_n)                        (2.11)
+/// How the terms evaluate their force f_alg inside a step t_n → t_{n+1}; the scheme chooses it, the terms
+/// apply it (docs/theory.md §2). Two kinds cover every scheme of §2:
+///   configuration:      f_alg = w f(x_θ) + w_n f(x_n),  x_θ = (1−θ) x_n + θ x_{n+1},
+///                       ∂f_alg/∂x_{n+1} = w θ K(x_θ)   (midpoint (2.5), HHT-α (2.11), generalized-α (2.12));
+///   discrete_gradient:  f_alg = the discrete gradient of V between x_n and x_{n+1} (2.6).
+struct ForceRule {
+  enum class Kind { configuration, discrete_gradient };
+  Kind kind = Kind::discrete_gradient;
+  double theta = 1;            ///< where the configuration force is evaluated
+  double weight = 1;           ///< w, on f(x_θ)
+  double previous_weight = 0;  ///< w_n, on f(x_n) (the force at the start of the step)
+
+  static ForceRule discrete_gradient() { return {}; }
+  /// f(x_m), x_m = ½ (x_n + x_{n+1}) (2.5).
+  static ForceRule midpoint() { return {Kind::configuration, 0.5, 1, 0}; }
+  /// w f(x_{n+1}) + w_n f(x_n): HHT-α (2.11) and generalized-α (2.12).
+  static ForceRule end_point(double weight, double previous_weight) {
+    return {Kind::configuration, 1, weight, previous_weight};
+  }
+  bool is_midpoint() const { return kind == Kind::configuration && theta == 0.5 && previous_weight == 0; }
+  bool is_end_point() const { return kind == Kind::configuration && theta == 1; }
+  /// x_θ from x_n and x_{n+1}.
+  template <class Vector>
+  Vector evaluation_point(const Vector& x_n, const Vector& x_1) const {
+    return theta == 1 ? Vector(x_1) : Vector((1 - theta) * x_n + theta * x_1);
+  }
 };
 
 /// Receives solver events (a line each).
@@ -24,8 +45,7 @@ struct StepContext {
   const Eigen::VectorXd& x_n;  ///< positions at t_n (3 per node)
   const Eigen::VectorXd& v_n;  ///< velocities at t_n
   double h = 0;                ///< step size
-  ForceRule rule = ForceRule::discrete_gradient;
-  double alpha = 0;                  ///< HHT-α parameter (rule == hht)
+  ForceRule rule = ForceRule::discrete_gradient();
   const LogFunction* log = nullptr;  ///< solver log of the run; may be null
 };
 

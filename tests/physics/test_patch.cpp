@@ -21,7 +21,7 @@ TEST(Patch, UniformStretchGivesZeroInteriorForceAndAnalyticTractions) {
   for (int I = 0; I < mesh.node_count(); ++I) x.segment<3>(3 * I) = F * mesh.nodes[I];
   // h = 1 and x_n = x_1 = x: the midpoint rule's residual is exactly f_int(x).
   Eigen::VectorXd f = Eigen::VectorXd::Zero(x.size()), zero = Eigen::VectorXd::Zero(x.size());
-  const time::StepContext at_x{x, zero, 1.0, time::ForceRule::midpoint, 0.0};
+  const time::StepContext at_x{x, zero, 1.0, time::ForceRule::midpoint()};
   elasticity.add(at_x, x, f, nullptr);
 
   EXPECT_LT(f.segment<3>(3 * 13).norm(), 1e-10) << "interior node of a homogeneous state carries no force";

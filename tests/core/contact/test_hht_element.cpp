@@ -22,7 +22,7 @@ class HhtElement : public ::testing::TestWithParam<unsigned> {
     e = at(x_1, lambda);
     ASSERT_TRUE(e.converged);
   }
-  HhtElementResult at(const Vector15& x, double l) const { return hht_element(x, l, f3, h, alpha, xi_start); }
+  HhtElementResult at(const Vector15& x, double l) const { return hht_element(x, l, f3, h, 1 + alpha, xi_start); }
   Vector15 x_1;
   double lambda = 0, f3 = 0.02, h = 0.01, alpha = -0.05;
   Eigen::Vector2d xi_start{0, 0};

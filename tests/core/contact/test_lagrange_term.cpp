@@ -10,6 +10,7 @@
 #include "core/contact/midpoint_term.hpp"
 #include "core/contact/mixed_term.hpp"
 #include "core/mesh/generators.hpp"
+#include "core/time/scheme.hpp"
 
 namespace stoss::contact {
 namespace {
@@ -48,9 +49,8 @@ struct Fixture {
     for (int I = mesh.bodies[1].node_begin; I < mesh.bodies[1].node_end; ++I)
       v_n[3 * I + 2] = -5;  // −0.05 per step
     term = make_contact_term(mesh, pair(), scheme);
-    const time::ForceRule rule =
-        scheme == model::Scheme::midpoint ? time::ForceRule::midpoint : time::ForceRule::discrete_gradient;
-    step = std::make_unique<time::StepContext>(time::StepContext{x_n, v_n, h, rule, 0.0});
+    const time::ForceRule rule = time::make_scheme(model::TimeSpec{scheme})->force_rule();
+    step = std::make_unique<time::StepContext>(time::StepContext{x_n, v_n, h, rule});
     term->prepare_step(*step);
     term->set_auxiliary_offset(nx);
     Eigen::VectorXd x_1 = x_n + h * v_n;
@@ -131,7 +131,7 @@ TEST(ContactTerm, ReleasesTensileMultipliersOnceAndKeepsASecondToggle) {
   f.term->end_step(*f.step, z);
   // Next step: the element is old now, a tensile λ_1 releases it and the set shrinks.
   const Eigen::VectorXd x_1 = z.head(f.nx), v_1 = Eigen::VectorXd::Zero(f.nx);
-  const time::StepContext next{x_1, v_1, f.h, time::ForceRule::discrete_gradient, 0.0};
+  const time::StepContext next{x_1, v_1, f.h, time::ForceRule::discrete_gradient()};
   f.term->prepare_step(next);
   f.term->set_auxiliary_offset(f.nx);
   Eigen::VectorXd z2 = Eigen::VectorXd::Zero(f.nx + f.term->auxiliary_count());
@@ -151,7 +151,7 @@ TEST(ContactTerm, ActivationFreezesTheStartGapInPersistMode) {
   const Eigen::VectorXd x_n = m.reference_positions();
   Eigen::VectorXd v_n = Eigen::VectorXd::Zero(x_n.size());
   for (int I = m.bodies[1].node_begin; I < m.bodies[1].node_end; ++I) v_n[3 * I + 2] = -3;
-  const time::StepContext step{x_n, v_n, 0.01, time::ForceRule::discrete_gradient, 0.0};
+  const time::StepContext step{x_n, v_n, 0.01, time::ForceRule::discrete_gradient()};
   term.prepare_step(step);
   term.set_auxiliary_offset(static_cast<int>(x_n.size()));
   ASSERT_TRUE(term.update_active_set(step, x_n + 0.01 * v_n));
@@ -170,7 +170,7 @@ TEST(ContactTerm, SwitchesFaceOnlyBeyondTheHysteresisWithTheClampedGapTarget) {
   Eigen::VectorXd x = m.reference_positions();
   Eigen::VectorXd v = Eigen::VectorXd::Zero(x.size());
   for (int I = m.bodies[1].node_begin; I < m.bodies[1].node_end; ++I) v[3 * I + 2] = -3;
-  const time::StepContext first{x, v, 0.01, time::ForceRule::discrete_gradient, 0.0};
+  const time::StepContext first{x, v, 0.01, time::ForceRule::discrete_gradient()};
   term.prepare_step(first);
   term.set_auxiliary_offset(static_cast<int>(x.size()));
   term.update_active_set(first, x + 0.01 * v);
@@ -192,7 +192,7 @@ TEST(ContactTerm, SwitchesFaceOnlyBeyondTheHysteresisWithTheClampedGapTarget) {
   term.end_step(first, z);
   const int generation = term.structure_generation();
   const Eigen::VectorXd x1 = z.head(x.size()), v1 = Eigen::VectorXd::Zero(x.size());
-  const time::StepContext second{x1, v1, 0.01, time::ForceRule::discrete_gradient, 0.0};
+  const time::StepContext second{x1, v1, 0.01, time::ForceRule::discrete_gradient()};
   term.prepare_step(second);
   const ContactElement& after = term.elements()[0];
   EXPECT_NE(after.face, before.face);

@@ -39,7 +39,7 @@ class PatchNtsElement : public ::testing::TestWithParam<Case> {
   }
 
   Eigen::VectorXd residual(bool hht, const Eigen::VectorXd& x, double lambda) const {
-    const PatchNtsResult r = hht ? patch_hht_element(local, x, lambda, f3, h, alpha, xi_start)
+    const PatchNtsResult r = hht ? patch_hht_element(local, x, lambda, f3, h, 1 + alpha, xi_start)
                                  : patch_midpoint_element(local, x_n, x, lambda, f3, h, xi_start);
     Eigen::VectorXd R(x.size() + 1);
     R << r.Rx, r.Rl;
@@ -47,7 +47,7 @@ class PatchNtsElement : public ::testing::TestWithParam<Case> {
   }
 
   void check_tangent(bool hht) const {
-    const PatchNtsResult r = hht ? patch_hht_element(local, x_1, lambda, f3, h, alpha, xi_start)
+    const PatchNtsResult r = hht ? patch_hht_element(local, x_1, lambda, f3, h, 1 + alpha, xi_start)
                                  : patch_midpoint_element(local, x_n, x_1, lambda, f3, h, xi_start);
     ASSERT_TRUE(r.converged);
     const Eigen::Index n = x_1.size();

@@ -53,13 +53,13 @@ struct Fixture {
       v_n[3 * I + 2] = -1;
     }
     x_n = x_0 + h * v_n;
-    const time::StepContext first{x_0, v_n, h, time::ForceRule::discrete_gradient, 0.0};
+    const time::StepContext first{x_0, v_n, h, time::ForceRule::discrete_gradient()};
     term.prepare_step(first);
     term.end_step(first, x_n);  // commits t_{T,n} ≠ 0 (stick or slip)
     x_1 = x_n + h * v_n;
     for (int i = 0; i < x_1.size(); ++i) x_1[i] += 0.2 * jitter(rng);
     step = std::make_unique<time::StepContext>(
-        time::StepContext{x_n, v_n, h, time::ForceRule::discrete_gradient, 0.0});
+        time::StepContext{x_n, v_n, h, time::ForceRule::discrete_gradient()});
     term.prepare_step(*step);
   }
 
@@ -144,7 +144,7 @@ TEST(PenaltyTerm, CommitsTheHistoryOnlyInEndStepAndResetsItWhenTheContactOpens) 
   Eigen::VectorXd lifted = f.x_n;
   for (int I = f.mesh.bodies[1].node_begin; I < f.mesh.bodies[1].node_end; ++I) lifted[3 * I + 2] += 0.1;
   f.term.end_step(*f.step, lifted);  // every contact opens: g_n < 0 < g_{n+1} with "dd" is closed ...
-  const time::StepContext next{lifted, f.v_n, f.h, time::ForceRule::discrete_gradient, 0.0};
+  const time::StepContext next{lifted, f.v_n, f.h, time::ForceRule::discrete_gradient()};
   f.term.prepare_step(next);
   f.term.end_step(next, lifted);  // ... so one more step with g_n, g_{n+1} > 0 opens them
   for (const PenaltyNodeState& s : f.term.node_states()) EXPECT_EQ(s.history.traction.norm(), 0.0);
