@@ -7,6 +7,8 @@
 #include <array>
 #include <atomic>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <stdexcept>
 
 #include "server/jobs/id.hpp"
@@ -55,6 +57,7 @@ PgCluster::PgCluster() {
 }
 
 PgCluster::~PgCluster() {
+  if (!owned_) return;
   try {
     shell(script + " remove " + dir_.string());
   } catch (...) {
@@ -62,8 +65,16 @@ PgCluster::~PgCluster() {
 }
 
 PgCluster& PgCluster::shared() {
-  static PgCluster cluster;
-  return cluster;
+  static const std::unique_ptr<PgCluster> cluster = []() -> std::unique_ptr<PgCluster> {
+    const char* dir = std::getenv("STOSS_TEST_PG_CLUSTER");
+    if (dir) {
+      std::ifstream port_file(std::filesystem::path(dir) / "port");
+      int port = 0;
+      if (port_file >> port) return std::unique_ptr<PgCluster>(new PgCluster(dir, port));
+    }
+    return std::make_unique<PgCluster>();
+  }();
+  return *cluster;
 }
 
 std::string PgCluster::url(const std::string& db) const {

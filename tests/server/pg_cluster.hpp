@@ -20,7 +20,9 @@ class PgCluster {
   PgCluster(const PgCluster&) = delete;
   PgCluster& operator=(const PgCluster&) = delete;
 
-  /// The cluster of this test process, started on first use, removed at exit.
+  /// The cluster the contract tests share: the ctest run's (STOSS_TEST_PG_CLUSTER names its directory,
+  /// started by the fixture test PgCluster.Start), else one of this process's, started on first use and
+  /// removed at exit.
   static PgCluster& shared();
 
   int port() const { return port_; }
@@ -35,8 +37,12 @@ class PgCluster {
   void start();
 
  private:
+  /// Uses the running cluster in `dir` on `port` without owning it.
+  PgCluster(std::filesystem::path dir, int port) : dir_(std::move(dir)), port_(port), owned_(false) {}
+
   std::filesystem::path dir_;
   int port_ = 0;
+  bool owned_ = true;
 };
 
 /// Which JobStore a contract test runs against.

@@ -2,6 +2,8 @@
 # A throwaway PostgreSQL cluster for the tests and benchmarks (no mock): initdb into DIR, run on
 # 127.0.0.1:PORT, as the unprivileged user `nobody` when run as root (PostgreSQL refuses root).
 #   pg_cluster.sh start DIR PORT   initdb (first time) and start; prints the superuser's URL
+#   pg_cluster.sh start DIR auto   a fresh cluster in DIR on a free port (written to DIR/port): the one
+#                                  cluster a ctest run shares (CMakeLists.txt, fixture pg_cluster)
 #   pg_cluster.sh stop DIR         fast shutdown (the data stays: start again to restart)
 #   pg_cluster.sh remove DIR       stop and delete DIR
 # The superuser is `stoss` with password `secret` over TCP (scram-sha-256). STOSS_PG_DURABLE=1 keeps
@@ -21,6 +23,10 @@ as_owner() {
 case "$command" in
   start)
     port=$3
+    if [[ "$port" == auto ]]; then
+      "$0" remove "$dir"
+      port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+    fi
     mkdir -p "$dir"
     chmod 700 "$dir"
     [[ $(id -u) -eq 0 ]] && chown nobody:nogroup "$dir"
@@ -35,6 +41,7 @@ case "$command" in
     cd "$dir"
     as_owner "$bindir/pg_ctl" -D "$dir/data" -l "$dir/server.log" -w -t 60 -o "$settings" start >/dev/null ||
       { cat "$dir/server.log" >&2; exit 1; }
+    echo "$port" | as_owner tee "$dir/port" >/dev/null
     echo "postgresql://stoss:secret@127.0.0.1:$port/postgres"
     ;;
   stop)
