@@ -40,7 +40,7 @@ struct Size {
 struct Row {
   int divisions = 0, layers = 0, elements = 0, dofs = 0, steps = 0;
   double wall = 0, linear = 0, assembly = 0, contact = 0, output = 0, newton_per_step = 0, peak_mb = 0;
-  double krylov_per_solve = 0, krylov_max = 0;
+  double krylov_per_solve = 0, krylov_max = 0, krylov_fallbacks = 0;
 };
 
 struct Options {
@@ -117,8 +117,9 @@ Row measure(const fs::path& stoss, const Size& size, const fs::path& work, const
   r.output = match(ran, R"(output ([0-9.]+) s)");
   r.peak_mb = match(ran, R"(peak memory ([0-9.]+) MB)");
   if (o.linear != "direct") {
-    r.krylov_per_solve = match(ran, R"(krylov iterations ([0-9.]+) per solve)");
+    r.krylov_per_solve = match(ran, R"(Krylov solves, ([0-9.]+) iterations per solve)");
     r.krylov_max = match(ran, R"(per solve, at most (\d+))");
+    r.krylov_fallbacks = match(ran, R"(at most \d+, (\d+) fell back to LU)");
   }
   fs::remove_all(out);
   return r;
@@ -198,7 +199,7 @@ int main(int argc, char** argv) {
   if (!append)
     out << "divisions,layers,elements,dofs,steps,wall_seconds,newton_per_step,s_per_step,linear_solver_seconds,"
            "linear_solver_share,assembly_share,contact_share,output_share,peak_memory_mb,krylov_per_solve,"
-           "krylov_max_per_solve\n";
+           "krylov_max_per_solve,krylov_fallbacks\n";
   std::printf("| elements | dofs | s/step | Newton its/step | peak memory MB | linear solver | assembly | output | "
               "Krylov its/solve (max) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
@@ -206,13 +207,15 @@ int main(int argc, char** argv) {
     const Row r = measure(stoss, size, work, o);
     const double per_step = r.wall / r.steps;
     char line[512];
-    std::snprintf(line, sizeof line, "%d,%d,%d,%d,%d,%.4f,%.3f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%.1f,%.1f,%.0f\n",
+    std::snprintf(line, sizeof line, "%d,%d,%d,%d,%d,%.4f,%.3f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%.1f,%.1f,%.0f,%.0f\n",
                   r.divisions, r.layers, r.elements, r.dofs, r.steps, r.wall, r.newton_per_step, per_step, r.linear,
                   r.linear / r.wall, r.assembly / r.wall, r.contact / r.wall, r.output / r.wall, r.peak_mb,
-                  r.krylov_per_solve, r.krylov_max);
+                  r.krylov_per_solve, r.krylov_max, r.krylov_fallbacks);
     out << line << std::flush;
     char krylov[64] = "–";
-    if (o.linear != "direct") std::snprintf(krylov, sizeof krylov, "%.1f (%.0f)", r.krylov_per_solve, r.krylov_max);
+    if (o.linear != "direct")
+      std::snprintf(krylov, sizeof krylov, "%.1f (%.0f)%s", r.krylov_per_solve, r.krylov_max,
+                    r.krylov_fallbacks > 0 ? ", some fell back to LU" : "");
     std::printf("| %d | %d | %.3f | %.1f | %.0f | %.0f %% | %.0f %% | %.1f %% | %s |\n", r.elements, r.dofs,
                 per_step, r.newton_per_step, r.peak_mb, 100 * r.linear / r.wall, 100 * r.assembly / r.wall,
                 100 * r.output / r.wall, krylov);
