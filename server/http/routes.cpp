@@ -15,6 +15,7 @@
 #include "server/jobs/series_recorder.hpp"
 #include "server/jobs/sha256.hpp"
 #include "server/jobs/study_job.hpp"
+#include "server/web/assets.hpp"
 
 namespace stoss::server::http {
 
@@ -282,25 +283,35 @@ std::string format_param(const Request& req, const std::vector<std::string>& all
   fail(400, "bad-parameter", "Bad parameter", "format must be one of " + names);
 }
 
+/// The `since` query parameter: the rows after this step are wanted; nullopt when absent.
+std::optional<long long> since_param(const Request& req) {
+  if (!req.has_param("since")) return std::nullopt;
+  const std::string text = req.get_param_value("since");
+  if (!all_digits(text, 9))
+    fail(400, "bad-parameter", "Bad parameter", "since must be a step number, an integer in [0, 999999999]");
+  return std::stoll(text);
+}
+
 void get_series(App& app, const Request& req, Response& res) {
   const std::string format = format_param(req, {"json", "csv"});
+  const std::optional<long long> since = since_param(req);
   const jobs::Job job = find_job(app, req);
   if (job.kind == jobs::Kind::simulation && job.status != jobs::Status::succeeded) {
     // Running, failed or canceled: the series up to the last completed step, marked completed: false.
     const auto partial = app.files.dir(job.id) / jobs::partial_series_file;
     if (format == "csv") {
-      if (auto csv = jobs::partial_series_csv(partial)) {
+      if (auto csv = jobs::partial_series_csv(partial, since)) {
         res.set_header("Stoss-Completed", "false");
         return res.set_content(*csv, "text/csv");
       }
     } else if (auto series = jobs::read_partial_series(partial)) {
-      return send_json(res, 200, *series);
+      return send_json(res, 200, jobs::series_after(std::move(*series), since));
     }
   }
   require_result_file(job);
   const auto path = app.files.result(job.id);
-  if (format == "csv") return res.set_content(output::series_csv(path), "text/csv");
-  res.set_content(dump(output::series_json(path)), json_type);
+  if (format == "csv") return res.set_content(jobs::csv_rows_after(output::series_csv(path), since), "text/csv");
+  send_json(res, 200, jobs::series_after(output::series_json(path), since));
 }
 
 /// A study job's table: JSON as written (study::to_json), CSV or Markdown made from it.
@@ -369,6 +380,45 @@ void get_openapi(App&, const Request&, Response& res) {
   res.set_content(*text, "application/yaml");
 }
 
+/// The web page (docs/web.md); it asks for the token itself when the API answers 401.
+void get_page(App&, const Request&, Response& res) {
+  const auto page = web::find_asset("index.html");
+  if (!page) fail(500, "internal", "Page missing", "index.html was not compiled in");
+  res.set_header("Cache-Control", "no-cache");
+  res.set_content(std::string(page->bytes), std::string(page->media_type));
+}
+
+/// A file of the page (its script and style, Debian's dygraphs), as compiled in.
+void get_asset(App&, const Request& req, Response& res) {
+  const std::string name = req.matches[1].str();
+  const auto asset = web::find_asset(name);
+  if (!asset) fail(404, "no-route", "Not Found", "the page has no file " + name.substr(0, 100));
+  res.set_header("Cache-Control", "no-cache");
+  res.set_content(std::string(asset->bytes), std::string(asset->media_type));
+}
+
+/// Whether some body of `scene` names a mesh file (the service refuses those: it reads no files).
+bool names_mesh_file(const nlohmann::json& scene) {
+  for (const auto& body : scene.value("bodies", nlohmann::json::array()))
+    if (body.is_object() && body.value("mesh", nlohmann::json::object()).contains("file")) return true;
+  return false;
+}
+
+/// The example scenes of api/examples (compiled in) that the service can run: name, title, scene.
+void list_examples(App&, const Request&, Response& res) {
+  static const nlohmann::json examples = [] {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& file : web::embedded_examples()) {
+      const nlohmann::json scene = nlohmann::json::parse(file.bytes);
+      if (names_mesh_file(scene)) continue;
+      const std::string name(file.name.substr(0, file.name.rfind(".json")));
+      list.push_back({{"name", name}, {"title", scene.value("name", name)}, {"scene", scene}});
+    }
+    return nlohmann::json{{"examples", list}};
+  }();
+  send_json(res, 200, examples);
+}
+
 void get_health(App&, const Request&, Response& res) {
   send_json(res, 200, {{"status", "ok"}});
 }
@@ -414,19 +464,23 @@ const std::vector<RouteEntry>& route_table() {
       {{"GET", "/v1/schema/scene", true}, get_schema},
       {{"GET", "/v1/jobs/{id}/scene", true}, get_scene},
       {{"GET", "/v1/openapi.yaml", true}, get_openapi},
+      {{"GET", "/v1/examples", true}, list_examples},
+      {{"GET", "/", false}, get_page},
+      {{"GET", "/web/{asset}", false}, get_asset},
       {{"GET", "/healthz", false}, get_health},
       {{"GET", "/metrics", true}, get_metrics},
   };
   return table;
 }
 
-/// The httplib pattern of an OpenAPI path: "{id}" captures one segment, "." is literal.
+/// The httplib pattern of an OpenAPI path: a parameter ("{id}", "{asset}") captures one segment, "." is
+/// literal.
 std::string pattern_of(const std::string& path) {
   std::string pattern;
   for (std::size_t i = 0; i < path.size(); ++i) {
-    if (path.compare(i, 4, "{id}") == 0) {
+    if (path[i] == '{' && path.find('}', i) != std::string::npos) {
       pattern += "([^/]+)";
-      i += 3;
+      i = path.find('}', i);
     } else {
       if (path[i] == '.') pattern += '\\';
       pattern += path[i];

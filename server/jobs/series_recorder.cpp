@@ -105,8 +105,12 @@ std::optional<nlohmann::json> read_partial_series(const std::filesystem::path& p
   const auto p = load(path);
   if (!p) return std::nullopt;
   nlohmann::json out = nlohmann::json::object();
-  nlohmann::json time = nlohmann::json::array();
-  for (const auto& row : p->rows) time.push_back(row.size() > 1 ? row[1] : 0.0);
+  nlohmann::json step = nlohmann::json::array(), time = nlohmann::json::array();
+  for (const auto& row : p->rows) {
+    step.push_back(static_cast<std::int64_t>(row[0]));
+    time.push_back(row.size() > 1 ? row[1] : 0.0);
+  }
+  out["step"] = step;
   out["time"] = time;
   std::size_t offset = 2;
   int total = -1, dissipated = -1, newton = -1;
@@ -169,7 +173,7 @@ std::optional<nlohmann::json> read_partial_series(const std::filesystem::path& p
   return out;
 }
 
-std::optional<std::string> partial_series_csv(const std::filesystem::path& path) {
+std::optional<std::string> partial_series_csv(const std::filesystem::path& path, std::optional<long long> since) {
   const auto p = load(path);
   if (!p) return std::nullopt;
   std::string header = "time";
@@ -183,11 +187,40 @@ std::optional<std::string> partial_series_csv(const std::filesystem::path& path)
   }
   std::string out = header + "\n";
   for (const auto& row : p->rows) {
+    if (since && row[0] <= static_cast<double>(*since)) continue;
     std::string line = shortest(row.size() > 1 ? row[1] : 0.0);
     for (std::size_t i = 2; i < row.size(); ++i) line += "," + shortest(row[i]);
     out += line + "\n";
   }
   return out;
+}
+
+nlohmann::json series_after(nlohmann::json series, std::optional<long long> since) {
+  const std::size_t rows = series.value("time", nlohmann::json::array()).size();
+  if (!series.contains("step")) {
+    nlohmann::json step = nlohmann::json::array();
+    for (std::size_t i = 0; i < rows; ++i) step.push_back(static_cast<std::int64_t>(i));
+    series["step"] = step;
+  }
+  if (!since) return series;
+  std::size_t skipped = 0;  // steps ascend: the rows to drop come first
+  while (skipped < rows && series["step"][skipped].get<long long>() <= *since) ++skipped;
+  for (auto& [name, values] : series.items())
+    if (values.is_array() && values.size() == rows)
+      values.erase(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(skipped));
+  return series;
+}
+
+std::string csv_rows_after(const std::string& csv, std::optional<long long> since) {
+  if (!since) return csv;
+  std::size_t end_of_header = csv.find('\n');
+  if (end_of_header == std::string::npos) return csv;
+  std::size_t cut = end_of_header + 1;
+  for (long long step = 0; step <= *since && cut < csv.size(); ++step) {
+    const std::size_t end_of_line = csv.find('\n', cut);
+    cut = end_of_line == std::string::npos ? csv.size() : end_of_line + 1;
+  }
+  return csv.substr(0, end_of_header + 1) + csv.substr(cut);
 }
 
 }  // namespace stoss::server::jobs

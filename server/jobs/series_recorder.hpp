@@ -51,7 +51,18 @@ class SeriesRecorder : public model::Observer {
 /// energy_plus_dissipated_drift with friction). nullopt when the file is absent or has no step.
 std::optional<nlohmann::json> read_partial_series(const std::filesystem::path& path);
 
-/// The same series as CSV (columns as output::series_csv writes them).
-std::optional<std::string> partial_series_csv(const std::filesystem::path& path);
+/// The same series as CSV (columns as output::series_csv writes them); with `since`, only the rows of the
+/// steps after it (the header always).
+std::optional<std::string> partial_series_csv(const std::filesystem::path& path,
+                                              std::optional<long long> since = std::nullopt);
+
+/// `series` (output::series_json of a result, or read_partial_series) with a member "step": the step of
+/// each row (t0 is step 0; a result has one row per step, a partial file names the step of each). With
+/// `since`, every row-wise member keeps only the rows of the steps after it (GET …/series?since=STEP).
+nlohmann::json series_after(nlohmann::json series, std::optional<long long> since);
+
+/// `csv` (a header and one line per step from step 0, as output::series_csv writes it) without the lines
+/// of steps 0 to `since`; unchanged without `since`.
+std::string csv_rows_after(const std::string& csv, std::optional<long long> since);
 
 }  // namespace stoss::server::jobs

@@ -1,0 +1,432 @@
+// The page at / (docs/web.md): job list, submission, one job's live plots, summary, log and downloads.
+// Plotting is Debian's dygraphs; this file only fetches the API (docs/api.md) and configures the plots.
+'use strict';
+
+const POLL_MS = 500;         // the job on show, while it runs
+const LIST_POLL_MS = 1500;   // the job list
+const FINAL = ['succeeded', 'failed', 'canceled'];
+
+// ---- API access: the bearer token (asked once, kept in session storage) ------------------------------
+
+function authHeaders() {
+  const token = sessionStorage.getItem('stoss-token');
+  return token ? { Authorization: 'Bearer ' + token } : {};
+}
+
+class Unauthorized extends Error {}
+
+async function api(path, options = {}) {
+  const response = await fetch(path, { ...options, headers: { ...authHeaders(), ...(options.headers || {}) } });
+  if (response.status === 401) {
+    askForToken(sessionStorage.getItem('stoss-token') ? 'that token was refused' : '');
+    throw new Unauthorized();
+  }
+  return response;
+}
+
+async function apiJson(path) {
+  const response = await api(path);
+  return { status: response.status, body: await response.json() };
+}
+
+function askForToken(message) {
+  document.getElementById('token-panel').hidden = false;
+  document.getElementById('token-error').textContent = message;
+}
+
+document.getElementById('token-form').addEventListener('submit', (event) => {
+  event.preventDefault();
+  sessionStorage.setItem('stoss-token', document.getElementById('token-input').value.trim());
+  document.getElementById('token-panel').hidden = true;
+  start();
+});
+
+// ---- small DOM helpers --------------------------------------------------------------------------------
+
+function el(tag, attributes = {}, ...children) {
+  const node = document.createElement(tag);
+  for (const [key, value] of Object.entries(attributes)) node.setAttribute(key, value);
+  node.append(...children);
+  return node;
+}
+
+function number(value) {
+  if (typeof value !== 'number') return String(value);
+  if (Number.isInteger(value)) return String(value);
+  return Math.abs(value) >= 1e-3 && Math.abs(value) < 1e5 ? value.toPrecision(4) : value.toExponential(3);
+}
+
+function duration(seconds) {
+  if (seconds === null || seconds === undefined) return '';
+  if (seconds < 90) return Math.round(seconds) + ' s';
+  return Math.round(seconds / 60) + ' min';
+}
+
+function progressText(job, long) {
+  const p = job.progress;
+  const unit = job.kind === 'study' ? 'run' : 'step';
+  const share = p.steps ? ` (${Math.floor((100 * p.step) / p.steps)} %)` : '';
+  const time = long && job.kind === 'simulation' ? ` · t = ${number(p.time)} of ${number(p.end)}` : '';
+  return (long ? unit + ' ' : '') + `${p.step}/${p.steps}${share}${time}`;
+}
+
+// ---- the job list ---------------------------------------------------------------------------------------
+
+let listRequests = 0;  // an answer to an older request (before the filter changed) is dropped
+
+async function refreshList() {
+  const request = ++listRequests;
+  const status = document.getElementById('status-filter').value;
+  const { body } = await apiJson('/v1/jobs?limit=50' + (status ? '&status=' + status : ''));
+  if (request !== listRequests) return;
+  const rows = body.jobs.map((job) => {
+    const row = el('tr', { 'data-id': job.id, 'data-status': job.status, class: job.id === shown.id ? 'selected' : '' },
+      el('td', { class: 'status ' + job.status }, job.status), el('td', {}, job.kind), el('td', {}, job.name || job.id),
+      el('td', {}, progressText(job)), el('td', {}, duration(job.progress.eta_seconds)),
+      el('td', {}, job.created.replace('T', ' ').slice(0, 19)));
+    row.addEventListener('click', () => showJob(job.id));
+    return row;
+  });
+  document.querySelector('#jobs tbody').replaceChildren(...rows);
+}
+
+document.getElementById('status-filter').addEventListener('change', () => refreshList());
+
+// ---- submission: an example or a file, errors next to the field their JSON pointer names -------------
+
+async function loadExamples() {
+  const { body } = await apiJson('/v1/examples');
+  const select = document.getElementById('example');
+  select.replaceChildren(select.options[0]);
+  for (const example of body.examples) {
+    const option = el('option', { value: example.name }, example.name + ' — ' + example.title);
+    option.scene = example.scene;
+    select.append(option);
+  }
+}
+
+document.getElementById('example').addEventListener('change', (event) => {
+  const option = event.target.selectedOptions[0];
+  if (option.scene) document.getElementById('scene-text').value = JSON.stringify(option.scene, null, 2);
+});
+
+document.getElementById('scene-file').addEventListener('change', async (event) => {
+  const file = event.target.files[0];
+  if (file) document.getElementById('scene-text').value = await file.text();
+});
+
+function escapePointer(key) {
+  return String(key).replaceAll('~', '~0').replaceAll('/', '~1');
+}
+
+// The scene as nested fields, each labelled with its JSON pointer; short arrays of numbers stay on one line.
+function fieldTree(value, pointer, key, fields) {
+  const node = el('div', { class: 'field', 'data-pointer': pointer });
+  fields.set(pointer, node);
+  const label = key === undefined ? '' : key + ': ';
+  const flat = Array.isArray(value) && value.every((v) => v === null || typeof v !== 'object' || Array.isArray(v) && v.every((w) => typeof w !== 'object'));
+  if (value !== null && typeof value === 'object' && !flat) {
+    node.append(el('span', { class: 'key' }, label));
+    for (const [k, v] of Object.entries(value)) node.append(fieldTree(v, pointer + '/' + escapePointer(k), k, fields));
+  } else {
+    const text = JSON.stringify(value);
+    node.append(el('span', { class: 'key' }, label), el('span', { class: 'value' }, text.length > 90 ? text.slice(0, 87) + '…' : text));
+  }
+  return node;
+}
+
+// The form's own error slot for `pointer` (the scene text for "", the study's steps and schemes).
+function formSlot(pointer) {
+  return [...document.querySelectorAll('#submit-form .field-error[data-pointer]')].find((s) => s.dataset.pointer === pointer);
+}
+
+// Puts each error next to the field its pointer names, or next to its nearest shown ancestor with the rest of
+// the pointer in front of the message (a missing member is "required" next to the object that lacks it).
+function showErrors(errors, scene, scenePrefix) {
+  document.querySelectorAll('#submit-form .field-error[data-pointer]').forEach((span) => (span.textContent = ''));
+  const fields = new Map();
+  document.getElementById('scene-tree').replaceChildren(scene === undefined ? '' : fieldTree(scene, '', undefined, fields));
+  document.getElementById('scene-fields').hidden = scene === undefined;
+  for (const error of errors) {
+    let pointer = error.pointer;
+    let rest = '';
+    const text = () => (rest ? rest + ': ' : '') + error.message;
+    for (;;) {
+      const slot = pointer !== '' && formSlot(pointer);
+      if (slot) { slot.textContent += text() + ' '; break; }
+      const field = pointer.startsWith(scenePrefix) && fields.get(pointer.slice(scenePrefix.length));
+      if (field) {
+        const anchor = field.querySelector(':scope > .value') || field.querySelector(':scope > .key');
+        anchor.after(el('span', { class: 'field-error', 'data-error-for': error.pointer }, text()));
+        break;
+      }
+      if (pointer === '') { formSlot('').textContent += error.pointer + ': ' + error.message + ' '; break; }
+      const cut = pointer.lastIndexOf('/');
+      rest = pointer.slice(cut + 1) + (rest ? '/' + rest : '');
+      pointer = pointer.slice(0, cut);
+    }
+  }
+}
+
+function requestBody() {
+  const text = document.getElementById('scene-text').value;
+  if (!document.getElementById('as-study').checked) return { path: '/v1/jobs', text, prefix: '' };
+  const steps = document.getElementById('study-steps').value.split(',').map((s) => Number(s.trim()));
+  const schemes = [...document.querySelectorAll('#study-schemes input:checked')].map((box) => box.value);
+  let scene;
+  try { scene = JSON.parse(text); } catch (e) { return { path: '/v1/studies', text, prefix: '/scene' }; }
+  return { path: '/v1/studies', text: JSON.stringify({ scene, steps, schemes }), prefix: '/scene' };
+}
+
+async function submit(validateOnly) {
+  const outcome = document.getElementById('submit-outcome');
+  const request = requestBody();
+  const path = validateOnly ? '/v1/validate' : request.path;
+  const body = validateOnly ? document.getElementById('scene-text').value : request.text;
+  const response = await api(path, { method: 'POST', body, headers: { 'Content-Type': 'application/json' } });
+  const answer = await response.json();
+  let scene;
+  try { scene = JSON.parse(document.getElementById('scene-text').value); } catch (e) { scene = undefined; }
+  if (response.ok) {
+    showErrors([], undefined, '');
+    outcome.className = 'ok';
+    if (validateOnly) {
+      outcome.textContent = `valid: ${answer.effects.join(', ')}; ${answer.nodes} nodes, ${answer.steps} steps`;
+      return;
+    }
+    outcome.textContent = 'queued ' + answer.id;
+    await refreshList();
+    showJob(answer.id);
+    return;
+  }
+  outcome.className = 'field-error';
+  outcome.textContent = answer.detail;
+  const errors = answer.errors || (answer.limits || []).map((l) => ({ pointer: '', message: `${l.name}: ${l.value} > ${l.limit}` }));
+  showErrors(errors.length ? errors : [{ pointer: '', message: answer.detail }], scene, request.prefix);
+}
+
+document.getElementById('submit-form').addEventListener('submit', (event) => { event.preventDefault(); submit(false); });
+document.getElementById('validate-button').addEventListener('click', () => submit(true));
+
+// ---- one job: live plots (dygraphs configuration), summary, log, cancel, downloads --------------------
+
+const norm = (v) => Math.hypot(...v);
+const difference = (a, b) => a.map((x, i) => x - b[i]);
+const positive = (v) => (v > 0 && Number.isFinite(v) ? v : null);   // log axes show no zeros
+
+// Each plot: the series it needs, its labels, one row of values per step, dygraphs options.
+const PLOTS = [
+  { id: 'energy', title: 'Energy', needs: ['total_energy'], labels: ['total H', 'kinetic K', 'strain V'],
+    row: (s, i) => [s.total_energy[i], s.kinetic_energy[i], s.strain_energy[i]] },
+  { id: 'energy-error', title: 'Energy error |H − H₀| / |H₀|', needs: ['total_energy'], labels: ['energy error'], logscale: true,
+    row: (s, i, first) => [positive(Math.abs(s.total_energy[i] - first.total_energy) / (Math.abs(first.total_energy) || 1))] },
+  { id: 'momentum-error', title: 'Momentum error ‖L − L₀‖, ‖J − J₀‖', needs: ['linear_momentum', 'angular_momentum'],
+    labels: ['linear ‖L − L₀‖', 'angular ‖J − J₀‖'], logscale: true,
+    row: (s, i, first) => [positive(norm(difference(s.linear_momentum[i], first.linear_momentum))),
+                           positive(norm(difference(s.angular_momentum[i], first.angular_momentum)))] },
+  { id: 'contact', title: 'Active contacts and max penetration', needs: ['active_contacts', 'max_penetration'],
+    labels: ['active contacts', 'max penetration'], series: { 'max penetration': { axis: 'y2' } },
+    row: (s, i) => [s.active_contacts[i], s.max_penetration[i]] },
+  { id: 'newton', title: 'Newton iterations per step', needs: ['newton_iterations'], labels: ['Newton iterations'], stepPlot: true,
+    row: (s, i) => [s.newton_iterations[i]] },
+  { id: 'dissipation', title: 'Dissipated energy (friction) and H + D', needs: ['dissipated_energy'],
+    labels: ['dissipated D', 'H + D'], row: (s, i) => [s.dissipated_energy[i], s.total_energy[i] + s.dissipated_energy[i]] },
+];
+
+let shown = { id: null };
+
+function resetPlots(state) {
+  document.getElementById('plots').replaceChildren();
+  state.graphs = {};
+  state.data = {};
+  state.first = null;
+  state.since = null;
+}
+
+function plotRows(state, series) {
+  const count = series.time.length;
+  if (!count) return;
+  if (!state.first) {
+    state.first = {};
+    for (const [name, values] of Object.entries(series)) if (Array.isArray(values)) state.first[name] = values[0];
+  }
+  for (const plot of PLOTS) {
+    if (!plot.needs.every((name) => name in series)) continue;
+    if (!state.graphs[plot.id]) {
+      const box = el('div', { class: 'plot', id: 'plot-' + plot.id, 'data-points': '0' });
+      const legend = el('div', { class: 'legend' });
+      document.getElementById('plots').append(el('div', {}, box, legend));
+      state.data[plot.id] = [];
+      state.graphs[plot.id] = { box, legend, plot, graph: null };
+    }
+    const data = state.data[plot.id];
+    const entry = state.graphs[plot.id];
+    for (let i = 0; i < count; ++i) data.push([series.time[i], ...plot.row(series, i, state.first)]);
+    const options = { labels: ['t', ...plot.labels], title: plot.title, xlabel: 't', logscale: !!plot.logscale,
+                      stepPlot: !!plot.stepPlot, series: plot.series || {}, connectSeparatedPoints: true, legend: 'always',
+                      labelsDiv: entry.legend, height: 220, axes: { y: { axisLabelWidth: 64 }, y2: { independentTicks: true } } };
+    if (entry.graph) entry.graph.updateOptions({ file: data });
+    else entry.graph = new Dygraph(entry.box, data, options);
+    entry.box.dataset.points = String(data.length);
+  }
+  state.since = series.step[count - 1];
+}
+
+async function pollSeries(job) {
+  if (job.kind !== 'simulation' || job.status === 'queued') return true;
+  if (shown.attempt !== job.attempt) { resetPlots(shown); shown.attempt = job.attempt; }
+  const since = shown.since === null ? '' : '?since=' + shown.since;
+  const response = await api(`/v1/jobs/${job.id}/series${since}`);
+  if (response.status === 409) return false;              // no step recorded yet
+  const series = await response.json();
+  plotRows(shown, series);
+  if (series.summary) showSummary(series.summary, job.status === 'running' ? 'so far' : '');
+  return series.completed !== false || FINAL.includes(job.status);
+}
+
+function showSummary(summary, note) {
+  const rows = Object.entries(summary).map(([key, value]) => el('tr', {}, el('th', {}, key), el('td', {}, number(value))));
+  if (note) rows.unshift(el('tr', {}, el('th', { colspan: 2 }, 'summary ' + note)));
+  document.getElementById('job-summary').replaceChildren(...rows);
+}
+
+function downloadLink(text, href, id) {
+  const link = el('a', { href, id, download: '' }, text);
+  link.addEventListener('click', async (event) => {     // with a token, a link alone would be refused
+    if (!sessionStorage.getItem('stoss-token')) return;
+    event.preventDefault();
+    const blob = await (await api(href)).blob();
+    const save = el('a', { href: URL.createObjectURL(blob), download: href.split('/').pop() });
+    save.click();
+  });
+  return link;
+}
+
+function showDownloads(job) {
+  const links = [];
+  const add = (text, href, id) => links.push(downloadLink(text, href, id), ' ');
+  if (job.links.result) add('result.h5', job.links.result, 'download-result');
+  if (job.links.result_xdmf) add('result.xdmf', job.links.result_xdmf, 'download-xdmf');
+  if (job.kind === 'simulation' && job.status !== 'queued') {
+    add('series.csv', `/v1/jobs/${job.id}/series?format=csv`, 'download-series-csv');
+    add('series.json', `/v1/jobs/${job.id}/series`, 'download-series-json');
+  }
+  if (job.links.study) {
+    add('study.csv', job.links.study + '?format=csv', 'download-study-csv');
+    add('study.md', job.links.study + '?format=markdown', 'download-study-md');
+  }
+  add('scene.json', job.links.scene, 'download-scene');
+  add('log.txt', job.links.log, 'download-log');
+  document.getElementById('job-downloads').replaceChildren('Downloads: ', ...links);
+}
+
+function showJobHeader(job) {
+  document.getElementById('job-panel').hidden = false;
+  document.getElementById('job-title').textContent = job.name || job.id;
+  document.getElementById('job-kind').textContent = `${job.kind} ${job.id} · attempt ${job.attempt}`;
+  const status = document.getElementById('job-status');
+  status.textContent = job.status;
+  status.className = 'status ' + job.status;
+  const eta = job.progress.eta_seconds;
+  document.getElementById('job-progress').textContent = progressText(job, true) + (eta !== null ? ' · ETA ' + duration(eta) : '');
+  document.getElementById('cancel-button').hidden = !job.links.cancel;
+  document.getElementById('job-error').textContent = job.error || '';
+  showDownloads(job);
+  if (job.summary) showSummary(job.summary, '');
+}
+
+document.getElementById('cancel-button').addEventListener('click', async () => {
+  await api(`/v1/jobs/${shown.id}/cancel`, { method: 'POST' });
+  refreshList();
+});
+
+// A study: error against wall seconds, one line per scheme, log–log; and the table.
+async function showStudy(job) {
+  const view = document.getElementById('study-view');
+  view.hidden = job.kind !== 'study';
+  if (job.kind !== 'study' || job.status !== 'succeeded' || shown.studyShown) return;
+  const { body } = await apiJson(job.links.study);
+  shown.studyShown = true;
+  const schemes = [...new Set(body.rows.map((r) => r.scheme))];
+  const points = body.rows.filter((r) => r.completed && r.displacement_error > 0)
+    .map((r) => { const row = [r.wall_seconds, ...schemes.map(() => null)]; row[1 + schemes.indexOf(r.scheme)] = r.displacement_error; return row; })
+    .sort((a, b) => a[0] - b[0]);
+  const xs = points.map((p) => p[0]);
+  const ys = body.rows.filter((r) => r.completed && r.displacement_error > 0).map((r) => r.displacement_error);
+  const box = document.getElementById('plot-accuracy');
+  box.dataset.points = String(points.length);
+  box.dataset.lines = String(schemes.length);
+  new Dygraph(box, points, { labels: ['wall seconds', ...schemes], title: 'Displacement error at the end against wall time',
+    xlabel: 'wall seconds', ylabel: 'max nodal displacement error', logscale: true,
+    connectSeparatedPoints: true, drawPoints: true, pointSize: 3, legend: 'always', height: 300,
+    labelsDiv: document.getElementById('accuracy-legend'), axes: { x: { logscale: true }, y: { axisLabelWidth: 64 } },
+    dateWindow: [Math.min(...xs) / 1.5, Math.max(...xs) * 1.5], valueRange: [Math.min(...ys) / 1.5, Math.max(...ys) * 1.5] });
+  const columns = ['scheme', 'step', 'steps', 'displacement_error', 'energy_error', 'momentum_error', 'wall_seconds', 'newton_per_step'];
+  const head = el('tr', {}, ...columns.map((c) => el('th', {}, c)));
+  const rows = body.rows.map((r) => el('tr', { class: r.completed ? '' : 'failed' },
+    ...columns.map((c) => el('td', {}, r[c] === null || r[c] === undefined ? (r.failure || '') : number(r[c])))));
+  document.getElementById('study-table').replaceChildren(head, ...rows);
+}
+
+async function refreshLog(job) {
+  const response = await api(job.links.log);
+  const log = document.getElementById('job-log');
+  log.textContent = await response.text();
+}
+
+async function pollJob(id) {
+  if (shown.id !== id) return;
+  const { status, body: job } = await apiJson('/v1/jobs/' + id);
+  if (status !== 200) { document.getElementById('job-error').textContent = job.detail; return; }
+  showJobHeader(job);
+  const seriesDone = await pollSeries(job);
+  await showStudy(job);
+  await refreshLog(job);
+  if (!FINAL.includes(job.status) || !seriesDone) shown.timer = setTimeout(() => pollJob(id).catch(report), POLL_MS);
+}
+
+function showJob(id) {
+  clearTimeout(shown.timer);
+  shown = { id, attempt: null, studyShown: false };
+  resetPlots(shown);
+  document.getElementById('job-summary').replaceChildren();
+  document.getElementById('study-table').replaceChildren();
+  document.getElementById('plot-accuracy').replaceChildren();
+  document.querySelectorAll('#jobs tr').forEach((row) => row.classList.toggle('selected', row.dataset.id === id));
+  history.replaceState(null, '', '#job=' + id);
+  pollJob(id).catch(report);
+}
+
+// ---- start ------------------------------------------------------------------------------------------------
+
+function report(error) {
+  if (error instanceof Unauthorized) return;
+  document.getElementById('connection').textContent = 'error: ' + error.message;
+}
+
+let listTimer = null;
+async function pollList() {
+  clearTimeout(listTimer);
+  try {
+    await refreshList();
+    document.getElementById('connection').textContent = '';
+  } catch (error) {
+    report(error);
+    if (error instanceof Unauthorized) return;
+  }
+  listTimer = setTimeout(pollList, LIST_POLL_MS);
+}
+
+async function start() {
+  try {
+    await loadExamples();
+  } catch (error) {
+    report(error);
+    return;
+  }
+  pollList();
+  const match = location.hash.match(/job=([0-9a-f]{32})/);
+  if (match) showJob(match[1]);
+}
+
+start();

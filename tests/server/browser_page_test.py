@@ -1,0 +1,305 @@
+#!/usr/bin/env python3
+"""The page at / in a real browser (issue 14, docs/web.md).
+
+The system shall serve a page that submits a bundled example, plots its series while it runs (the number of
+points grows), reaches `succeeded` with every step plotted once, offers a working download of the result,
+shows validation errors next to the field their JSON pointer names, filters the job list by status, plots a
+study's accuracy against time with its table, and asks for the bearer token when the server has one.
+
+Starts `stoss serve` on 127.0.0.1 (port 0) and Debian's headless Chromium, drives the page through the
+DevTools protocol (python3-websocket), asserts on the DOM and saves screenshots under BUILD/browser/.
+Usage: browser_page_test.py STOSS_BINARY BUILD_DIR
+"""
+import base64
+import itertools
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+from pathlib import Path
+
+import websocket
+
+HDF5_SIGNATURE = [0x89, 0x48, 0x44, 0x46, 0x0D, 0x0A, 0x1A, 0x0A]
+EXAMPLE = "hollow_ball_plate"   # contact, 100 steps: a few seconds of run to watch
+EXAMPLE_ROWS = 101               # t0 and 100 steps
+CHECKS = {"passed": 0, "failed": 0}
+
+
+def check(condition, what):
+    """Counts and prints one assertion; the test fails at the end if any failed."""
+    CHECKS["passed" if condition else "failed"] += 1
+    print(("ok      " if condition else "FAILED  ") + what, flush=True)
+    return condition
+
+
+class Server:
+    """`stoss serve` on a free loopback port with its own data directory."""
+
+    def __init__(self, binary, data, *flags):
+        self.process = subprocess.Popen([binary, "serve", "--listen", "127.0.0.1:0", "--data", str(data),
+                                         "--workers", "1", *flags],
+                                        stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+        line = self.process.stdout.readline()
+        match = re.search(r"listening on (http://127\.0\.0\.1:\d+)", line)
+        if not match:
+            self.process.kill()
+            self.process.wait()
+            raise RuntimeError("stoss serve did not start: " + line)
+        self.url = match.group(1)
+
+    def post(self, path, body):
+        request = urllib.request.Request(self.url + path, data=json.dumps(body).encode(),
+                                         headers={"Content-Type": "application/json"})
+        with urllib.request.urlopen(request, timeout=30) as response:
+            return json.load(response)
+
+    def stop(self):
+        self.process.terminate()
+        self.process.wait(timeout=30)
+
+
+class Browser:
+    """Headless Chromium with one page, driven over the DevTools protocol."""
+
+    def __init__(self, profile):
+        self.process = subprocess.Popen(
+            ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+             "--remote-debugging-port=0", "--user-data-dir=" + str(profile), "--window-size=1400,2400",
+             "about:blank"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        try:
+            self.connect(profile)
+        except Exception:
+            self.process.kill()
+            self.process.wait()
+            raise
+
+    def connect(self, profile):
+        port_file = Path(profile) / "DevToolsActivePort"
+        deadline = time.monotonic() + 60
+        while not (port_file.exists() and port_file.read_text().strip()):
+            if time.monotonic() > deadline or self.process.poll() is not None:
+                raise RuntimeError("chromium did not open its DevTools port")
+            time.sleep(0.1)
+        port = port_file.read_text().split()[0]
+        with urllib.request.urlopen(f"http://127.0.0.1:{port}/json/list", timeout=30) as response:
+            page = next(t for t in json.load(response) if t["type"] == "page")
+        self.socket = websocket.create_connection(page["webSocketDebuggerUrl"], timeout=60)
+        self.ids = itertools.count(1)
+        self.call("Page.enable")
+        self.call("Runtime.enable")
+
+    def call(self, method, **params):
+        id_ = next(self.ids)
+        self.socket.send(json.dumps({"id": id_, "method": method, "params": params}))
+        while True:
+            message = json.loads(self.socket.recv())
+            if message.get("id") == id_:
+                if "error" in message:
+                    raise RuntimeError(f"{method}: {message['error']}")
+                return message["result"]
+
+    def run(self, expression):
+        """The value of a JavaScript expression in the page (promises awaited)."""
+        result = self.call("Runtime.evaluate", expression=expression, awaitPromise=True, returnByValue=True)
+        if "exceptionDetails" in result:
+            raise RuntimeError(f"{expression}: {result['exceptionDetails']}")
+        return result["result"].get("value")
+
+    def wait_for(self, expression, what, limit=60):
+        """Polls `expression` until it is truthy; a page that never gets there fails the check (a bound, not
+        a timing the test measures)."""
+        deadline = time.monotonic() + limit
+        while time.monotonic() < deadline:
+            if self.run(f"!!({expression})"):
+                return True
+            time.sleep(0.1)
+        check(False, what + f" (not within {limit} s)")
+        raise SystemExit(1)
+
+    def open(self, url):
+        self.call("Page.navigate", url=url)
+        self.wait_for("document.readyState === 'complete' && typeof Dygraph === 'function'", "page loaded")
+
+    def screenshot(self, path):
+        data = self.call("Page.captureScreenshot", format="png")["data"]
+        Path(path).write_bytes(base64.b64decode(data))
+        print("screenshot " + str(path), flush=True)
+
+    def stop(self):
+        self.socket.close()
+        self.process.terminate()
+        self.process.wait(timeout=30)
+
+
+def js(value):
+    return json.dumps(value)
+
+
+def choose(browser, select_id, value):
+    """Picks `value` in the <select> `select_id` as a user would (a change event follows)."""
+    browser.run(f"(() => {{ const s = document.getElementById({js(select_id)}); s.value = {js(value)};"
+                f" s.dispatchEvent(new Event('change')); }})()")
+
+
+def click_job_row(browser, job_id):
+    """Clicks the job's row in the list once the list shows it."""
+    row = f"document.querySelector('#jobs tr[data-id=\"{job_id}\"]')"
+    browser.wait_for(row, f"the job {job_id} is listed")
+    browser.run(row + ".click()")
+
+
+def set_scene_and_submit(browser, scene):
+    browser.run(f"document.getElementById('scene-text').value = {js(json.dumps(scene, indent=2))}")
+    browser.run("document.getElementById('submit-button').click()")
+
+
+def validation_errors_next_to_fields(browser):
+    choose(browser, "example", EXAMPLE)
+    scene = json.loads(browser.run("document.getElementById('scene-text').value"))
+    check(scene.get("contact"), f"choosing the example {EXAMPLE} fills the scene text with a contact scene")
+    scene["bodies"][0]["material"]["poisson_ratio"] = 0.5
+    del scene["time"]["step"]
+    set_scene_and_submit(browser, scene)
+    pointer = "/bodies/0/material/poisson_ratio"
+    browser.wait_for(f"document.querySelector('[data-error-for=\"{pointer}\"]')", "the 422 errors are shown")
+    field = browser.run(f"document.querySelector('[data-error-for=\"{pointer}\"]').parentElement.dataset.pointer")
+    message = browser.run(f"document.querySelector('[data-error-for=\"{pointer}\"]').textContent")
+    check(field == pointer, f"the error for {pointer} sits in the field {pointer} (got {field})")
+    check("must be in (-1, 0.5), got 0.5" in message, f"its message names the rule: {message!r}")
+    field = browser.run("document.querySelector('[data-error-for=\"/time/step\"]').parentElement.dataset.pointer")
+    message = browser.run("document.querySelector('[data-error-for=\"/time/step\"]').textContent")
+    check(field == "/time" and message == "step: required",
+          f"a missing member is reported next to its object: {field} {message!r}")
+
+
+def live_run(browser, out):
+    choose(browser, "example", EXAMPLE)
+    browser.run("document.getElementById('submit-button').click()")
+    points = "Number((document.getElementById('plot-energy') || {dataset: {}}).dataset.points || 0)"
+    status = "document.getElementById('job-status').textContent"
+    browser.wait_for(f"{points} > 0", "the energy plot holds points")
+    seen_running = []  # point counts sampled while the page says running
+    screenshot_taken = False
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline:
+        now_status, now_points = browser.run(f"[{status}, {points}]")
+        if now_status != "running":
+            break
+        seen_running.append(now_points)
+        if not screenshot_taken and now_points > 10:
+            browser.screenshot(out / "running.png")
+            screenshot_taken = True
+        time.sleep(0.1)
+    check(len(set(seen_running)) >= 2 and seen_running[-1] > seen_running[0],
+          f"the number of plotted points grows while the job runs (sampled {sorted(set(seen_running))})")
+    browser.wait_for(f"{status} === 'succeeded'", "the status reaches succeeded")
+    check(True, "the status reaches succeeded")
+    browser.wait_for(f"{points} === {EXAMPLE_ROWS}", f"the energy plot ends with {EXAMPLE_ROWS} points", limit=20)
+    plots = browser.run("[...document.querySelectorAll('#plots .plot')].map(p => [p.id, Number(p.dataset.points)])")
+    expected = ["plot-energy", "plot-energy-error", "plot-momentum-error", "plot-contact", "plot-newton"]
+    check([p[0] for p in plots] == expected, f"the contact run has the plots {expected} (got {plots})")
+    check(all(p[1] == EXAMPLE_ROWS for p in plots),
+          f"every plot holds each of the {EXAMPLE_ROWS} steps exactly once, polled with ?since")
+    summary = browser.run("document.getElementById('job-summary').textContent")
+    check("energy_drift" in summary and "max_penetration" in summary, "the summary shows energy drift and penetration")
+    log = browser.run("document.getElementById('job-log').textContent")
+    check("run completed: 100 steps" in log, f"the log is shown: {log.strip().splitlines()[-1]!r}")
+    download = browser.run("""(async () => {
+        const link = document.getElementById('download-result');
+        const response = await fetch(link.href);
+        const bytes = new Uint8Array(await response.arrayBuffer());
+        return {href: link.getAttribute('href'), status: response.status, size: bytes.length,
+                head: [...bytes.slice(0, 8)]};
+      })()""")
+    check(download["status"] == 200 and download["head"] == HDF5_SIGNATURE and download["size"] > 10000,
+          f"the download link {download['href']} serves an HDF5 file ({download['size']} bytes)")
+    return browser.run("location.hash.slice(5)")
+
+
+def job_list_filter(browser, job_id):
+    def rows_for(status):
+        choose(browser, "status-filter", status)
+        browser.wait_for(f"[...document.querySelectorAll('#jobs tbody tr')].every(r => "
+                         f"{js(status)} === '' || r.dataset.status === {js(status)})", f"the list filtered by {status}")
+        return browser.run("[...document.querySelectorAll('#jobs tbody tr')].map(r => r.dataset.id)")
+
+    check(job_id in rows_for("succeeded"), "the job is listed under status succeeded")
+    check(job_id not in rows_for("failed"), "and not under status failed")
+    rows_for("")
+
+
+def study_view(browser, server, source_dir):
+    scene = json.loads((source_dir / "api/examples/tumbling_bar.json").read_text())
+    study = server.post("/v1/studies", {"scene": scene, "steps": [0.1, 0.05]})
+    click_job_row(browser, study["id"])
+    accuracy = "document.getElementById('plot-accuracy').dataset"
+    browser.wait_for(f"{accuracy}.points === '6'", "the accuracy plot holds 3 schemes × 2 steps")
+    check(browser.run(f"{accuracy}.lines") == "3", "the accuracy plot has one line per scheme")
+    rows = browser.run("document.querySelectorAll('#study-table tr').length")
+    check(rows == 7, f"the study table has a header and 6 rows (got {rows})")
+    log_scales = browser.run("(() => { const g = document.querySelector('#plot-accuracy canvas'); return !!g; })()")
+    check(log_scales, "the accuracy plot is drawn")
+
+
+def token_prompt(browser, binary, work):
+    (work / "token").write_text("browser-secret\n")
+    server = Server(binary, work / "data-token", "--token-file", str(work / "token"))
+    try:
+        browser.run("sessionStorage.clear()")
+        browser.open(server.url + "/")
+        browser.wait_for("!document.getElementById('token-panel').hidden", "the page asks for the token")
+        check(browser.run("document.querySelectorAll('#example option').length") == 1,
+              "nothing is loaded before the token is given")
+        browser.run("document.getElementById('token-input').value = 'browser-secret';"
+                    "document.getElementById('token-form').requestSubmit()")
+        browser.wait_for("document.querySelectorAll('#example option').length > 1",
+                         "with the token the examples load")
+        check(browser.run("sessionStorage.getItem('stoss-token')") == "browser-secret",
+              "the token is kept in session storage")
+    finally:
+        server.stop()
+
+
+def main():
+    binary, build_dir = sys.argv[1], Path(sys.argv[2])
+    source_dir = Path(__file__).resolve().parents[2]
+    out = build_dir / "browser"
+    out.mkdir(parents=True, exist_ok=True)
+    work = Path(tempfile.mkdtemp(prefix="stoss-browser-"))
+    server = browser = None
+    try:
+        server = Server(binary, work / "data")
+        browser = Browser(work / "profile")
+        browser.open(server.url + "/")
+        browser.wait_for("document.querySelectorAll('#example option').length > 1", "the examples are listed")
+        names = browser.run("[...document.querySelectorAll('#example option')].map(o => o.value)")
+        check(EXAMPLE in names and "ball_plate_inp" not in names,
+              "the bundled examples are offered, without those that need a mesh file")
+        validation_errors_next_to_fields(browser)
+        job_id = live_run(browser, out)
+        job_list_filter(browser, job_id)
+        click_job_row(browser, job_id)
+        browser.wait_for(f"Number(document.getElementById('plot-energy')?.dataset.points) === {EXAMPLE_ROWS}",
+                         "the finished job's plots come back when it is opened again")
+        browser.screenshot(out / "page.png")
+        study_view(browser, server, source_dir)
+        browser.screenshot(out / "study.png")
+        token_prompt(browser, binary, work)
+    finally:
+        if browser:
+            browser.stop()
+        if server:
+            server.stop()
+        shutil.rmtree(work, ignore_errors=True)
+    print(f"{CHECKS['passed']} passed, {CHECKS['failed']} failed")
+    return 1 if CHECKS["failed"] else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
