@@ -30,6 +30,7 @@ case "$command" in
     mkdir -p "$dir"
     chmod 700 "$dir"
     [[ $(id -u) -eq 0 ]] && chown nobody:nogroup "$dir"
+    cd "$dir"  # the server's user may not be able to enter the caller's directory (a build under /root)
     if [[ ! -f "$dir/data/PG_VERSION" ]]; then
       echo secret | as_owner tee "$dir/password" >/dev/null
       as_owner "$bindir/initdb" -D "$dir/data" -U stoss --pwfile="$dir/password" --auth-host=scram-sha-256 \
@@ -38,7 +39,6 @@ case "$command" in
     fi
     settings="-p $port -k $dir -c listen_addresses=127.0.0.1 -c max_connections=200"
     [[ "${STOSS_PG_DURABLE:-0}" == 1 ]] || settings="$settings -c fsync=off -c synchronous_commit=off -c full_page_writes=off"
-    cd "$dir"
     as_owner "$bindir/pg_ctl" -D "$dir/data" -l "$dir/server.log" -w -t 60 -o "$settings" start >/dev/null ||
       { cat "$dir/server.log" >&2; exit 1; }
     echo "$port" | as_owner tee "$dir/port" >/dev/null
