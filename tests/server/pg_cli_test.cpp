@@ -85,6 +85,25 @@ TEST(PgCli, ADatabaseOfANewerSchemaIsRefusedAtStartWithExit2) {
   cluster.drop_database(db);
 }
 
+TEST(Worker, RunsTheJobsAnApiOnlyServerQueuesInAnSqliteStoreOnOneHost) {
+  TempDir dir;
+  const fs::path data = dir.path() / "data";
+  LiveServer api(data, {"--workers", "0"});
+  auto c = api.client();
+  auto r = c.Post("/v1/jobs", box_scene(1, 2).dump(), "application/json");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 201) << r->body;
+  const std::string id = nlohmann::json::parse(r->body)["id"];
+  auto status = [&] { return nlohmann::json::parse(c.Get("/v1/jobs/" + id)->body)["status"].get<std::string>(); };
+  EXPECT_EQ(status(), "queued") << "an API-only server runs nothing";
+  // A worker on the same host shares the API's SQLite file (sqlite:DATA/jobs.db, both defaults).
+  LiveWorker worker("sqlite:" + (data / "jobs.db").string(), data, {"--workers", "1"});
+  EXPECT_TRUE(eventually([&] { return status() == "succeeded"; }, std::chrono::seconds(60))) << status();
+  const std::string log = c.Get("/v1/jobs/" + id + "/log")->body;
+  EXPECT_NE(log.find(":" + std::to_string(worker.pid()) + ":"), std::string::npos) << "the worker process ran it:\n"
+                                                                                 << log;
+}
+
 TEST(PgNotify, AJobQueuedThroughAnotherConnectionWakesTheSubscriber) {
   PgCluster& cluster = PgCluster::shared();
   const std::string db = cluster.create_database();

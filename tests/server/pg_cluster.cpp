@@ -1,6 +1,10 @@
 #include "tests/server/pg_cluster.hpp"
 
+#include <fcntl.h>
 #include <netinet/in.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -15,6 +19,9 @@
 #include "server/jobs/pg.hpp"
 #include "server/jobs/pg_store.hpp"
 #include "server/jobs/sqlite_store.hpp"
+#include "tests/server/live_server.hpp"
+
+extern char** environ;
 
 namespace stoss::test {
 
@@ -31,6 +38,11 @@ std::string shell(const std::string& command) {
   while (fgets(buffer.data(), buffer.size(), pipe)) out += buffer.data();
   if (pclose(pipe) != 0) throw std::runtime_error(command + " failed: " + out);
   return out;
+}
+
+std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 /// A loopback port nobody listens on now.
@@ -130,6 +142,41 @@ StoreUnderTest::~StoreUnderTest() {
 std::unique_ptr<server::jobs::JobStore> StoreUnderTest::open_again() const {
   if (backend_ == Backend::sqlite) return std::make_unique<server::jobs::SqliteStore>(dir_ / "jobs.db", clock_);
   return std::make_unique<server::jobs::PgStore>(PgCluster::shared().url(database_), clock_);
+}
+
+LiveWorker::LiveWorker(const std::string& store, const std::filesystem::path& data, std::vector<std::string> extra) {
+  static std::atomic<int> counter{0};
+  std::filesystem::create_directories(data);
+  out_ = data / ("worker-" + std::to_string(counter++) + ".log");
+  std::vector<std::string> args = {STOSS_BINARY, "worker", "--store", store, "--data", data.string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, out_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  const int rc = posix_spawn(&pid_, STOSS_BINARY, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) throw std::runtime_error("cannot start stoss worker");
+  if (!eventually([&] { return read_text(out_).find(" running ") != std::string::npos; }, std::chrono::seconds(30))) {
+    kill9();
+    throw std::runtime_error("stoss worker did not start: " + read_text(out_));
+  }
+}
+
+LiveWorker::~LiveWorker() {
+  if (pid_ <= 0) return;
+  ::kill(pid_, SIGTERM);
+  waitpid(pid_, nullptr, 0);
+}
+
+void LiveWorker::kill9() {
+  if (pid_ <= 0) return;
+  ::kill(pid_, SIGKILL);
+  waitpid(pid_, nullptr, 0);
+  pid_ = -1;
 }
 
 }  // namespace stoss::test

@@ -3,9 +3,12 @@
 /// directory, as `nobody` when run as root, on a free loopback port, removed at the end), and a job store
 /// of either kind for the store contract tests.
 
+#include <sys/types.h>
+
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "server/jobs/clock.hpp"
 #include "server/jobs/store.hpp"
@@ -66,6 +69,24 @@ class StoreUnderTest {
   std::filesystem::path dir_;
   std::string database_;
   std::unique_ptr<server::jobs::JobStore> store_;
+};
+
+/// `stoss worker --store STORE --data DATA ...` in a child process, up once it printed its name; SIGTERM
+/// and wait at the end.
+class LiveWorker {
+ public:
+  LiveWorker(const std::string& store, const std::filesystem::path& data, std::vector<std::string> extra = {});
+  ~LiveWorker();
+  LiveWorker(const LiveWorker&) = delete;
+  LiveWorker& operator=(const LiveWorker&) = delete;
+
+  pid_t pid() const { return pid_; }
+  /// SIGKILL, as a crash would; the process is reaped.
+  void kill9();
+
+ private:
+  pid_t pid_ = -1;
+  std::filesystem::path out_;
 };
 
 }  // namespace stoss::test

@@ -3,24 +3,18 @@
 // shall run every accepted job exactly once when nothing fails, rerun a killed worker's job elsewhere,
 // answer 503 with Retry-After while the database is away and recover by itself, and carry a cancel to a
 // job running in another process.
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <fstream>
-#include <set>
 #include <mutex>
+#include <set>
 #include <regex>
 #include <thread>
 
 #include "server/jobs/pg.hpp"
 #include "tests/server/live_server.hpp"
 #include "tests/server/pg_cluster.hpp"
-
-extern char** environ;
 
 namespace stoss::test {
 namespace {
@@ -31,44 +25,6 @@ std::string read_text(const std::filesystem::path& p) {
   std::ifstream in(p);
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
-
-/// `stoss worker --store URL --data DATA ...` in a child process, up once it printed its name.
-class LiveWorker {
- public:
-  LiveWorker(const std::string& store, const std::filesystem::path& data, std::vector<std::string> extra = {}) {
-    static int counter = 0;
-    out_ = data / ("worker-" + std::to_string(counter++) + ".log");
-    std::vector<std::string> args = {STOSS_BINARY, "worker", "--store", store, "--data", data.string()};
-    args.insert(args.end(), extra.begin(), extra.end());
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, out_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    const int rc = posix_spawn(&pid_, STOSS_BINARY, &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    if (rc != 0) throw std::runtime_error("cannot start stoss worker");
-    if (!eventually([&] { return read_text(out_).find(" running ") != std::string::npos; }, std::chrono::seconds(30)))
-      throw std::runtime_error("stoss worker did not start: " + read_text(out_));
-  }
-  ~LiveWorker() {
-    if (pid_ <= 0) return;
-    ::kill(pid_, SIGTERM);
-    waitpid(pid_, nullptr, 0);
-  }
-  pid_t pid() const { return pid_; }
-  void kill9() {
-    ::kill(pid_, SIGKILL);
-    waitpid(pid_, nullptr, 0);
-    pid_ = -1;
-  }
-
- private:
-  pid_t pid_ = -1;
-  std::filesystem::path out_;
-};
 
 /// A database of its own in a cluster of its own (the restart test stops the cluster).
 struct Database {
