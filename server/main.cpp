@@ -15,7 +15,8 @@ constexpr const char* usage_text =
     "  validate SCENE.json [--json] check a scene: effects, node/DOF counts, steps, or every error\n"
     "  study SCENE.json --steps h1,h2,... [--schemes a,b] [--reference H] [--csv|--json]\n"
     "                              error and wall time per scheme and step size against a fine reference\n"
-    "  serve [--listen HOST:PORT] [--data DIR] [--store STORE] [--workers N] [--token-file F]   the job service\n"
+    "  serve [--listen HOST:PORT] [--data DIR] [--store STORE] [--workers N] [--token-file F]\n"
+    "                              the job service\n"
     "  worker --store STORE --data DIR [--workers N]   run queued jobs of a shared store, without HTTP\n"
     "  --help, --version\n"
     "`stoss <command> --help` describes a command.\n";

@@ -116,7 +116,8 @@ ServeOptions parse_options(const std::vector<std::string>& args, bool worker) {
   }
   if (options.pool.renew_every >= options.pool.lease)
     throw UsageError("--renew-seconds must be shorter than --lease-seconds");
-  if (worker && options.pool.workers == 0) throw UsageError("--workers needs an integer in [1, 256], got '0'");
+  if (worker && options.pool.workers == 0)
+    throw UsageError("--workers needs an integer in [1, 256], got '0'");
   return options;
 }
 
@@ -170,8 +171,8 @@ Runs queued jobs without HTTP until SIGINT or SIGTERM (then gives running jobs b
 API processes (`stoss serve`, possibly with --workers 0) queue the jobs; every process shares the store
 and the data directory.
 
-  --store STORE          sqlite:PATH or postgresql://USER[:PASSWORD]@HOST:PORT/DB (default sqlite:DIR/jobs.db);
-                         libpq's PG* variables and PGPASSFILE fill what the URL leaves out
+  --store STORE          postgresql://USER[:PASSWORD]@HOST:PORT/DB (libpq's PG* variables and PGPASSFILE
+                         fill what the URL leaves out) or sqlite:PATH (default sqlite:DIR/jobs.db)
   --data DIR             results and logs (DIR/jobs/<id>/), shared with the API processes (default ./var)
   --workers N            jobs run at once in this process (default 2)
   --job-timeout S        wall-time limit of one job attempt; 0: none (default 0)

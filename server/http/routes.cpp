@@ -575,7 +575,8 @@ void install_error_handling(httplib::Server& server, Metrics& metrics, const Lim
     try {
       std::rethrow_exception(error);
     } catch (const jobs::StoreUnavailable& e) {  // the database is away (restarting): 503, Retry-After
-      std::cerr << "stoss: " << req.method << " " << req.path << ": job store unavailable: " << e.what() << std::endl;
+      std::cerr << "stoss: " << req.method << " " << req.path << ": job store unavailable: " << e.what()
+                << std::endl;
       return Problem{503, "urn:stoss:problem:store-unavailable", "Job store unavailable",
                      "the job store cannot be reached just now; retry later (a POST retried with the same "
                      "Idempotency-Key is not queued twice)"}

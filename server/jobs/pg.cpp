@@ -82,7 +82,8 @@ Connection::Connection(const std::string& url) {
     conn_ = nullptr;
     throw StoreUnavailable("cannot connect: " + message);
   }
-  PQsetNoticeProcessor(conn_, [](void*, const char*) {}, nullptr);  // "relation already exists, skipping"
+  PQsetNoticeProcessor(
+      conn_, [](void*, const char*) {}, nullptr);  // "relation already exists, skipping"
 }
 
 Connection::~Connection() {
@@ -134,7 +135,8 @@ void check_url(const std::string& url) {
     const std::string p = m[1];
     const bool digits = !p.empty() && p.size() <= 5 && p.find_first_not_of("0123456789") == std::string::npos;
     if (!digits || std::stoi(p) < 1 || std::stoi(p) > 65535)
-      throw StoreError("the port of a PostgreSQL store URL must be an integer in [1, 65535], got '" + p + "'");
+      throw StoreError("the port of a PostgreSQL store URL must be an integer in [1, 65535], got '" + p +
+                       "'");
   }
   char* error = nullptr;
   PQconninfoOption* options = PQconninfoParse(url.c_str(), &error);

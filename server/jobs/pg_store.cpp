@@ -131,7 +131,9 @@ int current_version(Connection& c) {
 void migrate(Connection& c, Millis now) {
   Transaction tx(c);
   c.exec(migration_lock);
-  c.exec("CREATE TABLE IF NOT EXISTS stoss_schema_version (version INTEGER PRIMARY KEY, applied_ms BIGINT NOT NULL)");
+  c.exec(
+      "CREATE TABLE IF NOT EXISTS stoss_schema_version (version INTEGER PRIMARY KEY, applied_ms BIGINT NOT "
+      "NULL)");
   const int version = current_version(c);
   const int latest = static_cast<int>(migrations.size());
   if (version > latest)
@@ -139,7 +141,8 @@ void migrate(Connection& c, Millis now) {
                      " is newer than this program's (" + std::to_string(latest) + "); run a newer stoss");
   for (int v = version + 1; v <= latest; ++v) {
     c.exec(migrations[v - 1]);
-    c.exec("INSERT INTO stoss_schema_version (version, applied_ms) VALUES ($1, $2)", {integer(v), integer(now)});
+    c.exec("INSERT INTO stoss_schema_version (version, applied_ms) VALUES ($1, $2)",
+           {integer(v), integer(now)});
   }
   tx.commit();
 }
@@ -278,7 +281,8 @@ CreateResult PgStore::create(const NewJob& job, int max_queued) {
   Transaction tx(*c);
   c->exec(create_lock);
   if (job.idempotency_key) {
-    Result r = c->exec("SELECT " + job_columns + " FROM stoss_jobs WHERE idempotency_key = $1", {job.idempotency_key});
+    Result r = c->exec("SELECT " + job_columns + " FROM stoss_jobs WHERE idempotency_key = $1",
+                       {job.idempotency_key});
     if (r.rows() > 0) {
       Job existing = read_job(r, 0);
       const bool same_body = existing.body_hash == job.body_hash;
@@ -292,9 +296,9 @@ CreateResult PgStore::create(const NewJob& job, int max_queued) {
       " progress_steps, progress_end, kind, study, name)"
       " VALUES ($1, 'queued', $2, $3, $4, $5, $6, $7, $8, $9, $10, $11) RETURNING " +
           job_columns,
-      {JobId::random().str(), integer(impl_->clock.now()), job.idempotency_key, job.body_hash, job.scene.dump(),
-       nlohmann::json(job.effects).dump(), integer(job.progress.steps), pg::number(job.progress.end),
-       to_string(job.kind), optional_json(job.study), scene_name(job.scene)});
+      {JobId::random().str(), integer(impl_->clock.now()), job.idempotency_key, job.body_hash,
+       job.scene.dump(), nlohmann::json(job.effects).dump(), integer(job.progress.steps),
+       pg::number(job.progress.end), to_string(job.kind), optional_json(job.study), scene_name(job.scene)});
   Job created = read_job(r, 0);
   c->exec("SELECT pg_notify($1, '')", {text(channel)});  // delivered on commit
   tx.commit();
@@ -358,33 +362,34 @@ Lease PgStore::renew(const JobId& id, const std::string& worker, Millis lease) {
 bool PgStore::progress(const JobId& id, const std::string& worker, const Progress& p) {
   auto c = impl_->borrow();
   return c->exec(
-                "UPDATE stoss_jobs SET progress_step = $1, progress_steps = $2, progress_time = $3,"
-                " progress_end = $4, progress_eta = $5 WHERE id = $6 AND worker = $7 AND status = 'running'",
-                {integer(p.step), integer(p.steps), pg::number(p.time), pg::number(p.end),
-                 p.eta_seconds ? Param(pg::number(*p.eta_seconds)) : std::nullopt, id.str(), worker})
+              "UPDATE stoss_jobs SET progress_step = $1, progress_steps = $2, progress_time = $3,"
+              " progress_end = $4, progress_eta = $5 WHERE id = $6 AND worker = $7 AND status = 'running'",
+              {integer(p.step), integer(p.steps), pg::number(p.time), pg::number(p.end),
+               p.eta_seconds ? Param(pg::number(*p.eta_seconds)) : std::nullopt, id.str(), worker})
              .changed() == 1;
 }
 
 bool PgStore::finish(const JobId& id, const std::string& worker, const Outcome& outcome) {
   auto c = impl_->borrow();
   return c->exec(
-                "UPDATE stoss_jobs SET status = $1, summary = $2, error = $3, finished_ms = $4,"
-                " lease_expires_ms = NULL, progress_eta = NULL WHERE id = $5 AND worker = $6 AND status = 'running'",
-                {to_string(outcome.status), optional_json(outcome.summary), outcome.error,
-                 integer(impl_->clock.now()), id.str(), worker})
+              "UPDATE stoss_jobs SET status = $1, summary = $2, error = $3, finished_ms = $4,"
+              " lease_expires_ms = NULL, progress_eta = NULL WHERE id = $5 AND worker = $6 AND status = "
+              "'running'",
+              {to_string(outcome.status), optional_json(outcome.summary), outcome.error,
+               integer(impl_->clock.now()), id.str(), worker})
              .changed() == 1;
 }
 
 bool PgStore::release(const JobId& id, const std::string& worker) {
   auto c = impl_->borrow();
   Transaction tx(*c);
-  const bool held =
-      c->exec(
-           "UPDATE stoss_jobs SET status = 'queued', worker = NULL, lease_expires_ms = NULL, started_ms = NULL,"
-           " attempt = attempt - 1, progress_step = 0, progress_time = 0, progress_eta = NULL"
-           " WHERE id = $1 AND worker = $2 AND status = 'running'",
-           {id.str(), worker})
-          .changed() == 1;
+  const bool held = c->exec(
+                         "UPDATE stoss_jobs SET status = 'queued', worker = NULL, lease_expires_ms = NULL, "
+                         "started_ms = NULL,"
+                         " attempt = attempt - 1, progress_step = 0, progress_time = 0, progress_eta = NULL"
+                         " WHERE id = $1 AND worker = $2 AND status = 'running'",
+                         {id.str(), worker})
+                        .changed() == 1;
   if (held) c->exec("SELECT pg_notify($1, '')", {text(channel)});
   tx.commit();
   return held;
@@ -397,8 +402,9 @@ CancelResult PgStore::request_cancel(const JobId& id) {
   if (!job) return {CancelResult::Outcome::not_found, std::nullopt};
   CancelResult::Outcome outcome = CancelResult::Outcome::already_done;
   if (job->status == Status::queued) {
-    c->exec("UPDATE stoss_jobs SET status = 'canceled', cancel_requested = true, finished_ms = $1 WHERE id = $2",
-            {integer(impl_->clock.now()), id.str()});
+    c->exec(
+        "UPDATE stoss_jobs SET status = 'canceled', cancel_requested = true, finished_ms = $1 WHERE id = $2",
+        {integer(impl_->clock.now()), id.str()});
     outcome = CancelResult::Outcome::canceled;
   } else if (job->status == Status::running) {
     c->exec("UPDATE stoss_jobs SET cancel_requested = true WHERE id = $1", {id.str()});
@@ -416,22 +422,25 @@ Rescued PgStore::requeue_expired(Millis now, int max_attempts) {
   Transaction tx(*c);
   const std::string expired = " WHERE status = 'running' AND lease_expires_ms < $1::bigint";
   Rescued rescued;
-  rescued.canceled = c->exec("UPDATE stoss_jobs SET status = 'canceled', finished_ms = $1::bigint,"
-                             " lease_expires_ms = NULL" +
-                                 expired + " AND cancel_requested",
-                             {integer(now)})
+  rescued.canceled = c->exec(
+                          "UPDATE stoss_jobs SET status = 'canceled', finished_ms = $1::bigint,"
+                          " lease_expires_ms = NULL" +
+                              expired + " AND cancel_requested",
+                          {integer(now)})
                          .changed();
   rescued.failed =
-      c->exec("UPDATE stoss_jobs SET status = 'failed', finished_ms = $1::bigint, lease_expires_ms = NULL,"
-              " progress_eta = NULL, error = 'the worker stopped renewing its lease (process killed or hung) on"
-              " attempt ' || attempt || ' of ' || $2::int || '; not retried'" +
-                  expired + " AND attempt >= $2::int",
-              {integer(now), integer(max_attempts)})
+      c->exec(
+           "UPDATE stoss_jobs SET status = 'failed', finished_ms = $1::bigint, lease_expires_ms = NULL,"
+           " progress_eta = NULL, error = 'the worker stopped renewing its lease (process killed or hung) on"
+           " attempt ' || attempt || ' of ' || $2::int || '; not retried'" +
+               expired + " AND attempt >= $2::int",
+           {integer(now), integer(max_attempts)})
           .changed();
-  rescued.requeued = c->exec("UPDATE stoss_jobs SET status = 'queued', worker = NULL, lease_expires_ms = NULL,"
-                             " progress_step = 0, progress_time = 0, progress_eta = NULL" +
-                                 expired,
-                             {integer(now)})
+  rescued.requeued = c->exec(
+                          "UPDATE stoss_jobs SET status = 'queued', worker = NULL, lease_expires_ms = NULL,"
+                          " progress_step = 0, progress_time = 0, progress_eta = NULL" +
+                              expired,
+                          {integer(now)})
                          .changed();
   if (rescued.requeued > 0) c->exec("SELECT pg_notify($1, '')", {text(channel)});
   tx.commit();

@@ -23,9 +23,11 @@ std::string with_port(const std::string& user_password, int port, const std::str
 
 TEST(PgCli, AMalformedStoreIsRefusedWithTheRuleAndExit2) {
   TempDir dir;
-  const CommandResult other = run_stoss({"serve", "--store", "mysql://x/y", "--data", (dir.path() / "d").string()});
+  const CommandResult other =
+      run_stoss({"serve", "--store", "mysql://x/y", "--data", (dir.path() / "d").string()});
   EXPECT_EQ(other.exit_code, 2);
-  EXPECT_NE(other.err.find("--store needs sqlite:PATH or postgresql://USER[:PASSWORD]@HOST:PORT/DB, got 'mysql://x/y'"),
+  EXPECT_NE(other.err.find(
+                "--store needs sqlite:PATH or postgresql://USER[:PASSWORD]@HOST:PORT/DB, got 'mysql://x/y'"),
             std::string::npos)
       << other.err;
   const CommandResult port = run_stoss({"worker", "--store", "postgresql://stoss:pw@127.0.0.1:99999/db"});
@@ -56,9 +58,11 @@ TEST(PgCli, AnUnreachableDatabaseOrWrongCredentialsExit2AndCreateNothing) {
   TempDir dir;
   const fs::path data = dir.path() / "data";
   const std::string wrong = with_port("stoss:not-the-password", cluster.port(), "postgres");
-  const CommandResult refused = run_stoss({"serve", "--listen", "127.0.0.1:0", "--store", wrong, "--data", data.string()});
+  const CommandResult refused =
+      run_stoss({"serve", "--listen", "127.0.0.1:0", "--store", wrong, "--data", data.string()});
   EXPECT_EQ(refused.exit_code, 2);
-  EXPECT_NE(refused.err.find("password authentication failed for user \"stoss\""), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("password authentication failed for user \"stoss\""), std::string::npos)
+      << refused.err;
   EXPECT_EQ(refused.err.find("not-the-password"), std::string::npos) << "the password is never printed";
   EXPECT_NE(refused.err.find("stoss:***@127.0.0.1"), std::string::npos) << refused.err;
 
@@ -66,7 +70,8 @@ TEST(PgCli, AnUnreachableDatabaseOrWrongCredentialsExit2AndCreateNothing) {
   const std::string away = with_port("stoss:secret", 1, "postgres");
   const CommandResult unreachable = run_stoss({"worker", "--store", away, "--data", data.string()});
   EXPECT_EQ(unreachable.exit_code, 2);
-  EXPECT_NE(unreachable.err.find("cannot open the job store postgresql://stoss:***@127.0.0.1:1/postgres: cannot connect"),
+  EXPECT_NE(unreachable.err.find(
+                "cannot open the job store postgresql://stoss:***@127.0.0.1:1/postgres: cannot connect"),
             std::string::npos)
       << unreachable.err;
   EXPECT_FALSE(fs::exists(data)) << "no data directory is created for a store that cannot be opened";
@@ -81,7 +86,8 @@ TEST(PgCli, ADatabaseOfANewerSchemaIsRefusedAtStartWithExit2) {
   TempDir dir;
   const CommandResult r = run_stoss({"worker", "--store", cluster.url(db), "--data", dir.path().string()});
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("database schema version 7 is newer than this program's (1)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("database schema version 7 is newer than this program's (1)"), std::string::npos)
+      << r.err;
   cluster.drop_database(db);
 }
 
@@ -94,14 +100,17 @@ TEST(Worker, RunsTheJobsAnApiOnlyServerQueuesInAnSqliteStoreOnOneHost) {
   ASSERT_TRUE(r);
   ASSERT_EQ(r->status, 201) << r->body;
   const std::string id = nlohmann::json::parse(r->body)["id"];
-  auto status = [&] { return nlohmann::json::parse(c.Get("/v1/jobs/" + id)->body)["status"].get<std::string>(); };
+  auto status = [&] {
+    return nlohmann::json::parse(c.Get("/v1/jobs/" + id)->body)["status"].get<std::string>();
+  };
   EXPECT_EQ(status(), "queued") << "an API-only server runs nothing";
   // A worker on the same host shares the API's SQLite file (sqlite:DATA/jobs.db, both defaults).
   LiveWorker worker("sqlite:" + (data / "jobs.db").string(), data, {"--workers", "1"});
   EXPECT_TRUE(eventually([&] { return status() == "succeeded"; }, std::chrono::seconds(60))) << status();
   const std::string log = c.Get("/v1/jobs/" + id + "/log")->body;
-  EXPECT_NE(log.find(":" + std::to_string(worker.pid()) + ":"), std::string::npos) << "the worker process ran it:\n"
-                                                                                 << log;
+  EXPECT_NE(log.find(":" + std::to_string(worker.pid()) + ":"), std::string::npos)
+      << "the worker process ran it:\n"
+      << log;
 }
 
 TEST(PgNotify, AJobQueuedThroughAnotherConnectionWakesTheSubscriber) {

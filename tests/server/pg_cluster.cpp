@@ -4,8 +4,8 @@
 #include <netinet/in.h>
 #include <signal.h>
 #include <spawn.h>
-#include <sys/wait.h>
 #include <sys/socket.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
@@ -140,11 +140,13 @@ StoreUnderTest::~StoreUnderTest() {
 }
 
 std::unique_ptr<server::jobs::JobStore> StoreUnderTest::open_again() const {
-  if (backend_ == Backend::sqlite) return std::make_unique<server::jobs::SqliteStore>(dir_ / "jobs.db", clock_);
+  if (backend_ == Backend::sqlite)
+    return std::make_unique<server::jobs::SqliteStore>(dir_ / "jobs.db", clock_);
   return std::make_unique<server::jobs::PgStore>(PgCluster::shared().url(database_), clock_);
 }
 
-LiveWorker::LiveWorker(const std::string& store, const std::filesystem::path& data, std::vector<std::string> extra) {
+LiveWorker::LiveWorker(const std::string& store, const std::filesystem::path& data,
+                       std::vector<std::string> extra) {
   static std::atomic<int> counter{0};
   std::filesystem::create_directories(data);
   out_ = data / ("worker-" + std::to_string(counter++) + ".log");
@@ -160,7 +162,8 @@ LiveWorker::LiveWorker(const std::string& store, const std::filesystem::path& da
   const int rc = posix_spawn(&pid_, STOSS_BINARY, &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) throw std::runtime_error("cannot start stoss worker");
-  if (!eventually([&] { return read_text(out_).find(" running ") != std::string::npos; }, std::chrono::seconds(30))) {
+  if (!eventually([&] { return read_text(out_).find(" running ") != std::string::npos; },
+                  std::chrono::seconds(30))) {
     kill9();
     throw std::runtime_error("stoss worker did not start: " + read_text(out_));
   }

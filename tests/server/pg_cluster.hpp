@@ -75,7 +75,8 @@ class StoreUnderTest {
 /// and wait at the end.
 class LiveWorker {
  public:
-  LiveWorker(const std::string& store, const std::filesystem::path& data, std::vector<std::string> extra = {});
+  LiveWorker(const std::string& store, const std::filesystem::path& data,
+             std::vector<std::string> extra = {});
   ~LiveWorker();
   LiveWorker(const LiveWorker&) = delete;
   LiveWorker& operator=(const LiveWorker&) = delete;

@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <fstream>
 #include <mutex>
-#include <set>
 #include <regex>
+#include <set>
 #include <thread>
 
 #include "server/jobs/pg.hpp"
@@ -69,7 +69,9 @@ TEST(PgManyProcesses, ThreeHundredJobsThroughTwoApisAndThreeWorkersEachSucceedEx
   LiveServer api_a(data.path(), {"--store", db.url, "--workers", "0"});
   LiveServer api_b(data.path(), {"--store", db.url, "--workers", "0"});
   std::vector<std::unique_ptr<LiveWorker>> workers;
-  for (int i = 0; i < 3; ++i) workers.push_back(std::make_unique<LiveWorker>(db.url, data.path(), std::vector<std::string>{"--workers", "2"}));
+  for (int i = 0; i < 3; ++i)
+    workers.push_back(
+        std::make_unique<LiveWorker>(db.url, data.path(), std::vector<std::string>{"--workers", "2"}));
 
   constexpr int jobs = 300;
   std::mutex mutex;
@@ -122,31 +124,38 @@ TEST(PgManyProcesses, AKilledWorkersJobRerunsInAnotherAndACancelReachesAnotherPr
   const std::string doomed = post_job(a, box_scene(3, 1500, {1, 0.5, 0}, 2));
   ASSERT_FALSE(doomed.empty());
   nlohmann::json job;
-  ASSERT_TRUE(eventually([&] { job = get_job(b, doomed); return job.value("status", "") == "running" &&
-                                                            job["progress"].value("step", 0) > 0; },
-                         std::chrono::seconds(30)));
+  ASSERT_TRUE(eventually(
+      [&] {
+        job = get_job(b, doomed);
+        return job.value("status", "") == "running" && job["progress"].value("step", 0) > 0;
+      },
+      std::chrono::seconds(30)));
   const pid_t victim = worker_pid(db.worker(doomed));
   LiveWorker& killed = victim == first->pid() ? *first : *second;
   LiveWorker& survivor = victim == first->pid() ? *second : *first;
   ASSERT_EQ(killed.pid(), victim) << job.dump();
   killed.kill9();
-  ASSERT_TRUE(eventually([&] { return get_job(b, doomed).value("status", "") == "succeeded"; }, std::chrono::seconds(60)))
+  ASSERT_TRUE(eventually([&] { return get_job(b, doomed).value("status", "") == "succeeded"; },
+                         std::chrono::seconds(60)))
       << get_job(b, doomed).dump();
   job = get_job(a, doomed);
   EXPECT_EQ(job["attempt"], 2);
   const std::string log = read_text(data.path() / "jobs" / doomed / "log.txt");
   EXPECT_NE(log.find("attempt 1 started"), std::string::npos) << log;
   EXPECT_NE(log.find("attempt 2 started"), std::string::npos) << log;
-  EXPECT_NE(log.find(":" + std::to_string(survivor.pid()) + ":"), std::string::npos) << "attempt 2 ran in the survivor:\n"
-                                                                                      << log;
+  EXPECT_NE(log.find(":" + std::to_string(survivor.pid()) + ":"), std::string::npos)
+      << "attempt 2 ran in the survivor:\n"
+      << log;
 
   // A cancel posted to API B stops a job that API A queued and the surviving worker runs.
   const std::string long_job = post_job(a, box_scene(3, 60000, {1, 0.5, 0}, 2));
-  ASSERT_TRUE(eventually([&] { return get_job(a, long_job).value("status", "") == "running"; }, std::chrono::seconds(30)));
+  ASSERT_TRUE(eventually([&] { return get_job(a, long_job).value("status", "") == "running"; },
+                         std::chrono::seconds(30)));
   auto r = b.Post("/v1/jobs/" + long_job + "/cancel");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 202) << r->body;
-  ASSERT_TRUE(eventually([&] { return get_job(a, long_job).value("status", "") == "canceled"; }, std::chrono::seconds(20)))
+  ASSERT_TRUE(eventually([&] { return get_job(a, long_job).value("status", "") == "canceled"; },
+                         std::chrono::seconds(20)))
       << get_job(a, long_job).dump();
   EXPECT_LT(get_job(a, long_job)["progress"].value("step", 60000), 60000);
 }
@@ -182,7 +191,8 @@ TEST(PgManyProcesses, WhileTheDatabaseRestartsTheApiAnswers503WithRetryAfterAndN
   };
   ASSERT_TRUE(eventually([&] { return accepted_count() >= 10; }, std::chrono::seconds(30)));
   db.cluster.stop();
-  EXPECT_TRUE(eventually([&] { return refused >= 3; }, std::chrono::seconds(30))) << "503s while the database is away";
+  EXPECT_TRUE(eventually([&] { return refused >= 3; }, std::chrono::seconds(30)))
+      << "503s while the database is away";
   db.cluster.start();
   const std::size_t before = accepted_count();
   EXPECT_TRUE(eventually([&] { return accepted_count() >= before + 10; }, std::chrono::seconds(30)))
@@ -193,9 +203,12 @@ TEST(PgManyProcesses, WhileTheDatabaseRestartsTheApiAnswers503WithRetryAfterAndN
   std::string id_list;  // as a PostgreSQL array literal
   for (const std::string& id : accepted) id_list += (id_list.empty() ? "'{" : ",") + id;
   id_list += "}'";
-  ASSERT_TRUE(eventually([&] { return db.count("status = 'succeeded' AND id = ANY(" + id_list + ")") ==
-                                      static_cast<std::int64_t>(accepted.size()); },
-                         std::chrono::seconds(60)))
+  ASSERT_TRUE(eventually(
+      [&] {
+        return db.count("status = 'succeeded' AND id = ANY(" + id_list + ")") ==
+               static_cast<std::int64_t>(accepted.size());
+      },
+      std::chrono::seconds(60)))
       << db.count("status = 'succeeded' AND id = ANY(" + id_list + ")") << " of " << accepted.size()
       << " accepted jobs succeeded";
   auto c = api.client();

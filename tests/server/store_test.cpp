@@ -264,8 +264,8 @@ TEST(StoreMigration, RefusesADatabaseFromANewerProgram) {
 }
 
 class StoreConcurrency : public ::testing::TestWithParam<Backend> {};
-INSTANTIATE_TEST_SUITE_P(BothStores, StoreConcurrency, ::testing::Values(Backend::sqlite, Backend::postgresql),
-                         backend_name);
+INSTANTIATE_TEST_SUITE_P(BothStores, StoreConcurrency,
+                         ::testing::Values(Backend::sqlite, Backend::postgresql), backend_name);
 
 TEST_P(StoreConcurrency, EveryQueuedJobIsClaimedExactlyOnce) {
   SystemClock clock;
@@ -308,7 +308,8 @@ TEST(PgStoreMigration, CreatesTheLatestSchemaOnceWhenManyProcessesStartTogether)
   for (auto& t : starts) t.join();
   EXPECT_EQ(opened, 4);
   pg::Connection c(cluster.url(db));
-  EXPECT_EQ(c.exec("SELECT count(*) FROM stoss_schema_version").int64(0, 0), PgStore::latest_schema_version());
+  EXPECT_EQ(c.exec("SELECT count(*) FROM stoss_schema_version").int64(0, 0),
+            PgStore::latest_schema_version());
   cluster.drop_database(db);
 }
 
@@ -332,15 +333,18 @@ TEST(PgStoreMigration, RefusesADatabaseFromANewerProgram) {
 TEST(PgStoreErrors, WrongCredentialsAndAnAbsentServerAreUnavailableWithLibpqsReason) {
   test::PgCluster& cluster = test::PgCluster::shared();
   ManualClock clock;
-  const std::string wrong = "postgresql://stoss:wrong@127.0.0.1:" + std::to_string(cluster.port()) + "/postgres";
+  const std::string wrong =
+      "postgresql://stoss:wrong@127.0.0.1:" + std::to_string(cluster.port()) + "/postgres";
   try {
     PgStore store(wrong, clock);
     ADD_FAILURE() << "connected with a wrong password";
   } catch (const StoreUnavailable& e) {
-    EXPECT_NE(std::string(e.what()).find("password authentication failed for user \"stoss\""), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("password authentication failed for user \"stoss\""),
+              std::string::npos)
         << e.what();
   }
-  EXPECT_EQ(pg::redacted(wrong), "postgresql://stoss:***@127.0.0.1:" + std::to_string(cluster.port()) + "/postgres");
+  EXPECT_EQ(pg::redacted(wrong),
+            "postgresql://stoss:***@127.0.0.1:" + std::to_string(cluster.port()) + "/postgres");
   EXPECT_THROW(pg::check_url("postgresql://stoss@127.0.0.1:99999/db"), StoreError);
 }
 
