@@ -74,11 +74,11 @@ Problem build_problem(const Model& m) {
   const auto t1 = Clock::now();
   p.geometry = fem::precompute_mesh(m.mesh);
   std::vector<double> density;
-  std::vector<fem::SaintVenantKirchhoff> material;
+  std::vector<std::shared_ptr<const fem::Material>> body_material, material;
+  for (const model::BodySpec& body : m.bodies) body_material.push_back(fem::make_material(body.material));
   for (int body : m.mesh.element_body) {
-    const model::Material& mat = m.bodies[body].material;
-    density.push_back(mat.density);
-    material.emplace_back(mat.youngs_modulus, mat.poisson_ratio);
+    density.push_back(m.bodies[body].material.density);
+    material.push_back(body_material[body]);
   }
   p.mass = fem::assemble_mass(m.mesh, p.geometry, density);
   p.elasticity = std::make_unique<fem::ElasticityTerm>(m.mesh, p.geometry, std::move(material));
@@ -283,6 +283,7 @@ std::string krylov_line(const solve::LinearSolver& linear) {
 solve::NewtonOptions newton_options(const Model& m) {
   solve::NewtonOptions o;
   o.linear = linear_method(m);
+  if (std::getenv("STOSS_EXPERIMENT_FRESH")) o.reuse_factorization = false;
   o.tolerance = m.solver.tolerance;
   o.max_iterations = m.solver.max_iterations;
   o.reuse_contraction = 0.5;

@@ -49,12 +49,12 @@ solve::SparseMatrix assemble_mass(const mesh::Mesh& mesh, const std::vector<Elem
 }
 
 ElasticityTerm::ElasticityTerm(const mesh::Mesh& mesh, std::vector<ElementGeometry> geometry,
-                               std::vector<SaintVenantKirchhoff> element_material)
+                               std::vector<std::shared_ptr<const Material>> element_material)
     : hex8_(mesh.hex8), geometry_(std::move(geometry)), material_(std::move(element_material)) {}
 
 double ElasticityTerm::energy(const Eigen::VectorXd& x) const {
   double V = 0;
-  for (size_t e = 0; e < hex8_.size(); ++e) V += strain_energy(geometry_[e], material_[e], gather(hex8_[e], x));
+  for (size_t e = 0; e < hex8_.size(); ++e) V += strain_energy(geometry_[e], *material_[e], gather(hex8_[e], x));
   return V;
 }
 
@@ -67,7 +67,7 @@ void ElasticityTerm::begin_step(const time::StepContext& step, Eigen::VectorXd&)
   if (step.rule.previous_weight == 0) return;
   force_n_.resize(hex8_.size());
   for (size_t e = 0; e < hex8_.size(); ++e)
-    internal_force(geometry_[e], material_[e], gather(hex8_[e], step.x_n), force_n_[e], nullptr);
+    internal_force(geometry_[e], *material_[e], gather(hex8_[e], step.x_n), force_n_[e], nullptr);
 }
 
 void ElasticityTerm::element_step(const time::StepContext& step, int e, const Eigen::VectorXd& x_1, Vector24& f,
@@ -75,10 +75,10 @@ void ElasticityTerm::element_step(const time::StepContext& step, int e, const Ei
   const Matrix83 xe_1 = gather(hex8_[e], x_1);
   const time::ForceRule& rule = step.rule;
   if (rule.kind == time::ForceRule::Kind::discrete_gradient) {
-    discrete_gradient_force(geometry_[e], material_[e], gather(hex8_[e], step.x_n), xe_1, f, K);  // (2.6)
+    discrete_gradient_force(geometry_[e], *material_[e], gather(hex8_[e], step.x_n), xe_1, f, K);  // (2.6)
     return;
   }
-  internal_force(geometry_[e], material_[e], rule.evaluation_point(gather(hex8_[e], step.x_n), xe_1), f, K);
+  internal_force(geometry_[e], *material_[e], rule.evaluation_point(gather(hex8_[e], step.x_n), xe_1), f, K);
   if (rule.weight != 1) f *= rule.weight;
   if (rule.previous_weight != 0) f += rule.previous_weight * force_n_[e];  // (2.5), (2.11), (2.12)
   if (K && rule.weight * rule.theta != 1) *K *= rule.weight * rule.theta;

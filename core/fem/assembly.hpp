@@ -24,11 +24,11 @@ std::vector<int> element_dofs(const mesh::Hex& hex);
 solve::SparseMatrix assemble_mass(const mesh::Mesh& mesh, const std::vector<ElementGeometry>& geometry,
                                   const std::vector<double>& element_density);
 
-/// Strain energy of St. Venant–Kirchhoff bodies: f_int with the force rule of the scheme.
+/// Strain energy of hyperelastic bodies (a Material per element): f_int with the force rule of the scheme.
 class ElasticityTerm : public time::Term {
  public:
   ElasticityTerm(const mesh::Mesh& mesh, std::vector<ElementGeometry> geometry,
-                 std::vector<SaintVenantKirchhoff> element_material);
+                 std::vector<std::shared_ptr<const Material>> element_material);
   std::string name() const override { return "elasticity"; }
   double energy(const Eigen::VectorXd& x) const override;
   void register_blocks(solve::BlockPattern& pattern) override;
@@ -43,7 +43,7 @@ class ElasticityTerm : public time::Term {
 
   std::vector<mesh::Hex> hex8_;
   std::vector<ElementGeometry> geometry_;
-  std::vector<SaintVenantKirchhoff> material_;
+  std::vector<std::shared_ptr<const Material>> material_;  ///< per element, shared per body
   std::vector<int> block_;
   std::vector<Vector24> force_n_;  ///< f_int(x_n) per element, cached for HHT
 };

@@ -47,28 +47,29 @@ Eigen::Matrix3d deformation_gradient(const Matrix83& x, const GaussPoint& gp) {
   return x.transpose() * gp.dN_dX;  // (1.3)
 }
 
-double strain_energy(const ElementGeometry& e, const SaintVenantKirchhoff& m, const Matrix83& x) {
+double strain_energy(const ElementGeometry& e, const Material& m, const Matrix83& x) {
   double V = 0;
   for (const GaussPoint& gp : e.gp) V += gp.wJ * m.energy_density(green_lagrange_strain(deformation_gradient(x, gp)));
   return V;  // (1.7)
 }
 
-void internal_force(const ElementGeometry& e, const SaintVenantKirchhoff& m, const Matrix83& x, Vector24& f,
+void internal_force(const ElementGeometry& e, const Material& m, const Matrix83& x, Vector24& f,
                     Matrix24* K) {
   f.setZero();
   if (K) K->setZero();
   for (const GaussPoint& gp : e.gp) {
     const Eigen::Matrix3d F = deformation_gradient(x, gp);
-    const Eigen::Matrix3d S = m.stress(green_lagrange_strain(F));
+    const Eigen::Matrix3d E = green_lagrange_strain(F);
+    const Eigen::Matrix3d S = m.stress(E);
     add_nodal_force(gp.dN_dX, S, F, gp.wJ, f);
     if (!K) continue;
     const Matrix6x24 B = strain_displacement(F, gp.dN_dX);
-    K->noalias() += gp.wJ * B.transpose() * m.tangent() * B;  // material part of (1.8)
+    K->noalias() += gp.wJ * B.transpose() * m.tangent(E) * B;  // material part of (1.8)
     add_geometric_stiffness(gp.dN_dX, S, gp.wJ, *K);
   }
 }
 
-void discrete_gradient_force(const ElementGeometry& e, const SaintVenantKirchhoff& m, const Matrix83& x_n,
+void discrete_gradient_force(const ElementGeometry& e, const Material& m, const Matrix83& x_n,
                              const Matrix83& x_1, Vector24& f, Matrix24* K) {
   f.setZero();
   if (K) K->setZero();
@@ -76,11 +77,12 @@ void discrete_gradient_force(const ElementGeometry& e, const SaintVenantKirchhof
   for (const GaussPoint& gp : e.gp) {
     const Eigen::Matrix3d F_n = deformation_gradient(x_n, gp), F_1 = deformation_gradient(x_1, gp);
     const Eigen::Matrix3d F_m = deformation_gradient(x_m, gp);
-    const Eigen::Matrix3d S_alg = m.discrete_stress(green_lagrange_strain(F_n), green_lagrange_strain(F_1));
+    const Eigen::Matrix3d E_n = green_lagrange_strain(F_n), E_1 = green_lagrange_strain(F_1);
+    const Eigen::Matrix3d S_alg = m.discrete_stress(E_n, E_1);
     add_nodal_force(gp.dN_dX, S_alg, F_m, gp.wJ, f);  // (2.6)
     if (!K) continue;
     const Matrix6x24 B_m = strain_displacement(F_m, gp.dN_dX), B_1 = strain_displacement(F_1, gp.dN_dX);
-    K->noalias() += gp.wJ * B_m.transpose() * m.discrete_stress_tangent() * B_1;  // (2.9), material part
+    K->noalias() += gp.wJ * B_m.transpose() * m.discrete_stress_tangent(E_n, E_1) * B_1;  // (2.9), material part
     add_geometric_stiffness(gp.dN_dX, S_alg, 0.5 * gp.wJ, *K);                    // (2.9), ½ ∂F_m/∂x_1
   }
 }

@@ -20,14 +20,14 @@ Eigen::Matrix3d green_lagrange_strain(const Eigen::Matrix3d& F);
 Eigen::Matrix3d deformation_gradient(const Matrix83& x, const GaussPoint& gp);
 
 /// V_e (1.7).
-double strain_energy(const ElementGeometry& e, const SaintVenantKirchhoff& m, const Matrix83& x);
+double strain_energy(const ElementGeometry& e, const Material& m, const Matrix83& x);
 
 /// f_e (1.6) at x, and K_e = ∂f/∂x (1.8) if K is not null. Dof order 3I + i.
-void internal_force(const ElementGeometry& e, const SaintVenantKirchhoff& m, const Matrix83& x, Vector24& f,
+void internal_force(const ElementGeometry& e, const Material& m, const Matrix83& x, Vector24& f,
                     Matrix24* K);
 
 /// Energy–momentum force f̄ (2.6) for the step x_n → x_1, and K̄ = ∂f̄/∂x_1 (2.9) if K is not null.
-void discrete_gradient_force(const ElementGeometry& e, const SaintVenantKirchhoff& m, const Matrix83& x_n,
+void discrete_gradient_force(const ElementGeometry& e, const Material& m, const Matrix83& x_n,
                              const Matrix83& x_1, Vector24& f, Matrix24* K);
 
 /// Consistent mass M_IJ = Σ_g wJ ρ N_I N_J (1.9), scalar 8×8.

@@ -31,13 +31,10 @@ ElementStress::ElementStress(const model::Model& model) {
   const double g = 1 / std::sqrt(3.0);
   hex8_ = m.hex8;
   gauss_.resize(m.hex8.size());
-  lambda_.resize(m.hex8.size());
-  mu_.resize(m.hex8.size());
+  std::vector<std::shared_ptr<const fem::Material>> body_material;
+  for (const model::BodySpec& body : model.bodies) body_material.push_back(fem::make_material(body.material));
   for (size_t e = 0; e < m.hex8.size(); ++e) {
-    const model::Material& mat = model.bodies[m.element_body[e]].material;
-    const double E = mat.youngs_modulus, nu = mat.poisson_ratio;
-    lambda_[e] = E * nu / ((1 + nu) * (1 - 2 * nu));
-    mu_[e] = E / (2 * (1 + nu));
+    material_.push_back(body_material[m.element_body[e]]);
     Eigen::Matrix<double, 8, 3> X;
     for (int I = 0; I < 8; ++I) X.row(I) = m.nodes[m.hex8[e][I]].transpose();
     int k = 0;
@@ -67,7 +64,7 @@ void ElementStress::compute(const Eigen::VectorXd& positions, std::vector<double
       const Eigen::Matrix3d F = x.transpose() * gp.dN_dX;
       const double J = F.determinant();
       const Eigen::Matrix3d strain = 0.5 * (F.transpose() * F - Eigen::Matrix3d::Identity());
-      const Eigen::Matrix3d S = lambda_[e] * strain.trace() * Eigen::Matrix3d::Identity() + 2 * mu_[e] * strain;
+      const Eigen::Matrix3d S = material_[e]->stress(strain);
       const double w = gp.wJ0 * J;
       sum += w * (F * S * F.transpose()) / J;
       volume += w;

@@ -4,8 +4,10 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <memory>
 #include <vector>
 
+#include "core/fem/material.hpp"
 #include "core/model/model.hpp"
 
 namespace stoss::output {
@@ -32,7 +34,7 @@ class ElementStress {
   bool available_ = false;
   std::vector<mesh::Hex> hex8_;
   std::vector<std::array<GaussPoint, 8>> gauss_;
-  std::vector<double> lambda_, mu_;
+  std::vector<std::shared_ptr<const fem::Material>> material_;  ///< per element
 };
 
 }  // namespace stoss::output

@@ -4,6 +4,7 @@
 #include <map>
 #include <set>
 
+#include "core/fem/material.hpp"
 #include "core/scene/build.hpp"
 #include "core/scene/file_mesh.hpp"
 
@@ -147,7 +148,8 @@ Surfaces check_mesh(json& mesh, const std::string& p, const std::optional<std::s
 
 void check_material(json& m, const std::string& p, Checker& c) {
   if (!object_with(m, p, {"model", "youngs_modulus", "poisson_ratio", "density"}, c)) return;
-  choice_field(m, "model", p, Presence::or_default("saint_venant_kirchhoff"), {"saint_venant_kirchhoff"}, c);
+  // Every model of fem::make_material takes E, ν and ρ (docs/scene.md, "Material").
+  choice_field(m, "model", p, Presence::or_default("saint_venant_kirchhoff"), fem::material_models(), c);
   number_field(m, "youngs_modulus", p, Presence::must(), above(0), c);
   number_field(m, "poisson_ratio", p, Presence::must(), between(-1, 0.5, false, false), c);
   number_field(m, "density", p, Presence::must(), above(0), c);

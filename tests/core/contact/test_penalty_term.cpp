@@ -203,8 +203,8 @@ TEST(PenaltyTerm, HhtIsRejectedByName) {
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(
         std::string(e.what()),
-        "contact pair cube/bottom / plate/top: penalty contact is not implemented for the hht scheme; use "
-        "energy_momentum or midpoint");
+        "contact pair cube/bottom / plate/top: enforcement \"penalty\" is not implemented with time.scheme "
+        "\"hht\"; use energy_momentum or midpoint");
   }
   m.time.scheme = model::Scheme::midpoint;
   EXPECT_NE(dynamic_cast<PenaltyContactTerm*>(make_pair_term(m, m.contact[0]).get()), nullptr);

@@ -1,0 +1,27 @@
+#include "core/fem/saint_venant_kirchhoff.hpp"
+
+namespace stoss::fem {
+
+SaintVenantKirchhoff::SaintVenantKirchhoff(double E, double nu) : lame_(Lame::from(E, nu)) {
+  tangent_.setZero();
+  tangent_.topLeftCorner<3, 3>().setConstant(lame_.lambda);
+  for (int i = 0; i < 3; ++i) {
+    tangent_(i, i) += 2 * lame_.mu;
+    tangent_(i + 3, i + 3) = lame_.mu;
+  }
+}
+
+double SaintVenantKirchhoff::energy_density(const Eigen::Matrix3d& E) const {
+  const double tr = E.trace();
+  return 0.5 * lame_.lambda * tr * tr + lame_.mu * E.squaredNorm();  // (1.4)
+}
+
+Eigen::Matrix3d SaintVenantKirchhoff::stress(const Eigen::Matrix3d& E) const {
+  return lame_.lambda * E.trace() * Eigen::Matrix3d::Identity() + 2 * lame_.mu * E;  // (1.4)
+}
+
+Eigen::Matrix3d SaintVenantKirchhoff::discrete_stress(const Eigen::Matrix3d& E_a, const Eigen::Matrix3d& E_b) const {
+  return 0.5 * (stress(E_a) + stress(E_b));  // (2.6): exact for an energy quadratic in E
+}
+
+}  // namespace stoss::fem
