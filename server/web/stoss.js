@@ -83,7 +83,7 @@ async function refreshList() {
     const row = el('tr', { 'data-id': job.id, 'data-status': job.status, class: job.id === shown.id ? 'selected' : '' },
       el('td', { class: 'status ' + job.status }, job.status), el('td', {}, job.kind), el('td', {}, job.name || job.id),
       el('td', {}, progressText(job)), el('td', {}, duration(job.progress.eta_seconds)),
-      el('td', {}, job.created.replace('T', ' ').slice(0, 19)));
+      el('td', { title: job.created }, job.created.slice(11, 19)));
     row.addEventListener('click', () => showJob(job.id));
     return row;
   });
