@@ -129,7 +129,9 @@ void Transaction::commit() {
 void check_url(const std::string& url) {
   if (url.rfind("postgresql://", 0) != 0 && url.rfind("postgres://", 0) != 0)
     throw StoreError("a PostgreSQL store URL starts with postgresql://, got '" + redacted(url) + "'");
-  static const std::regex port(R"(^postgres(?:ql)?://(?:[^@/]*@)?[^:/?]*:([^/?]*)(?:[/?].*)?$)");
+  // userinfo@, then a host (an IPv6 literal in brackets, or up to the port's colon), then :PORT.
+  static const std::regex port(R"(^postgres(?:ql)?://(?:[^@/]*@)?)"
+                               R"((?:\[[^\]/]*\]|[^:/?\[]*):([^/?]*)(?:[/?].*)?$)");
   std::smatch m;
   if (std::regex_match(url, m, port)) {
     const std::string p = m[1];

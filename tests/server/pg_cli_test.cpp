@@ -5,6 +5,7 @@
 
 #include <condition_variable>
 #include <filesystem>
+#include <fstream>
 #include <mutex>
 
 #include "server/jobs/pg.hpp"
@@ -111,6 +112,26 @@ TEST(Worker, RunsTheJobsAnApiOnlyServerQueuesInAnSqliteStoreOnOneHost) {
   EXPECT_NE(log.find(":" + std::to_string(worker.pid()) + ":"), std::string::npos)
       << "the worker process ran it:\n"
       << log;
+}
+
+TEST(PgCli, APasswordFileNamedByPgpassfileSuppliesTheMissingPassword) {
+  PgCluster& cluster = PgCluster::shared();
+  TempDir dir;
+  const fs::path passfile = dir.path() / "pgpass";
+  std::ofstream(passfile) << "127.0.0.1:" << cluster.port() << ":*:stoss:secret\n";
+  fs::permissions(passfile, fs::perms::owner_read | fs::perms::owner_write);  // libpq ignores a looser file
+  const std::string without_password = with_port("stoss", cluster.port(), "postgres");
+  server::jobs::ManualClock clock;
+  EXPECT_THROW(server::jobs::PgStore(without_password, clock), server::jobs::StoreUnavailable);
+  setenv("PGPASSFILE", passfile.c_str(), 1);
+  try {
+    server::jobs::PgStore store(without_password, clock);
+    EXPECT_EQ(store.schema_version(), server::jobs::PgStore::latest_schema_version());
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << e.what();
+  }
+  unsetenv("PGPASSFILE");
+  EXPECT_NO_THROW(server::jobs::pg::check_url("postgresql://stoss@[::1]:5432/stoss"));
 }
 
 TEST(PgNotify, AJobQueuedThroughAnotherConnectionWakesTheSubscriber) {
