@@ -121,15 +121,19 @@ TEST(PgManyProcesses, AKilledWorkersJobRerunsInAnotherAndACancelReachesAnotherPr
   auto b = api_b.client();
 
   // kill -9 of the worker running a job: after its lease expires, the other worker runs it to success.
-  const std::string doomed = post_job(a, box_scene(3, 1500, {1, 0.5, 0}, 2));
+  const std::string doomed = post_job(a, box_scene(3, 2500, {1, 0.5, 0}, 2));  // about 2 s of steps
   ASSERT_FALSE(doomed.empty());
+  // Mid-job: the job process has started its attempt (its first log line) and not finished.
   nlohmann::json job;
   ASSERT_TRUE(eventually(
       [&] {
         job = get_job(b, doomed);
-        return job.value("status", "") == "running" && job["progress"].value("step", 0) > 0;
+        return job.value("status", "") == "running" &&
+               read_text(data.path() / "jobs" / doomed / "log.txt").find("attempt 1 started") !=
+                   std::string::npos;
       },
-      std::chrono::seconds(30)));
+      std::chrono::seconds(30)))
+      << job.dump();
   const pid_t victim = worker_pid(db.worker(doomed));
   LiveWorker& killed = victim == first->pid() ? *first : *second;
   LiveWorker& survivor = victim == first->pid() ? *second : *first;
