@@ -50,9 +50,11 @@ int steps(double end, double step) {
 }
 
 TEST(TimeSpec, AnEndWithinRoundOffOfAMultipleOfTheStepGivesThatMultiple) {
-  EXPECT_EQ(steps(1, 0.01), 100);  // 1 / 0.01 = 100.00000000000001 in doubles
-  EXPECT_EQ(steps(0.3, 0.1), 3);   // 0.3 / 0.1 = 2.9999999999999996
-  EXPECT_EQ(steps(0.7, 0.1), 7);   // 0.7 / 0.1 = 6.999999999999999
+  EXPECT_EQ(steps(1, 0.01), 100);
+  EXPECT_EQ(steps(0.9, 0.03), 30);    // 0.9 / 0.03 = 30.000000000000004 in doubles: not 31
+  EXPECT_EQ(steps(1.1, 0.011), 100);  // 100.00000000000001
+  EXPECT_EQ(steps(0.3, 0.1), 3);      // 0.3 / 0.1 = 2.9999999999999996
+  EXPECT_EQ(steps(0.7, 0.1), 7);      // 0.7 / 0.1 = 6.999999999999999
   EXPECT_EQ(steps(2.0, 0.05), 40);
   EXPECT_EQ(steps(0.5, 0.5), 1);
   EXPECT_EQ(steps(3, 1), 3);
