@@ -48,7 +48,8 @@ int run(const http::ServeOptions& options) {
   jobs::ProcessExecutor executor(files, options.data, std::filesystem::read_symlink("/proc/self/exe"),
                                  {options.job_timeout, options.job_memory});
   jobs::WorkerPool pool(*store, executor, jobs::pool_options_for(location, options.pool));
-  const auto subscription = store->on_queued([&pool] { pool.notify(); });
+  const auto subscription =
+      store->subscribe({[&pool] { pool.notify(); }, [&pool](const jobs::JobId& id) { pool.cancel(id); }});
   jobs::Rescuer rescuer(*store, clock, options.max_attempts);
   jobs::Periodic rescuing("rescuer", std::chrono::milliseconds(options.pool.renew_every), [&] {
     if (rescuer.run_once().requeued > 0) pool.notify();

@@ -113,7 +113,9 @@ int run(const ServeOptions& options) {
   jobs::ProcessExecutor executor(files, options.data, std::filesystem::read_symlink("/proc/self/exe"),
                                  {options.job_timeout, options.job_memory});
   jobs::WorkerPool pool(store, executor, jobs::pool_options_for(location, options.pool));
-  const auto subscription = store.on_queued([&pool] { pool.notify(); });  // jobs queued by other processes
+  // Jobs queued, and cancels posted, through other processes.
+  const auto subscription =
+      store.subscribe({[&pool] { pool.notify(); }, [&pool](const jobs::JobId& id) { pool.cancel(id); }});
   std::optional<BearerAuth> auth;
   if (options.token_file) auth = BearerAuth::from_file(*options.token_file);
   App app{store, pool, files, options.limits, auth, {}};

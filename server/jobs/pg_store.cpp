@@ -153,11 +153,11 @@ std::optional<std::string> scene_name(const nlohmann::json& scene) {
   return std::nullopt;
 }
 
-/// The LISTEN side: a thread with a connection of its own that calls `wake` on each notification, and
-/// once more after reconnecting (notifications sent while it was away are lost).
+/// The LISTEN side: a thread with a connection of its own that passes each notification on, and calls
+/// `queued` once more after reconnecting (notifications sent while it was away are lost).
 class Listener : public Subscription {
  public:
-  Listener(std::string url, std::function<void()> wake) : url_(std::move(url)), wake_(std::move(wake)) {
+  Listener(std::string url, StoreEvents events) : url_(std::move(url)), events_(std::move(events)) {
     thread_ = std::thread([this] { loop(); });
   }
   ~Listener() override {
@@ -171,8 +171,8 @@ class Listener : public Subscription {
     while (!stopping_) {
       try {
         Connection c(url_);
-        c.exec(std::string("LISTEN ") + PgStore::channel);
-        if (lost) wake_();
+        c.exec(std::string("LISTEN ") + PgStore::channel + "; LISTEN " + PgStore::cancel_channel);
+        if (lost && events_.queued) events_.queued();
         lost = false;
         listen(c);
       } catch (const StoreError&) {
@@ -189,17 +189,22 @@ class Listener : public Subscription {
       if (poll(&fd, 1, 100) < 0) continue;
       if (!(fd.revents & POLLIN)) continue;
       if (!PQconsumeInput(c.handle()) || !c.ok()) return;
-      bool notified = false;
+      bool queued = false;
       while (PGnotify* n = PQnotifies(c.handle())) {
-        notified = true;
+        if (std::string(n->relname) == PgStore::cancel_channel) {
+          const auto id = JobId::parse(n->extra);
+          if (id && events_.cancel_requested) events_.cancel_requested(*id);
+        } else {
+          queued = true;
+        }
         PQfreemem(n);
       }
-      if (notified) wake_();
+      if (queued && events_.queued) events_.queued();
     }
   }
 
   std::string url_;
-  std::function<void()> wake_;
+  StoreEvents events_;
   std::atomic<bool> stopping_{false};
   std::thread thread_;
 };
@@ -408,6 +413,7 @@ CancelResult PgStore::request_cancel(const JobId& id) {
     outcome = CancelResult::Outcome::canceled;
   } else if (job->status == Status::running) {
     c->exec("UPDATE stoss_jobs SET cancel_requested = true WHERE id = $1", {id.str()});
+    c->exec("SELECT pg_notify($1, $2)", {text(cancel_channel), id.str()});  // the worker stops it at once
     outcome = CancelResult::Outcome::requested;
   } else if (job->status == Status::canceled) {
     outcome = CancelResult::Outcome::canceled;
@@ -470,8 +476,8 @@ std::map<Status, std::int64_t> PgStore::count_by_status() {
   return counts;
 }
 
-std::unique_ptr<Subscription> PgStore::on_queued(std::function<void()> wake) {
-  return std::make_unique<Listener>(impl_->url, std::move(wake));
+std::unique_ptr<Subscription> PgStore::subscribe(StoreEvents events) {
+  return std::make_unique<Listener>(impl_->url, std::move(events));
 }
 
 }  // namespace stoss::server::jobs

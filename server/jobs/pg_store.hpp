@@ -27,6 +27,8 @@ class PgStore : public JobStore {
   int schema_version();
   /// The NOTIFY channel a queued job is announced on.
   static constexpr const char* channel = "stoss_jobs";
+  /// The NOTIFY channel a cancel of a running job is announced on (payload: the job's id).
+  static constexpr const char* cancel_channel = "stoss_cancel";
 
   CreateResult create(const NewJob& job, int max_queued) override;
   std::optional<Job> get(const JobId& id) override;
@@ -41,8 +43,9 @@ class PgStore : public JobStore {
   Rescued requeue_expired(Millis now, int max_attempts) override;
   RemoveOutcome remove(const JobId& id) override;
   std::map<Status, std::int64_t> count_by_status() override;
-  /// LISTEN stoss_jobs on a connection of its own; reconnects (and wakes) when it was lost.
-  std::unique_ptr<Subscription> on_queued(std::function<void()> wake) override;
+  /// LISTEN stoss_jobs and stoss_cancel on a connection of its own; reconnects (and calls `queued`) when
+  /// it was lost.
+  std::unique_ptr<Subscription> subscribe(StoreEvents events) override;
 
  private:
   struct Impl;

@@ -28,11 +28,17 @@ class StoreUnavailable : public StoreError {
   using StoreError::StoreError;
 };
 
-/// While it lives, a store calls back when jobs may have been queued (by any process); destroying it
+/// While it lives, a store calls back about changes other processes made (StoreEvents); destroying it
 /// stops the calls.
 class Subscription {
  public:
   virtual ~Subscription() = default;
+};
+
+/// What a store tells a process about changes other processes made.
+struct StoreEvents {
+  std::function<void()> queued;  ///< a job may have been queued (also after a lost connection came back)
+  std::function<void(const JobId&)> cancel_requested;  ///< a cancel was posted for job `id`, which runs
 };
 
 /// What POST /v1/jobs (or POST /v1/studies) asks the store to keep.
@@ -135,10 +141,10 @@ class JobStore {
   /// Number of jobs in each status (every status present, possibly 0).
   virtual std::map<Status, std::int64_t> count_by_status() = 0;
 
-  /// Calls `wake` (from a thread of the store's) whenever another process may have queued a job, and
-  /// after a lost connection came back. Returns nullptr when the store has no such signal: then workers
-  /// must poll.
-  virtual std::unique_ptr<Subscription> on_queued(std::function<void()> wake) { return nullptr; }
+  /// Calls `events` (from a thread of the store's) when another process may have queued a job (and after a
+  /// lost connection came back) or asked to cancel a running one. Returns nullptr when the store has no
+  /// such signal: then workers poll for jobs, and see a cancel at their next lease renewal.
+  virtual std::unique_ptr<Subscription> subscribe(StoreEvents events) { return nullptr; }
 };
 
 }  // namespace stoss::server::jobs

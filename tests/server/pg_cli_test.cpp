@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <vector>
 
 #include "server/jobs/pg.hpp"
 #include "server/jobs/pg_store.hpp"
@@ -134,32 +135,42 @@ TEST(PgCli, APasswordFileNamedByPgpassfileSuppliesTheMissingPassword) {
   EXPECT_NO_THROW(server::jobs::pg::check_url("postgresql://stoss@[::1]:5432/stoss"));
 }
 
-TEST(PgNotify, AJobQueuedThroughAnotherConnectionWakesTheSubscriber) {
+TEST(PgNotify, QueuedJobsAndCancelsPostedThroughAnotherConnectionReachTheSubscriber) {
   PgCluster& cluster = PgCluster::shared();
   const std::string db = cluster.create_database();
   server::jobs::SystemClock clock;
   server::jobs::PgStore api(cluster.url(db), clock), worker(cluster.url(db), clock);
   std::mutex mutex;
-  std::condition_variable woken;
+  std::condition_variable heard;
   int wakes = 0;
+  std::vector<std::string> cancels;
   {
-    const auto subscription = worker.on_queued([&] {
-      std::lock_guard lock(mutex);
-      ++wakes;
-      woken.notify_all();
-    });
+    const auto subscription = worker.subscribe({[&] {
+                                                  std::lock_guard lock(mutex);
+                                                  ++wakes;
+                                                  heard.notify_all();
+                                                },
+                                                [&](const server::jobs::JobId& id) {
+                                                  std::lock_guard lock(mutex);
+                                                  cancels.push_back(id.str());
+                                                  heard.notify_all();
+                                                }});
     // The listener connects in the background: queue jobs until one is heard (each create notifies).
-    std::unique_lock lock(mutex);
-    for (int i = 0; i < 50 && wakes == 0; ++i) {
-      lock.unlock();
+    for (int i = 0; i < 50; ++i) {
       server::jobs::NewJob job;
       job.scene = {{"name", "n" + std::to_string(i)}};
       job.body_hash = "h";
       ASSERT_EQ(api.create(job, 100).outcome, server::jobs::CreateResult::Outcome::created);
-      lock.lock();
-      woken.wait_for(lock, std::chrono::milliseconds(200), [&] { return wakes > 0; });
+      std::unique_lock lock(mutex);
+      if (heard.wait_for(lock, std::chrono::milliseconds(200), [&] { return wakes > 0; })) break;
     }
     EXPECT_GT(wakes, 0) << "NOTIFY stoss_jobs reached the LISTEN connection";
+    const auto running = worker.claim("w", 10'000);
+    ASSERT_TRUE(running);
+    EXPECT_EQ(api.request_cancel(running->id).outcome, server::jobs::CancelResult::Outcome::requested);
+    std::unique_lock lock(mutex);
+    heard.wait_for(lock, std::chrono::seconds(20), [&] { return !cancels.empty(); });
+    EXPECT_EQ(cancels, std::vector<std::string>{running->id.str()}) << "NOTIFY stoss_cancel names the job";
   }
   cluster.drop_database(db);
 }
