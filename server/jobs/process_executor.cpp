@@ -198,11 +198,14 @@ Outcome ProcessExecutor::supervise(const Job& job, const std::atomic<bool>& canc
   posix_spawn_file_actions_addclosefrom_np(&actions, progress_fd + 1);  // no listening socket, no database
   posix_spawnattr_t attributes;
   posix_spawnattr_init(&attributes);
-  sigset_t none, defaults;
-  sigemptyset(&none);
+  sigset_t only_term, defaults;
+  sigemptyset(&only_term);
+  sigaddset(&only_term, SIGTERM);
   sigemptyset(&defaults);
   for (int s : {SIGTERM, SIGINT, SIGPIPE, SIGHUP}) sigaddset(&defaults, s);
-  posix_spawnattr_setsigmask(&attributes, &none);  // the server blocks SIGTERM and SIGINT in every thread
+  // The server blocks SIGTERM and SIGINT in every thread; the child starts with only SIGTERM blocked and
+  // unblocks it once its handler is in place, so a cancel sent while it starts is a cancel, not a kill.
+  posix_spawnattr_setsigmask(&attributes, &only_term);
   posix_spawnattr_setsigdefault(&attributes, &defaults);
   posix_spawnattr_setpgroup(&attributes, 0);  // Ctrl-C reaches the server, which stops its jobs itself
   posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETPGROUP);
@@ -307,6 +310,10 @@ int run_job_command(const std::vector<std::string>& args) {
   action.sa_handler = on_terminate;
   sigemptyset(&action.sa_mask);
   sigaction(SIGTERM, &action, nullptr);
+  sigset_t term;
+  sigemptyset(&term);
+  sigaddset(&term, SIGTERM);
+  sigprocmask(SIG_UNBLOCK, &term, nullptr);  // blocked since the spawn (a SIGTERM meanwhile arrives now)
   if (memory > 0) {
     const rlimit limit{memory, memory};
     setrlimit(RLIMIT_AS, &limit);
