@@ -149,7 +149,7 @@ void write_plot(const fs::path& png) {
       << "set terminal pngcairo size 1200,480 noenhanced font ',11'\n"
       << "set output '" << png.string() << "'\n"
       << "set multiplot layout 1,2 title 'tumbling hollow sphere, energy_momentum, h = 0.01 (2 shared cores)'\n"
-      << "set logscale xy\nset grid\nset xlabel 'elements (hex8)'\nset key inside top left box opaque\n"
+      << "set logscale xy\nset grid\nset xlabel 'elements (hex8)'\nset key inside bottom right box opaque\n"
       << "set title 'seconds per step'\nset ylabel 's/step'\n"
       << time_plot << "\n"
       << "set title 'peak resident memory'\nset ylabel 'MB'\n"
