@@ -287,7 +287,6 @@ solve::NewtonOptions newton_options(const Model& m) {
   // Jacobian per iteration halved Newton's iterations (4 instead of 8.5 per step) and the wall time
   // (21.8 s instead of 45.6 s, 2 steps of the 27,648-hex8 tumbling sphere).
   if (o.linear == solve::LinearMethod::petsc_gamg) o.reuse_factorization = false;
-  if (std::getenv("STOSS_EXPERIMENT_FRESH")) o.reuse_factorization = false;
   o.tolerance = m.solver.tolerance;
   o.max_iterations = m.solver.max_iterations;
   o.reuse_contraction = 0.5;

@@ -2,10 +2,10 @@
 
 #include <stdexcept>
 
-#include "core/contact/hht_term.hpp"
-#include "core/contact/midpoint_term.hpp"
-#include "core/contact/mixed_term.hpp"
-#include "core/contact/penalty_term.hpp"
+#include "core/contact/elements/hht_term.hpp"
+#include "core/contact/elements/midpoint_term.hpp"
+#include "core/contact/elements/mixed_term.hpp"
+#include "core/contact/penalty/penalty_term.hpp"
 #include "core/time/scheme.hpp"
 
 namespace stoss::contact {

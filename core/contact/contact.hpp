@@ -3,7 +3,7 @@
 
 #include <memory>
 
-#include "core/contact/lagrange_term.hpp"
+#include "core/contact/lagrange/lagrange_term.hpp"
 #include "core/mesh/mesh.hpp"
 #include "core/model/model.hpp"
 

@@ -6,8 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "core/contact/assignment.hpp"
-#include "core/contact/smooth_surface.hpp"
+#include "core/contact/geometry/assignment.hpp"
+#include "core/contact/geometry/smooth_surface.hpp"
 
 namespace stoss::contact {
 

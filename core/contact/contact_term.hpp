@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/contact/broad_phase.hpp"
-#include "core/contact/surface.hpp"
+#include "core/contact/geometry/broad_phase.hpp"
+#include "core/contact/geometry/surface.hpp"
 #include "core/mesh/mesh.hpp"
 #include "core/model/model.hpp"
 #include "core/time/term.hpp"

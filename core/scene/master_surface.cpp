@@ -3,7 +3,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/contact/smooth_surface.hpp"
+#include "core/contact/geometry/smooth_surface.hpp"
 #include "core/scene/scene.hpp"
 
 namespace stoss::scene::detail {

@@ -51,7 +51,7 @@ struct NewtonResult {
 NewtonResult newton_solve(NonlinearSystem& system, Eigen::VectorXd& z, BlockPattern& A, LinearSolver& solver,
                           const NewtonOptions& options, const std::function<void(const std::string&)>& log = {});
 
-/// "1.2e+00 3.4e-05 ..." for error messages.
+/// "1.20e+00 3.40e-05 ..." for error messages.
 std::string format_history(const std::vector<double>& residuals);
 
 }  // namespace stoss::solve

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/contact/smooth_surface.hpp"
+#include "core/contact/geometry/smooth_surface.hpp"
 #include "core/mesh/generators.hpp"
 #include "core/mesh/mesh.hpp"
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <tuple>
 
-#include "core/contact/assignment.hpp"
-#include "core/contact/broad_phase.hpp"
+#include "core/contact/geometry/assignment.hpp"
+#include "core/contact/geometry/broad_phase.hpp"
 #include "core/mesh/generators.hpp"
 
 namespace stoss::contact {

@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "core/contact/broad_phase.hpp"
+#include "core/contact/geometry/broad_phase.hpp"
 #include "core/mesh/generators.hpp"
 
 namespace stoss::contact {

@@ -2,9 +2,9 @@
 
 #include <tuple>
 
-#include "core/contact/constraints.hpp"
-#include "core/contact/discrete_gradient.hpp"
-#include "core/contact/invariants.hpp"
+#include "core/contact/lagrange/constraints.hpp"
+#include "core/contact/lagrange/discrete_gradient.hpp"
+#include "core/contact/lagrange/invariants.hpp"
 #include "tests/core/contact/contact_test_utils.hpp"
 
 namespace stoss::contact {

@@ -9,8 +9,8 @@
 #include <cmath>
 #include <random>
 
-#include "core/contact/patch_projection.hpp"
-#include "core/contact/smooth_surface.hpp"
+#include "core/contact/geometry/patch_projection.hpp"
+#include "core/contact/geometry/smooth_surface.hpp"
 #include "core/mesh/generators.hpp"
 
 namespace stoss::contact {

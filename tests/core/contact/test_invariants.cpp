@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "core/contact/invariants.hpp"
+#include "core/contact/lagrange/invariants.hpp"
 #include "tests/core/contact/contact_test_utils.hpp"
 
 namespace stoss::contact {

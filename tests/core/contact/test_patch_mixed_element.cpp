@@ -8,9 +8,9 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "core/contact/patch_mixed_element.hpp"
-#include "core/contact/patch_projection.hpp"
-#include "core/contact/smooth_surface.hpp"
+#include "core/contact/elements/patch_mixed_element.hpp"
+#include "core/contact/geometry/patch_projection.hpp"
+#include "core/contact/geometry/smooth_surface.hpp"
 #include "smooth_test_utils.hpp"
 
 namespace stoss::contact {

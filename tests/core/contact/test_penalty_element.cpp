@@ -5,9 +5,9 @@
 #include <tuple>
 #include <vector>
 
-#include "core/contact/penalty_element.hpp"
-#include "core/contact/segment.hpp"
-#include "core/contact/variations.hpp"
+#include "core/contact/penalty/penalty_element.hpp"
+#include "core/contact/geometry/segment.hpp"
+#include "core/contact/geometry/variations.hpp"
 #include "tests/core/contact/contact_test_utils.hpp"
 
 namespace stoss::contact {

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "core/contact/contact.hpp"
-#include "core/contact/penalty_term.hpp"
+#include "core/contact/penalty/penalty_term.hpp"
 #include "core/mesh/generators.hpp"
 
 namespace stoss::contact {

@@ -4,7 +4,7 @@
 #include <string>
 #include <tuple>
 
-#include "core/contact/projection.hpp"
+#include "core/contact/geometry/projection.hpp"
 #include "tests/core/contact/contact_test_utils.hpp"
 
 namespace stoss::contact {

@@ -2,10 +2,10 @@
 
 #include <cmath>
 
-#include "core/contact/midpoint_element.hpp"
-#include "core/contact/mixed_element.hpp"
-#include "core/contact/projection.hpp"
-#include "core/contact/variations.hpp"
+#include "core/contact/elements/midpoint_element.hpp"
+#include "core/contact/elements/mixed_element.hpp"
+#include "core/contact/geometry/projection.hpp"
+#include "core/contact/geometry/variations.hpp"
 
 // Cross-implementation check: the numbers of an independent Python/NumPy implementation of
 // docs/theory.md §3–4 (the design prototype, not shipped: its cpp, geometry, dNs_dx, invariants,

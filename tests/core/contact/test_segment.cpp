@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "core/contact/segment.hpp"
+#include "core/contact/geometry/segment.hpp"
 #include "tests/core/contact/contact_test_utils.hpp"
 
 namespace stoss::contact {

@@ -9,10 +9,10 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "core/contact/assignment.hpp"
-#include "core/contact/broad_phase.hpp"
-#include "core/contact/patch_projection.hpp"
-#include "core/contact/smooth_surface.hpp"
+#include "core/contact/geometry/assignment.hpp"
+#include "core/contact/geometry/broad_phase.hpp"
+#include "core/contact/geometry/patch_projection.hpp"
+#include "core/contact/geometry/smooth_surface.hpp"
 #include "core/mesh/generators.hpp"
 
 namespace stoss::contact {

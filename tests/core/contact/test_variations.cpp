@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "core/contact/projection.hpp"
-#include "core/contact/variations.hpp"
+#include "core/contact/geometry/projection.hpp"
+#include "core/contact/geometry/variations.hpp"
 #include "tests/core/contact/contact_test_utils.hpp"
 
 namespace stoss::contact {
