@@ -92,8 +92,8 @@ mesh::BodyMesh with_boundary(mesh::BodyMesh body) {
   return body;
 }
 
-mesh::BodyMesh body_mesh(const json& m, const std::optional<std::filesystem::path>& mesh_directory) {
-  if (m.contains("file")) return file_body_mesh(m, mesh_directory);
+mesh::BodyMesh body_mesh(const json& m, const MeshFiles& mesh_files) {
+  if (m.contains("file") || m.contains("id")) return file_body_mesh(m, mesh_files);
   if (m.contains("box")) {
     const json& b = m["box"];
     return with_boundary(mesh::box(vector3(b["min"]), vector3(b["max"]), b["divisions"].get<std::array<int, 3>>()));
@@ -107,12 +107,12 @@ mesh::BodyMesh body_mesh(const json& m, const std::optional<std::filesystem::pat
   return inline_mesh(m);
 }
 
-model::Model build_model(const json& scene, const std::optional<std::filesystem::path>& mesh_directory) {
+model::Model build_model(const json& scene, const MeshFiles& mesh_files) {
   model::Model m;
   m.name = scene["name"].get<std::string>();
   m.scene = scene;
   for (const json& b : scene["bodies"]) {
-    m.mesh.add_body(b["name"].get<std::string>(), body_mesh(b["mesh"], mesh_directory));
+    m.mesh.add_body(b["name"].get<std::string>(), body_mesh(b["mesh"], mesh_files));
     m.bodies.push_back(body_spec(b));
   }
   for (const json& e : scene["boundary"]) m.boundary.push_back(boundary(e));

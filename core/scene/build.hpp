@@ -8,6 +8,7 @@
 
 #include "core/mesh/mesh.hpp"
 #include "core/model/model.hpp"
+#include "core/scene/scene.hpp"
 
 namespace stoss::scene::detail {
 
@@ -16,12 +17,10 @@ double min_jacobian_determinant(const std::vector<Eigen::Vector3d>& nodes, const
 
 /// The body mesh a validated `mesh` member describes (box, hollow_sphere or inline). An inline mesh
 /// gets the surface "boundary" (all boundary faces) unless it names one itself.
-/// A file mesh ("file") is read relative to mesh_directory (see file_mesh.hpp).
-mesh::BodyMesh body_mesh(const nlohmann::json& mesh,
-                         const std::optional<std::filesystem::path>& mesh_directory = std::nullopt);
+/// A file mesh ("file" or "id") is read from `mesh_files` (see file_mesh.hpp).
+mesh::BodyMesh body_mesh(const nlohmann::json& mesh, const MeshFiles& mesh_files = {});
 
 /// The Model of a validated scene; model.scene = `scene`, bodies added to the mesh in order.
-model::Model build_model(const nlohmann::json& scene,
-                         const std::optional<std::filesystem::path>& mesh_directory = std::nullopt);
+model::Model build_model(const nlohmann::json& scene, const MeshFiles& mesh_files = {});
 
 }  // namespace stoss::scene::detail

@@ -26,9 +26,8 @@ class Checker {
   /// Number of issues so far; compare two marks to see whether a part of the scene was clean.
   size_t mark() const { return issues_.size(); }
 
-  /// Directory that relative mesh files ("mesh": {"file": ...}) are resolved against; nullopt when the
-  /// scene did not come from a file (then it cannot name mesh files).
-  std::optional<std::filesystem::path> mesh_directory;
+  /// Where mesh files ("mesh": {"file": ...} or {"id": ...}) are read (see MeshFiles).
+  MeshFiles mesh_files;
   /// "body/surface" → why a surface the body's mesh file defines is not on the body (appended to the
   /// issue of a reference to it).
   std::map<std::string, std::string> surface_notes;

@@ -1,5 +1,8 @@
 #include "core/scene/file_mesh.hpp"
 
+#include <algorithm>
+#include <cctype>
+
 #include "core/scene/build.hpp"
 
 namespace stoss::scene::detail {
@@ -62,48 +65,89 @@ fs::path resolved(const std::string& file, const fs::path& directory) {
   return path.is_absolute() ? path : directory / path;
 }
 
+/// Which member names the file ("file" or "id") and its text.
+struct Source {
+  std::string key;
+  std::string text;
+};
+
+Source source_of(const json& mesh) {
+  const std::string key = mesh.contains("id") ? "id" : "file";
+  return {key, mesh[key].get<std::string>()};
+}
+
+/// The path of a mesh file named by "file" (relative to the scene's directory) or "id" (a stored mesh);
+/// nullopt with the reason in `why` when it cannot be had.
+std::optional<fs::path> path_of(const Source& source, const MeshFiles& where, std::string& why) {
+  if (source.key == "file") {
+    if (where.directory) return resolved(source.text, *where.directory);
+    why = "mesh files are read only for a scene given as a file (stoss validate|run SCENE.json), relative to "
+          "it; through the HTTP API, POST the file to /v1/meshes and name it by \"id\"";
+    return std::nullopt;
+  }
+  if (!where.stored) {
+    why = "mesh ids name meshes stored by the service (POST /v1/meshes); a scene file names its mesh by \"file\"";
+    return std::nullopt;
+  }
+  auto path = where.stored(source.text);
+  if (!path) why = "no mesh with this id; POST it to /v1/meshes first";
+  return path;
+}
+
+/// The name a mesh file goes by in messages: the file as written, or "mesh <id>".
+std::string label_of(const Source& source) {
+  return source.key == "file" ? source.text : "mesh " + source.text;
+}
+
 }  // namespace
 
 std::optional<std::set<std::string>> check_file_mesh(json& mesh, const std::string& p,
                                                      const std::optional<std::string>& body_name, Checker& c) {
   const size_t start = c.mark();
-  const json* file_value = member(mesh, "file", p, Presence::must(), c);
-  const auto file = file_value ? string(*file_value, child(p, "file"), c) : std::nullopt;
-  if (file && file->empty()) c.fail(child(p, "file"), "must not be empty");
+  const std::string key = mesh.contains("id") ? "id" : "file";
+  const std::string fp = child(p, key);
+  const auto name = string(mesh[key], fp, c);
+  if (name && name->empty()) c.fail(fp, "must not be empty");
+  const auto lower_hex = [](unsigned char x) { return std::isdigit(x) || (x >= 'a' && x <= 'f'); };
+  if (name && key == "id" && !name->empty() &&
+      (name->size() != 64 || !std::all_of(name->begin(), name->end(), lower_hex)))
+    c.fail(fp, "must be 64 lowercase hex digits (the id POST /v1/meshes answers), got " + shown(mesh[key]));
   if (const json* e = member(mesh, "elements", p, Presence::may(), c)) {
     const auto elements = string(*e, child(p, "elements"), c);
     if (elements && elements->empty()) c.fail(child(p, "elements"), "must not be empty");
   }
   if (json* t = member(mesh, "transform", p, Presence::may(), c)) check_transform(*t, child(p, "transform"), c);
   if (c.mark() != start) return std::nullopt;
-  if (!c.mesh_directory) {
-    c.fail(child(p, "file"),
-           "mesh files are read only for a scene given as a file (stoss validate|run SCENE.json), relative to "
-           "it; the HTTP API does not take mesh files yet");
+  const Source source = source_of(mesh);
+  std::string why;
+  const auto path = path_of(source, c.mesh_files, why);
+  if (!path) {
+    c.fail(fp, why);
     return std::nullopt;
   }
+  const std::string file = label_of(source);
   mesh::ImportedMesh imported;
   mesh::Selection selection;
   try {
-    imported = mesh::read_mesh_file(resolved(*file, *c.mesh_directory), *file);
+    imported = mesh::read_mesh_file(*path, file);
     selection = mesh::select_body(imported, elements_of(mesh), transform_of(mesh));
   } catch (const mesh::MeshFileError& e) {
-    c.fail(child(p, "file"), e.what());
+    c.fail(fp, e.what());
     return std::nullopt;
   }
   if (selection.body.nodes.size() > static_cast<size_t>(max_generated_nodes))
-    c.fail(child(p, "file"), *file + ": more than " + std::to_string(max_generated_nodes) + " nodes");
+    c.fail(fp, file + ": more than " + std::to_string(max_generated_nodes) + " nodes");
   int bad = 0;
   for (size_t i = 0; i < selection.body.hex8.size(); ++i) {
     const double det = min_jacobian_determinant(selection.body.nodes, selection.body.hex8[i]);
     if (det > 0) continue;
     if (++bad <= max_element_issues)
-      c.fail(child(p, "file"), imported.where_element(selection.elements[i]) +
+      c.fail(fp, imported.where_element(selection.elements[i]) +
                                    ": inverted or degenerate hexahedron, det J0 = " + rounded_text(det) +
                                    " at a Gauss point (must be > 0; check the node order)");
   }
   if (bad > max_element_issues)
-    c.fail(child(p, "file"), *file + ": " + std::to_string(bad - max_element_issues) +
+    c.fail(fp, file + ": " + std::to_string(bad - max_element_issues) +
                                  " more inverted or degenerate hexahedra");
   if (c.mark() != start) return std::nullopt;
   std::set<std::string> names;
@@ -111,16 +155,18 @@ std::optional<std::set<std::string>> check_file_mesh(json& mesh, const std::stri
   if (body_name)
     for (const std::string& name : selection.empty_surfaces)
       c.surface_notes[*body_name + "/" + name] =
-          *file + " defines surface '" + name + "', but none of its faces is on " +
+          file + " defines surface '" + name + "', but none of its faces is on " +
           (mesh.contains("elements") ? "an element of '" + mesh["elements"].get<std::string>() + "'" : "an element");
   return names;
 }
 
-mesh::BodyMesh file_body_mesh(const json& mesh, const std::optional<fs::path>& mesh_directory) {
-  const std::string file = mesh["file"].get<std::string>();
+mesh::BodyMesh file_body_mesh(const json& mesh, const MeshFiles& mesh_files) {
+  const Source source = source_of(mesh);
+  std::string why;
+  const auto path = path_of(source, mesh_files, why);
+  if (!path) throw SceneError(std::vector<Issue>{{"", why}});
   try {
-    return mesh::select_body(mesh::read_mesh_file(resolved(file, mesh_directory.value_or(fs::path("."))), file),
-                             elements_of(mesh), transform_of(mesh))
+    return mesh::select_body(mesh::read_mesh_file(*path, label_of(source)), elements_of(mesh), transform_of(mesh))
         .body;
   } catch (const mesh::MeshFileError& e) {
     throw SceneError(std::vector<Issue>{{"", e.what()}});

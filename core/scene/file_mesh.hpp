@@ -1,7 +1,8 @@
 #pragma once
-/// @file Scene bodies meshed from a file: "mesh": {"file": "part.msh", "elements": "NAME", "transform": {...}}.
-/// The file is resolved relative to the scene file's directory (Checker::mesh_directory); a scene that
-/// did not come from a file (the HTTP API) cannot name mesh files.
+/// @file Scene bodies meshed from a file: "mesh": {"file": "part.msh", "elements": "NAME", "transform": {...}},
+/// or {"id": "<sha256>", ...} for a mesh stored by the service (POST /v1/meshes). "file" is resolved
+/// relative to the scene file's directory, "id" by the store (Checker::mesh_files, see MeshFiles); a scene
+/// posted to the HTTP API names its meshes by id.
 
 #include <filesystem>
 #include <optional>
@@ -13,7 +14,7 @@
 
 namespace stoss::scene::detail {
 
-/// Validates a file mesh member (`mesh` has "file"), reads the file and checks every selected element
+/// Validates a file mesh member (`mesh` has "file" or "id"), reads the file and checks every selected element
 /// (det J0 > 0 at each Gauss point). Returns the body's surface names (nullopt when the mesh is invalid);
 /// surfaces of the file without a face on the body are noted in checker.surface_notes under
 /// "<body>/<surface>", so that a reference to one says why it is missing.
@@ -21,6 +22,6 @@ std::optional<std::set<std::string>> check_file_mesh(json& mesh, const std::stri
                                                      const std::optional<std::string>& body_name, Checker& checker);
 
 /// The body mesh of a validated file mesh member.
-mesh::BodyMesh file_body_mesh(const json& mesh, const std::optional<std::filesystem::path>& mesh_directory);
+mesh::BodyMesh file_body_mesh(const json& mesh, const MeshFiles& mesh_files);
 
 }  // namespace stoss::scene::detail

@@ -37,12 +37,16 @@ SceneError::SceneError(std::vector<Issue> found)
     : std::runtime_error(issue_lines(found)), issues(std::move(found)) {}
 
 model::Model load(const nlohmann::json& scene, const std::optional<std::filesystem::path>& mesh_directory) {
+  return load(scene, MeshFiles{mesh_directory, {}});
+}
+
+model::Model load(const nlohmann::json& scene, const MeshFiles& mesh_files) {
   nlohmann::json filled = scene;
   detail::Checker checker;
-  checker.mesh_directory = mesh_directory;
+  checker.mesh_files = mesh_files;
   detail::check_scene(filled, checker);
   if (!checker.issues().empty()) throw SceneError(checker.issues());
-  model::Model m = detail::build_model(filled, mesh_directory);
+  model::Model m = detail::build_model(filled, mesh_files);
   detail::resolve_master_surfaces(m);
   return m;
 }

@@ -3,6 +3,7 @@
 /// resolution. The contract is api/scene.schema.json (compiled in, see schema()).
 
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -33,6 +34,16 @@ class SceneError : public std::runtime_error {
   std::vector<Issue> issues;
 };
 
+/// Where the mesh files a scene names are read (docs/scene.md, "Meshes from files").
+struct MeshFiles {
+  /// "mesh": {"file": ...} is read relative to this directory (the scene file's); without one a scene
+  /// naming a mesh file is invalid.
+  std::optional<std::filesystem::path> directory;
+  /// "mesh": {"id": ...}: the stored file of a mesh id (.msh or .inp), nullopt when no mesh has the id;
+  /// unset, a scene naming a mesh id is invalid. The server's is its store of POST /v1/meshes.
+  std::function<std::optional<std::filesystem::path>(const std::string& id)> stored;
+};
+
 /// Validates a scene, fills in defaults, builds the mesh (bodies in order) and resolves effects.
 /// @note model.scene is the input with every default filled in; model.effects = resolve_effects.
 /// @note Mesh files ("mesh": {"file": ...}) are read relative to `mesh_directory`; without one (scenes
@@ -40,6 +51,8 @@ class SceneError : public std::runtime_error {
 /// @throws SceneError listing every issue found.
 model::Model load(const nlohmann::json& scene,
                   const std::optional<std::filesystem::path>& mesh_directory = std::nullopt);
+/// load() with mesh files from `mesh_files` (a directory for "file", a store for "id").
+model::Model load(const nlohmann::json& scene, const MeshFiles& mesh_files);
 
 /// load() of a file, mesh files relative to the file's directory. An unreadable file or malformed
 /// JSON is a SceneError with pointer "" and the reason (for JSON: the parser's message with line and

@@ -119,18 +119,20 @@ Surfaces check_inline_mesh(json& mesh, const std::string& p, Checker& c) {
 }
 
 Surfaces check_mesh(json& mesh, const std::string& p, const std::optional<std::string>& body_name, Checker& c) {
-  if (!object_with(mesh, p, {"box", "hollow_sphere", "nodes", "hex8", "surfaces", "file", "elements", "transform"},
+  if (!object_with(mesh, p, {"box", "hollow_sphere", "nodes", "hex8", "surfaces", "file", "id", "elements", "transform"},
                    c))
     return std::nullopt;
   const bool inline_mesh = mesh.contains("nodes") || mesh.contains("hex8") || mesh.contains("surfaces");
-  if (mesh.contains("box") + mesh.contains("hollow_sphere") + inline_mesh + mesh.contains("file") != 1) {
-    c.fail(p, "exactly one of box, hollow_sphere, nodes+hex8, file");
+  if (mesh.contains("box") + mesh.contains("hollow_sphere") + inline_mesh + mesh.contains("file") +
+          mesh.contains("id") !=
+      1) {
+    c.fail(p, "exactly one of box, hollow_sphere, nodes+hex8, file, id");
     return std::nullopt;
   }
-  if (mesh.contains("file")) return check_file_mesh(mesh, p, body_name, c);
+  if (mesh.contains("file") || mesh.contains("id")) return check_file_mesh(mesh, p, body_name, c);
   for (const char* key : {"elements", "transform"})
     if (mesh.contains(key)) {
-      c.fail(child(p, key), "only for a mesh read from a file (\"file\")");
+      c.fail(child(p, key), "only for a mesh read from a file (\"file\" or \"id\")");
       return std::nullopt;
     }
   const size_t start = c.mark();

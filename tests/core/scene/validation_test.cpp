@@ -139,9 +139,9 @@ INSTANTIATE_TEST_SUITE_P(Rules, SceneRule, ::testing::Values(
   // mesh kinds
   Violation{"mesh required", {{"/bodies/0/mesh", nullptr, true}}, "/bodies/0/mesh", "required"},
   Violation{"mesh two kinds", {{"/bodies/0/mesh/box", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}, {"divisions", {1, 1, 1}}}}},
-            "/bodies/0/mesh", "exactly one of box, hollow_sphere, nodes+hex8, file"},
+            "/bodies/0/mesh", "exactly one of box, hollow_sphere, nodes+hex8, file, id"},
   Violation{"mesh no kind", {{"/bodies/0/mesh", json::object()}}, "/bodies/0/mesh",
-            "exactly one of box, hollow_sphere, nodes+hex8, file"},
+            "exactly one of box, hollow_sphere, nodes+hex8, file, id"},
   Violation{"unknown mesh field", {{"/bodies/1/mesh/cylinder", json::object()}}, "/bodies/1/mesh/cylinder", "unknown field"},
   // box
   Violation{"box max > min", {{"/bodies/1/mesh/box/max", {2, -3, 0}}}, "/bodies/1/mesh/box/max",
