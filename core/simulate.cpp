@@ -297,9 +297,7 @@ solve::NewtonOptions newton_options(const Model& m) {
   return o;
 }
 
-bool frame_due(const Model& m, int step, int steps) {
-  return step % m.output.every == 0 || step == steps;
-}
+bool frame_due(const Model& m, int step, int steps) { return m.output.frame_due(step, steps); }
 
 /// Positions, velocities and, with contact, the nodal contact pressure (lagrange_term.hpp).
 model::Frame frame_of(const time::State& s, const Problem& p) {

@@ -2,6 +2,7 @@
 /// @file Model: what a validated scene becomes. Plain data, immutable during a run.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -103,6 +104,13 @@ struct SolverSpec {
 
 struct OutputSpec {
   int every = 1;                       ///< a frame every this many steps (plus the first and last)
+  /// Whether step `step` of `steps` writes a frame: step 0, every `every`-th step and the last.
+  bool frame_due(int step, int steps) const { return step % std::max(every, 1) == 0 || step == steps; }
+  /// Frames a run of `steps` steps writes (frame_due counted).
+  int frame_count(int steps) const {
+    const int e = std::max(every, 1);
+    return steps / e + 1 + (steps % e != 0 ? 1 : 0);
+  }
 };
 
 /// The effects a scene calls for, in a fixed vocabulary reported back to users.

@@ -71,8 +71,7 @@ Summary summarize(const model::Model& model) {
   s.elements = model.mesh.element_count();
   s.dofs = model.dof_count();
   s.steps = model.time.steps();
-  const int every = std::max(model.output.every, 1);
-  s.frames = s.steps / every + 1 + (s.steps % every != 0 ? 1 : 0);
+  s.frames = model.output.frame_count(s.steps);
   return s;
 }
 
