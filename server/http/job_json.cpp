@@ -17,6 +17,7 @@ nlohmann::json links(const jobs::Job& job) {
   } else if (job.status == jobs::Status::succeeded) {
     l["result"] = self + "/result";
     l["result_xdmf"] = self + "/result.xdmf";
+    l["result_mesh_xdmf"] = self + "/result_mesh.xdmf";
     l["series"] = self + "/series";
   }
   return l;

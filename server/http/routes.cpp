@@ -12,6 +12,7 @@
 #include "server/http/problem.hpp"
 #include "server/http/scene_check.hpp"
 #include "server/http/study_check.hpp"
+#include "server/jobs/mesh_store.hpp"
 #include "server/jobs/series_recorder.hpp"
 #include "server/jobs/sha256.hpp"
 #include "server/jobs/study_job.hpp"
@@ -107,7 +108,7 @@ void submit_job(App& app, const Request& req, Response& res) {
   jobs::NewJob job;
   job.idempotency_key = idempotency_key(req);
   job.scene = parse_json_body(req, app.limits);
-  const scene::Summary summary = check_scene(job.scene, app.limits);
+  const scene::Summary summary = check_scene(job.scene, app.limits, app.files.mesh_files());
   job.body_hash = jobs::sha256_hex(job.scene.dump());
   job.effects = summary.effects;
   job.progress.steps = summary.steps;
@@ -120,7 +121,7 @@ void submit_study(App& app, const Request& req, Response& res) {
   jobs::NewJob job;
   job.idempotency_key = idempotency_key(req);
   const nlohmann::json body = parse_json_body(req, app.limits);
-  const StudyRequest study = check_study(body, app.limits);
+  const StudyRequest study = check_study(body, app.limits, app.files.mesh_files());
   job.kind = jobs::Kind::study;
   job.body_hash = jobs::sha256_hex("study\n" + body.dump());  // never equal to a scene's hash
   job.scene = study.scene;
@@ -274,6 +275,17 @@ void get_result_xdmf(App& app, const Request& req, Response& res) {
   res.set_content(*text, "application/xml");
 }
 
+void get_result_mesh_xdmf(App& app, const Request& req, Response& res) {
+  const jobs::Job job = find_job(app, req);
+  require_result_file(job);
+  auto text = read_file(app.files.xdmf_mesh(job.id));
+  if (!text)
+    fail(500, "missing-result", "Result missing",
+         "job " + job.id.str() + " succeeded but its result_mesh.xdmf is gone");
+  res.set_header("Content-Disposition", "attachment; filename=\"result_mesh.xdmf\"");
+  res.set_content(*text, "application/xml");
+}
+
 /// The `format` query parameter: `allowed[0]` when absent, 400 when not one of `allowed`.
 std::string format_param(const Request& req, const std::vector<std::string>& allowed) {
   const std::string format = req.has_param("format") ? req.get_param_value("format") : allowed.front();
@@ -338,9 +350,65 @@ void get_log(App& app, const Request& req, Response& res) {
   res.set_content(read_file(app.files.log(job.id)).value_or(""), "text/plain; charset=utf-8");
 }
 
+/// The format of a posted mesh: the `format` parameter, else what the bytes look like.
+std::string mesh_format(const Request& req) {
+  if (req.has_param("format")) return format_param(req, {"msh", "inp"});
+  const std::string sniffed = jobs::sniff_mesh_format(req.body);
+  if (sniffed.empty())
+    fail(400, "bad-parameter", "Bad parameter",
+         "cannot tell the mesh format from the body (a Gmsh file starts with $MeshFormat, an Abaqus/CalculiX "
+         "deck with a *KEYWORD line); give format=msh or format=inp");
+  return sniffed;
+}
+
+/// name → size (elements of a set, faces of a surface).
+template <typename Map>
+nlohmann::json sizes(const Map& named) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [name, items] : named) out[name] = items.size();
+  return out;
+}
+
+/// POST /v1/meshes: the raw bytes of a .msh or .inp file, parsed once, stored by content (201; 200 when
+/// the same bytes were stored before).
+void post_mesh(App& app, const Request& req, Response& res) {
+  if (req.body.size() > app.limits.max_body_bytes) throw ProblemError(body_too_large(app.limits.max_body_bytes, req.body.size()));
+  const std::string format = mesh_format(req);
+  if (req.body.empty()) fail(400, "empty-body", "Empty body", "the body is empty; send the bytes of a .msh or .inp file");
+  jobs::StoredMesh stored;
+  try {
+    stored = jobs::store_mesh(app.files.meshes(), req.body, format);
+  } catch (const mesh::MeshFileError& e) {
+    Problem problem{422, "urn:stoss:problem:invalid-mesh", "Invalid mesh", e.what()};
+    if (e.line > 0) problem.extra["line"] = e.line;
+    problem.extra["format"] = format;
+    throw ProblemError(problem);
+  }
+  if (stored.created) res.set_header("Location", "/v1/meshes/" + stored.id);
+  send_json(res, stored.created ? 201 : 200,
+            {{"id", stored.id},
+             {"format", stored.format},
+             {"nodes", stored.mesh.nodes.size()},
+             {"elements", stored.mesh.hex8.size()},
+             {"element_sets", sizes(stored.mesh.element_sets)},
+             {"surfaces", sizes(stored.mesh.surfaces)}});
+}
+
+/// GET /v1/meshes/{id}: the stored file, byte for byte.
+void get_mesh(App& app, const Request& req, Response& res) {
+  const std::string id = req.matches[1].str();
+  const auto path = app.files.stored_mesh(id);
+  if (!path)
+    fail(404, "unknown-mesh", "Unknown mesh",
+         "no mesh " + id.substr(0, 64) + " (mesh ids are 64 lowercase hex digits, as POST /v1/meshes answers)");
+  res.set_header("Content-Disposition", "attachment; filename=\"" + path->filename().string() + "\"");
+  res.set_header("Cache-Control", "public, max-age=31536000, immutable");
+  stream_file(req, res, *path, "application/octet-stream");
+}
+
 void validate_scene(App& app, const Request& req, Response& res) {
   const nlohmann::json scene = parse_json_body(req, app.limits);
-  const scene::Summary s = check_scene(scene, app.limits);
+  const scene::Summary s = check_scene(scene, app.limits, app.files.mesh_files());
   send_json(res, 200,
             {{"valid", true},
              {"effects", s.effects},
@@ -366,7 +434,7 @@ void get_scene(App& app, const Request& req, Response& res) {
   if (!posted) fail(404, "unknown-job", "Unknown job", "no job " + job.id.str());
   if (resolved == "false") return send_json(res, 200, *posted);
   try {
-    send_json(res, 200, scene::load(*posted).scene);
+    send_json(res, 200, scene::load(*posted, app.files.mesh_files()).scene);
   } catch (const std::exception& e) {
     fail(500, "internal", "Scene cannot be resolved", e.what());
   }
@@ -456,11 +524,14 @@ const std::vector<RouteEntry>& route_table() {
       {{"POST", "/v1/jobs/{id}/cancel", true}, cancel_job},
       {{"GET", "/v1/jobs/{id}/result", true}, get_result},
       {{"GET", "/v1/jobs/{id}/result.xdmf", true}, get_result_xdmf},
+      {{"GET", "/v1/jobs/{id}/result_mesh.xdmf", true}, get_result_mesh_xdmf},
       {{"GET", "/v1/jobs/{id}/series", true}, get_series},
       {{"GET", "/v1/jobs/{id}/log", true}, get_log},
       {{"GET", "/v1/jobs/{id}/study", true}, get_study},
       {{"POST", "/v1/studies", true}, submit_study},
       {{"POST", "/v1/validate", true}, validate_scene},
+      {{"POST", "/v1/meshes", true}, post_mesh},
+      {{"GET", "/v1/meshes/{id}", true}, get_mesh},
       {{"GET", "/v1/schema/scene", true}, get_schema},
       {{"GET", "/v1/jobs/{id}/scene", true}, get_scene},
       {{"GET", "/v1/openapi.yaml", true}, get_openapi},

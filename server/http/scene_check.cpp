@@ -87,11 +87,11 @@ nlohmann::json parse_json_body(const httplib::Request& req, const Limits& limits
   }
 }
 
-scene::Summary check_scene(const nlohmann::json& scene, const Limits& limits) {
+scene::Summary check_scene(const nlohmann::json& scene, const Limits& limits, const scene::MeshFiles& mesh_files) {
   if (auto problem = check_scene_limits_early(scene, limits)) throw ProblemError(*problem);
   scene::Summary summary;
   try {
-    summary = scene::summarize(scene::load(scene));
+    summary = scene::summarize(scene::load(scene, mesh_files));
   } catch (const scene::SceneError& e) {
     nlohmann::json errors = nlohmann::json::array();
     for (const auto& issue : e.issues)

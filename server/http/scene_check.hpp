@@ -27,8 +27,9 @@ Problem body_too_large(std::size_t limit, std::optional<unsigned long long> valu
 /// (checked before parsing), 415 when it is neither JSON nor declared as JSON.
 nlohmann::json parse_json_body(const httplib::Request& req, const Limits& limits);
 
-/// Validates a scene and checks it against the limits. Throws ProblemError: 422 listing every scene
-/// error with its JSON pointer, 413 naming each exceeded limit.
-scene::Summary check_scene(const nlohmann::json& scene, const Limits& limits);
+/// Validates a scene and checks it against the limits; "mesh": {"id": ...} is resolved by `mesh_files`.
+/// Throws ProblemError: 422 listing every scene error with its JSON pointer, 413 naming each exceeded limit.
+scene::Summary check_scene(const nlohmann::json& scene, const Limits& limits,
+                           const scene::MeshFiles& mesh_files = {});
 
 }  // namespace stoss::server::http

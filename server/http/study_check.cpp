@@ -100,7 +100,8 @@ double check_reference(const nlohmann::json& body, nlohmann::json& errors) {
 }
 
 /// Checks the scene (its own step and frames aside); its 422 errors are added under /scene, a 413 is thrown.
-scene::Summary check_study_scene(const nlohmann::json& body, const Limits& limits, nlohmann::json& errors) {
+scene::Summary check_study_scene(const nlohmann::json& body, const Limits& limits, const scene::MeshFiles& mesh_files,
+                                 nlohmann::json& errors) {
   if (!body.contains("scene")) {
     add(errors, "/scene", "is required: the scene to study");
     return {};
@@ -109,7 +110,7 @@ scene::Summary check_study_scene(const nlohmann::json& body, const Limits& limit
   relaxed.max_steps = INT_MAX;
   relaxed.max_frames = INT_MAX;
   try {
-    return check_scene(body["scene"], relaxed);
+    return check_scene(body["scene"], relaxed, mesh_files);
   } catch (const ProblemError& e) {
     if (e.problem().status != 422) throw;
     for (const auto& error : e.problem().extra.value("errors", nlohmann::json::array()))
@@ -146,7 +147,7 @@ void check_run_limit(const study::Options& options, double end, const Limits& li
 
 }  // namespace
 
-StudyRequest check_study(const nlohmann::json& body, const Limits& limits) {
+StudyRequest check_study(const nlohmann::json& body, const Limits& limits, const scene::MeshFiles& mesh_files) {
   if (!body.is_object()) {
     nlohmann::json errors = nlohmann::json::array();
     add(errors, "", "must be an object {\"scene\": {...}, \"steps\": [...]}, got " + describe(body));
@@ -158,7 +159,7 @@ StudyRequest check_study(const nlohmann::json& body, const Limits& limits) {
   request.options.steps = check_steps(body, errors);
   request.options.schemes = check_schemes(body, errors);
   request.options.reference_step = check_reference(body, errors);
-  request.summary = check_study_scene(body, limits, errors);
+  request.summary = check_study_scene(body, limits, mesh_files, errors);
   if (!errors.empty()) throw ProblemError(invalid_study(std::move(errors)));
   if (request.options.reference_step == 0)
     request.options.reference_step =

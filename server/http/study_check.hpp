@@ -26,7 +26,8 @@ struct StudyRequest {
 /// body (scene errors under `/scene`, `/steps/i`, `/schemes/i`, `/reference_step`, unknown members); 413
 /// naming the limit when the scene exceeds max_nodes or the study's finest run (the reference, unless a
 /// swept step is finer) exceeds max_steps. The scene's own time.step and output frames are not checked
-/// against max_steps and max_frames: a study replaces the step and writes no frames.
-StudyRequest check_study(const nlohmann::json& body, const Limits& limits);
+/// against max_steps and max_frames: a study replaces the step and writes no frames. Mesh ids of the scene
+/// are resolved by `mesh_files`.
+StudyRequest check_study(const nlohmann::json& body, const Limits& limits, const scene::MeshFiles& mesh_files = {});
 
 }  // namespace stoss::server::http

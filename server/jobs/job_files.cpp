@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <fstream>
 #include <system_error>
@@ -22,12 +23,29 @@ void sync_to_disk(const std::filesystem::path& path) {
 
 }  // namespace
 
+std::optional<std::filesystem::path> JobFiles::stored_mesh(const std::string& id) const {
+  const bool hex = id.size() == 64 &&
+                   std::all_of(id.begin(), id.end(), [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
+  if (!hex) return std::nullopt;
+  for (const char* extension : {".msh", ".inp"}) {
+    const std::filesystem::path path = meshes_ / (id + extension);
+    std::error_code error;
+    if (std::filesystem::is_regular_file(path, error)) return path;
+  }
+  return std::nullopt;
+}
+
+scene::MeshFiles JobFiles::mesh_files() const {
+  return {std::nullopt, [files = *this](const std::string& id) { return files.stored_mesh(id); }};
+}
+
 void JobFiles::prepare_attempt(const JobId& id) const {
   std::filesystem::create_directories(dir(id));
   discard_partial(id);
   std::error_code ignored;
   std::filesystem::remove(result(id), ignored);
   std::filesystem::remove(xdmf(id), ignored);
+  std::filesystem::remove(xdmf_mesh(id), ignored);
   std::filesystem::remove(study(id), ignored);
   std::filesystem::remove(dir(id) / "series.partial.jsonl", ignored);
 }

@@ -4,8 +4,11 @@
 /// a JobId (validated hex), never from request text.
 
 #include <filesystem>
+#include <optional>
+#include <string>
 
 #include "core/output/result_writer.hpp"
+#include "core/scene/scene.hpp"
 #include "server/jobs/id.hpp"
 
 namespace stoss::server::jobs {
@@ -13,7 +16,8 @@ namespace stoss::server::jobs {
 class JobFiles {
  public:
   /// `data_dir` is the server's --data directory.
-  explicit JobFiles(std::filesystem::path data_dir) : root_(std::move(data_dir) / "jobs") {}
+  explicit JobFiles(std::filesystem::path data_dir)
+      : root_(data_dir / "jobs"), meshes_(std::move(data_dir) / "meshes") {}
 
   std::filesystem::path dir(const JobId& id) const { return root_ / id.str(); }
   std::filesystem::path log(const JobId& id) const { return dir(id) / "log.txt"; }
@@ -21,6 +25,15 @@ class JobFiles {
   /// result.h5.partial and renames it when the run completed, to result.incomplete.h5 otherwise).
   std::filesystem::path result(const JobId& id) const { return dir(id) / output::result_file_name; }
   std::filesystem::path xdmf(const JobId& id) const { return dir(id) / output::xdmf_file_name; }
+  std::filesystem::path xdmf_mesh(const JobId& id) const { return dir(id) / output::xdmf_mesh_file_name; }
+
+  /// DIR/meshes: the mesh files posted to /v1/meshes, named <sha256 of the bytes>.msh or .inp; written once
+  /// (to a temporary name, then renamed), never changed, so a job naming one by id stays reproducible.
+  std::filesystem::path meshes() const { return meshes_; }
+  /// The stored file of a mesh id; nullopt unless `id` is 64 lowercase hex digits and the file exists.
+  std::optional<std::filesystem::path> stored_mesh(const std::string& id) const;
+  /// Mesh files for scene::load: "mesh": {"id": ...} resolved by stored_mesh, no "file".
+  scene::MeshFiles mesh_files() const;
   /// A study's table (study::to_json); it exists only after the study completed (written as
   /// study.json.partial, then renamed).
   std::filesystem::path study(const JobId& id) const { return dir(id) / "study.json"; }
@@ -39,6 +52,7 @@ class JobFiles {
 
  private:
   std::filesystem::path root_;
+  std::filesystem::path meshes_;
 };
 
 }  // namespace stoss::server::jobs

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "server/http/routes.hpp"
+#include "server/jobs/sha256.hpp"
 #include "tests/server/live_server.hpp"
 
 namespace stoss::test {
@@ -51,7 +52,7 @@ TEST(OpenApi, TheSpecDescribesExactlyTheServersRoutes) {
   std::set<std::pair<std::string, std::string>> spec, served;
   for (const auto& op : read_spec(spec_file)) spec.insert({op.method, op.path});
   for (const auto& r : server::http::routes()) served.insert({r.method, r.path});
-  EXPECT_EQ(spec.size(), 20u);
+  EXPECT_EQ(spec.size(), 23u);
   EXPECT_EQ(spec, served);
 }
 
@@ -74,6 +75,10 @@ TEST(OpenApi, EveryOperationAnswersWithItsDocumentedSuccessCodeAndNeedsTheToken)
     ASSERT_EQ(wait_for_status(c, id, {"succeeded", "failed"})["status"], "succeeded");
   const std::string running = make(box_scene(4, 100'000, {1, 0, 0}, 2.0));
   const std::string scene = box_scene(2, 12).dump();
+  // POST /v1/meshes stores this file (201); GET /v1/meshes/{id} reads it back by its SHA-256.
+  std::ifstream mesh_in(std::filesystem::path(STOSS_SOURCE_DIR) / "tests/data/meshes/two_blocks_ascii.msh");
+  const std::string mesh(std::istreambuf_iterator<char>(mesh_in), {});
+  const std::string mesh_id = server::jobs::sha256_hex(mesh);
 
   auto call = [&](httplib::Client& client, const Operation& op) -> httplib::Result {
     const bool study = op.path.find("stud") != std::string::npos;
@@ -81,10 +86,12 @@ TEST(OpenApi, EveryOperationAnswersWithItsDocumentedSuccessCodeAndNeedsTheToken)
                      : op.path.find("/cancel") != std::string::npos ? running
                      : study                                        ? studied
                                                                     : done;
+    if (op.path.rfind("/v1/meshes", 0) == 0) id = mesh_id;
     std::string path = std::regex_replace(op.path, std::regex(R"(\{id\})"), id);
     path = std::regex_replace(path, std::regex(R"(\{asset\})"), "stoss.js");
     if (op.method == "GET") return client.Get(path);
     if (op.method == "DELETE") return client.Delete(path);
+    if (op.path == "/v1/meshes") return client.Post(path, mesh, "application/octet-stream");
     return client.Post(path, study ? study_request : scene, "application/json");
   };
 
