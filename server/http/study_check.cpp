@@ -70,6 +70,13 @@ std::vector<double> check_steps(const nlohmann::json& body, nlohmann::json& erro
   return steps;
 }
 
+/// "energy_momentum, midpoint, hht, generalized_alpha": every scheme, in model::all_schemes order.
+std::string scheme_names() {
+  std::string names;
+  for (model::Scheme s : model::all_schemes) names += (names.empty() ? "" : ", ") + model::to_string(s);
+  return names;
+}
+
 std::vector<model::Scheme> check_schemes(const nlohmann::json& body, nlohmann::json& errors) {
   auto it = body.find("schemes");
   if (it == body.end()) return study::Options{}.schemes;
@@ -84,8 +91,7 @@ std::vector<model::Scheme> check_schemes(const nlohmann::json& body, nlohmann::j
     if (scheme)
       schemes.push_back(*scheme);
     else
-      add(errors, "/schemes/" + std::to_string(i),
-          "must be one of energy_momentum, midpoint, hht, got " + describe(name));
+      add(errors, "/schemes/" + std::to_string(i), "must be one of " + scheme_names() + ", got " + describe(name));
   }
   return schemes;
 }
