@@ -25,7 +25,7 @@ void plot(const std::string& name, const stoss::study::Result& r) {
   const fs::path csv = results_dir / ("accuracy_" + name + ".csv"), png = results_dir / ("accuracy_" + name + ".png");
   const fs::path script = results_dir / ("accuracy_" + name + ".gnuplot");
   const std::pair<const char*, const char*> schemes[] = {
-      {"energy_momentum", "#1f77b4"}, {"midpoint", "#d62728"}, {"hht", "#2ca02c"}};
+      {"energy_momentum", "#1f77b4"}, {"midpoint", "#d62728"}, {"hht", "#2ca02c"}, {"generalized_alpha", "#9467bd"}};
   const auto panel = [&](const char* column, const char* label, const char* key) {
     std::string lines;
     for (const auto& [scheme, colour] : schemes)
@@ -48,6 +48,7 @@ void run_case(const std::string& name, stoss::model::Model m, bool quick) {
   stoss::study::Options o;
   o.steps = quick ? std::vector<double>{0.04, 0.02} : std::vector<double>{0.04, 0.02, 0.01, 0.005};
   o.reference_step = 0.04 / 32;
+  o.schemes.assign(std::begin(stoss::model::all_schemes), std::end(stoss::model::all_schemes));
   const stoss::study::Result r = stoss::study::run(m, o);
   write(results_dir / ("accuracy_" + name + ".csv"), stoss::study::to_csv(r));
   write(results_dir / ("accuracy_" + name + ".md"), stoss::study::to_markdown(r));
