@@ -116,26 +116,89 @@ void Integrator::initialize(State& s) {
   initial_solve_seconds_ += lu.seconds();
 }
 
-Eigen::VectorXd Integrator::relayout(const Eigen::VectorXd& positions) {
+/// (2.3) of the step t_n → t_n + h: the scheme's inertia plus every term's rows, measured in the scales of
+/// §2.1. Made by Integrator::step for one step; h and the state are its own, never the integrator's.
+class Integrator::StepEquations final : public solve::NonlinearSystem {
+ public:
+  StepEquations(Integrator& owner, const State& s, double h, const LogFunction* log)
+      : owner_(owner), state_(s), context_{s.x, s.v, h, owner.scheme_->force_rule(), log} {}
+  const StepContext& context() const { return context_; }
+  /// The residual scale starts at ‖2 M v_n‖; the first evaluation raises it to the predictor's residual.
+  void reset_scale() {
+    residual_scale_ = 2 * (owner_.mass_ * state_.v).norm();
+    scale_pending_ = true;
+  }
+
+  void evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& R, solve::BlockPattern* A) override {
+    const double h = context_.h;
+    {
+      Stopwatch assembly(owner_.inertia_seconds_);
+      R.setZero(z.size());
+      owner_.scheme_->add_inertia(state_, h, owner_.mass_, z.head(state_.x.size()), R);
+      if (A) {
+        A->zero();
+        A->scatter_sparse(owner_.mass_block_, owner_.mass_, owner_.scheme_->inertia_jacobian_factor(h));
+      }
+    }
+    for (size_t k = 0; k < owner_.terms_.size(); ++k) {
+      Stopwatch term(owner_.term_seconds_[k]);
+      owner_.terms_[k]->add(context_, z, R, A);
+    }
+    Stopwatch assembly(owner_.inertia_seconds_);
+    for (Eigen::Index i = 0; i < R.size(); ++i)
+      if (owner_.fixed_[i]) R[i] = 0;
+    if (A) A->eliminate(owner_.fixed_);
+    if (scale_pending_) {
+      // (2.3) has momentum units: scale by ‖2 M v_n‖, the predictor's force impulse, or a floor.
+      const double floor = 1e-4 * owner_.total_mass_ * owner_.length_scale_ / h;
+      residual_scale_ = std::max({residual_scale_, R.head(state_.x.size()).norm(), floor});
+      scale_pending_ = false;
+    }
+  }
+
+  double residual_measure(const Eigen::VectorXd& R) const override {
+    double measure = R.head(state_.x.size()).norm() / residual_scale_;
+    for (const Term* t : owner_.terms_) measure = std::max(measure, t->auxiliary_residual_measure(R, scales()));
+    return measure;
+  }
+
+  double increment_measure(const Eigen::VectorXd& dz) const override {
+    double measure = dz.head(state_.x.size()).norm() / owner_.length_scale_;
+    for (const Term* t : owner_.terms_) measure = std::max(measure, t->auxiliary_increment_measure(dz, scales()));
+    return measure;
+  }
+
+ private:
+  MeasureScales scales() const { return {residual_scale_, owner_.length_scale_}; }
+
+  Integrator& owner_;
+  const State& state_;
+  const StepContext context_;
+  double residual_scale_ = 0;
+  bool scale_pending_ = false;
+};
+
+Eigen::VectorXd Integrator::relayout(const StepContext& step, const Eigen::VectorXd& positions) {
   Eigen::VectorXd z = Eigen::VectorXd::Zero(prepare_unknowns());
   z.head(positions.size()) = positions;
   for (size_t k = 0; k < terms_.size(); ++k) {
     Stopwatch term(term_seconds_[k]);
-    terms_[k]->initialize_auxiliaries(*context_, z);
+    terms_[k]->initialize_auxiliaries(step, z);
   }
   return z;
 }
 
-solve::NewtonResult Integrator::solve_with_active_set(Eigen::VectorXd& z, const LogFunction& log) {
+solve::NewtonResult Integrator::solve_with_active_set(StepEquations& equations, Eigen::VectorXd& z,
+                                                      const LogFunction& log) {
   solve::NewtonResult total;
-  const Eigen::Index nx = state_->x.size();
+  const Eigen::Index nx = mass_.rows();
   for (passes_ = 1;; ++passes_) {
-    merge(total, solve::newton_solve(*this, z, pattern_, solver_, options_, log));
+    merge(total, solve::newton_solve(equations, z, pattern_, solver_, options_, log));
     if (!total.converged) return total;
     bool changed = false;
     for (size_t k = 0; k < terms_.size(); ++k) {  // §3.5
       Stopwatch term(term_seconds_[k]);
-      changed = terms_[k]->update_active_set(*context_, z) || changed;
+      changed = terms_[k]->update_active_set(equations.context(), z) || changed;
     }
     if (!changed) return total;
     if (passes_ == max_active_set_passes) {
@@ -143,18 +206,17 @@ solve::NewtonResult Integrator::solve_with_active_set(Eigen::VectorXd& z, const 
       total.failure = "the contact active set did not settle in " + std::to_string(passes_) + " passes";
       return total;
     }
-    z = relayout(z.head(nx));
+    z = relayout(equations.context(), z.head(nx));
   }
 }
 
 solve::NewtonResult Integrator::step(State& s, double h, const LogFunction& log) {
-  context_ = std::make_unique<StepContext>(
-      StepContext{s.x, s.v, h, scheme_->force_rule(), log ? &log : nullptr});
-  state_ = &s;
+  StepEquations equations(*this, s, h, log ? &log : nullptr);
+  const StepContext& step = equations.context();
   correction_energy_ = 0;
   for (size_t k = 0; k < terms_.size(); ++k) {
     Stopwatch term(term_seconds_[k]);
-    terms_[k]->prepare_step(*context_);
+    terms_[k]->prepare_step(step);
   }
   const int n = prepare_unknowns();
   Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
@@ -163,66 +225,25 @@ solve::NewtonResult Integrator::step(State& s, double h, const LogFunction& log)
     if (fixed_[i]) z[i] = s.x[i];
   for (size_t k = 0; k < terms_.size(); ++k) {
     Stopwatch term(term_seconds_[k]);
-    terms_[k]->begin_step(*context_, z);
+    terms_[k]->begin_step(step, z);
   }
-  residual_scale_ = 2 * (mass_ * s.v).norm();
-  scale_pending_ = true;
+  equations.reset_scale();
   solver_.set_coordinates(s.x);  // rigid-body modes for an AMG linear solver
-  solve::NewtonResult result = solve_with_active_set(z, log);
-  if (result.converged) {
-    Eigen::VectorXd impulse = Eigen::VectorXd::Zero(s.x.size());
-    double jump = 0;
-    for (size_t k = 0; k < terms_.size(); ++k) {
-      Stopwatch term(term_seconds_[k]);
-      terms_[k]->add_impact_impulse(*context_, z, impulse, jump);
-      terms_[k]->end_step(*context_, z);
-    }
-    scheme_->advance(s, h, z.head(s.x.size()));
-    if (impulse.squaredNorm() > 0) correct_velocity(s, std::move(impulse), jump);
-    s.t += h;
-    s.step += 1;
-  }
-  state_ = nullptr;
-  return result;
-}
-
-void Integrator::evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& R, solve::BlockPattern* A) {
-  const double h = context_->h;
-  {
-    Stopwatch assembly(inertia_seconds_);
-    R.setZero(z.size());
-    scheme_->add_inertia(*state_, h, mass_, z.head(state_->x.size()), R);
-    if (A) {
-      A->zero();
-      A->scatter_sparse(mass_block_, mass_, scheme_->inertia_jacobian_factor(h));
-    }
-  }
+  solve::NewtonResult result = solve_with_active_set(equations, z, log);
+  if (!result.converged) return result;
+  Eigen::VectorXd impulse = Eigen::VectorXd::Zero(s.x.size());
+  double jump = 0;
   for (size_t k = 0; k < terms_.size(); ++k) {
     Stopwatch term(term_seconds_[k]);
-    terms_[k]->add(*context_, z, R, A);
+    terms_[k]->add_impact_impulse(step, z, impulse, jump);
+    terms_[k]->end_step(step, z);
   }
-  Stopwatch assembly(inertia_seconds_);
-  for (Eigen::Index i = 0; i < R.size(); ++i)
-    if (fixed_[i]) R[i] = 0;
-  if (A) A->eliminate(fixed_);
-  if (scale_pending_) {
-    // (2.3) has momentum units: scale by ‖2 M v_n‖, the predictor's force impulse, or a floor.
-    const double floor = 1e-4 * total_mass_ * length_scale_ / h;
-    residual_scale_ = std::max({residual_scale_, R.head(state_->x.size()).norm(), floor});
-    scale_pending_ = false;
-  }
-}
-
-double Integrator::residual_measure(const Eigen::VectorXd& R) const {
-  double measure = R.head(state_->x.size()).norm() / residual_scale_;
-  for (const Term* t : terms_) measure = std::max(measure, t->auxiliary_residual_measure(R, scales()));
-  return measure;
-}
-
-double Integrator::increment_measure(const Eigen::VectorXd& dz) const {
-  double measure = dz.head(state_->x.size()).norm() / length_scale_;
-  for (const Term* t : terms_) measure = std::max(measure, t->auxiliary_increment_measure(dz, scales()));
-  return measure;
+  // The step's context refers to s.x and s.v: nothing reads it once s advances.
+  scheme_->advance(s, h, z.head(s.x.size()));
+  if (impulse.squaredNorm() > 0) correct_velocity(s, std::move(impulse), jump);
+  s.t += h;
+  s.step += 1;
+  return result;
 }
 
 void Integrator::correct_velocity(State& s, Eigen::VectorXd b, double energy_jump) {

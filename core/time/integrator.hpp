@@ -15,7 +15,9 @@
 namespace stoss::time {
 
 /// Turns the terms into one nonlinear system per step and solves it. It does not know which terms exist.
-class Integrator : private solve::NonlinearSystem {
+/// The step being solved (its state, h, the force rule) lives in a StepEquations object made by step()
+/// and passed down as an argument: nothing of a step stays in the integrator between calls.
+class Integrator {
  public:
   /// Most Newton solves of one step while terms keep changing their auxiliary sets (§3.5).
   static constexpr int max_active_set_passes = 20;
@@ -53,20 +55,17 @@ class Integrator : private solve::NonlinearSystem {
   double velocity_correction_energy() const { return correction_energy_; }
 
  private:
-  void evaluate(const Eigen::VectorXd& z, Eigen::VectorXd& R, solve::BlockPattern* A) override;
-  double residual_measure(const Eigen::VectorXd& R) const override;
-  double increment_measure(const Eigen::VectorXd& dz) const override;
+  class StepEquations;  ///< (2.3) of one step as a solve::NonlinearSystem (integrator.cpp)
   /// Lays out the auxiliary unknowns and rebuilds the pattern when their number or a term's
   /// structure changed. Returns the number of unknowns.
   int prepare_unknowns();
   void rebuild_pattern(int n);
   /// z for the current layout: positions from `positions`, auxiliaries from the terms.
-  Eigen::VectorXd relayout(const Eigen::VectorXd& positions);
+  Eigen::VectorXd relayout(const StepContext& step, const Eigen::VectorXd& positions);
   /// Newton passes with active-set updates; false result if a solve fails or the set never settles.
-  solve::NewtonResult solve_with_active_set(Eigen::VectorXd& z, const LogFunction& log);
+  solve::NewtonResult solve_with_active_set(StepEquations& equations, Eigen::VectorXd& z, const LogFunction& log);
   /// (4.12): v_{n+1} += γ M⁻¹b for the terms' impact impulse b, restoring their energy jump.
   void correct_velocity(State& s, Eigen::VectorXd impulse, double energy_jump);
-  MeasureScales scales() const { return {residual_scale_, length_scale_}; }
 
   const solve::SparseMatrix& mass_;
   std::vector<Term*> terms_;
@@ -83,11 +82,6 @@ class Integrator : private solve::NonlinearSystem {
   std::unique_ptr<Eigen::SimplicialLDLT<solve::SparseMatrix>>
       mass_solver_;  ///< for (4.12), built on first use
 
-  // The step being solved (valid inside step()).
-  const State* state_ = nullptr;
-  std::unique_ptr<StepContext> context_;
-  double residual_scale_ = 0;
-  bool scale_pending_ = false;
   int passes_ = 0;
   double correction_energy_ = 0;
 
