@@ -240,7 +240,36 @@ TEST(FileMeshScene, BadMeshFilesAreIssuesNamingFileAndLineOrElement) {
             "/bodies/0/mesh/transform/scale: must be > 0, got -1");
   EXPECT_EQ(issues_of(dir.write("scene.json", one_body_scene({{"box", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}, {"divisions", {1, 1, 1}}}},
                                                                {"elements", "E"}}).dump())),
-            "/bodies/0/mesh/elements: only for a mesh read from a file (\"file\")");
+            "/bodies/0/mesh/elements: only for a mesh read from a file (\"file\" or \"id\")");
+}
+
+TEST(FileMeshScene, AnIdIsReadFromTheStoreTheCallerGivesAndOnlyFromIt) {
+  TempDir dir;
+  const fs::path stored =
+      dir.write("store/cube.inp", cube_nodes + "*ELEMENT, TYPE=C3D8, ELSET=E\n1,1,2,3,4,5,6,7,8\n");
+  const std::string id(64, 'a');
+  scene::MeshFiles files;
+  files.stored = [&](const std::string& asked) { return asked == id ? std::optional(stored) : std::nullopt; };
+  const model::Model m = scene::load(one_body_scene({{"id", id}, {"elements", "E"}, {"transform", {{"translate", {0, 0, 5}}}}}), files);
+  EXPECT_EQ(m.mesh.node_count(), 8);
+  EXPECT_EQ(m.mesh.nodes[6], Eigen::Vector3d(1, 1, 6));
+  EXPECT_EQ(m.scene["bodies"][0]["mesh"]["id"], id);  // the scene keeps the id, never a path
+  const auto issues = [&](const json& mesh, const scene::MeshFiles& where) {
+    try {
+      scene::load(one_body_scene(mesh), where);
+    } catch (const scene::SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(issues({{"id", std::string(64, 'b')}}, files),
+            "/bodies/0/mesh/id: no mesh with this id; POST it to /v1/meshes first");
+  EXPECT_EQ(issues({{"id", "../store/cube"}}, files),
+            "/bodies/0/mesh/id: must be 64 lowercase hex digits (the id POST /v1/meshes answers), got \"../store/cube\"");
+  EXPECT_NE(issues({{"id", id}}, {}).find("/bodies/0/mesh/id: mesh ids name meshes stored by the service"),
+            std::string::npos);
+  EXPECT_EQ(issues({{"id", id}, {"file", "cube.inp"}}, files),
+            "/bodies/0/mesh: exactly one of box, hollow_sphere, nodes+hex8, file, id");
 }
 
 TEST(FileMeshScene, ContactPairNamingAnEmptyOrMissingGroupIsAnIssue) {

@@ -461,7 +461,10 @@ void expect_documented(const json& schema, const json& node, const std::string& 
   if (node.is_array())
     for (const json& element : node) expect_documented(schema, element, where);
   if (!node.is_object()) return;
-  const json required = node.value("required", json::array());
+  json required = node.value("required", json::array());
+  // Members required by one alternative of a oneOf ("file" or "id" of a file mesh) are not optional.
+  for (const json& alternative : node.value("oneOf", json::array()))
+    for (const json& name : alternative.value("required", json::array())) required.push_back(name);
   for (const auto& [key, child] : node.items()) {
     if (key == "if" || key == "then") continue;  // conditions, not declarations
     if (key != "properties") {
