@@ -107,6 +107,17 @@ TEST_F(MeshUpload, ABodyOfUnknownFormatIs400AndAnUnknownMeshIs404) {
   EXPECT_EQ(body_json(missing)["type"], "urn:stoss:problem:unknown-mesh");
 }
 
+TEST(MeshUploadLimits, AFileAboveMaxBodyBytesIs413NamingTheLimit) {
+  TempDir data;
+  LiveServer server(data.path(), {"--max-body-bytes", "1000"});
+  auto c = server.client();
+  const auto r = post_mesh(c, bytes_of(meshes / "two_blocks_ascii.msh"));
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 413);
+  EXPECT_EQ(body_json(r)["limits"][0]["name"], "max_body_bytes");
+  EXPECT_FALSE(std::filesystem::exists(data.path() / "meshes"));
+}
+
 TEST_F(MeshUpload, AnUnknownIdIs422AtItsPointer) {
   const auto r = submit(c, block_scene({{"id", std::string(64, '0')}, {"elements", "left"}}));
   ASSERT_TRUE(r);
