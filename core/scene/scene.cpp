@@ -51,6 +51,17 @@ model::Model load(const nlohmann::json& scene, const MeshFiles& mesh_files) {
   return m;
 }
 
+model::Model load_resolved(const nlohmann::json& resolved, const MeshFiles& mesh_files) {
+  // Every resolved scene has these: validation fills them in when absent.
+  const bool is_resolved = resolved.contains("time") && resolved["time"].contains("scheme") &&
+                           resolved.contains("solver") && resolved["solver"].contains("tolerance") &&
+                           resolved.contains("output") && resolved["output"].contains("every");
+  if (!is_resolved) return load(resolved, mesh_files);
+  model::Model m = detail::build_model(resolved, mesh_files);
+  detail::resolve_master_surfaces(m);  // applies the stored master_surface and switch_gap of each pair
+  return m;
+}
+
 model::Model load_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw SceneError({{"", "cannot read " + path + ": " + std::strerror(errno)}});

@@ -54,6 +54,12 @@ model::Model load(const nlohmann::json& scene,
 /// load() with mesh files from `mesh_files` (a directory for "file", a store for "id").
 model::Model load(const nlohmann::json& scene, const MeshFiles& mesh_files);
 
+/// The model of a scene that load() already resolved (its model.scene): built without validating it
+/// again, the worker's path for a job whose scene the server validated and resolved once, at POST.
+/// A scene without the defaults load() fills in (a job queued by an older server) goes through load().
+/// @throws what building the mesh throws (a stored mesh file that vanished).
+model::Model load_resolved(const nlohmann::json& resolved, const MeshFiles& mesh_files);
+
 /// load() of a file, mesh files relative to the file's directory. An unreadable file or malformed
 /// JSON is a SceneError with pointer "" and the reason (for JSON: the parser's message with line and
 /// column).

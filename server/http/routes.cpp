@@ -108,8 +108,10 @@ void submit_job(App& app, const Request& req, Response& res) {
   jobs::NewJob job;
   job.idempotency_key = idempotency_key(req);
   job.scene = parse_json_body(req, app.limits);
-  const scene::Summary summary = check_scene(job.scene, app.limits, app.files.mesh_files());
-  job.body_hash = jobs::sha256_hex(job.scene.dump());
+  job.body_hash = jobs::sha256_hex(job.scene.dump());  // of the scene as posted (idempotency)
+  nlohmann::json resolved;
+  const scene::Summary summary = check_scene(job.scene, app.limits, app.files.mesh_files(), &resolved);
+  job.scene = std::move(resolved);  // validated and resolved once: the worker runs it as stored
   job.effects = summary.effects;
   job.progress.steps = summary.steps;
   job.progress.end = job.scene.contains("time") ? job.scene["time"].value("end", 0.0) : 0.0;
@@ -430,11 +432,13 @@ void get_scene(App& app, const Request& req, Response& res) {
   if (resolved != "true" && resolved != "false")
     fail(400, "bad-parameter", "Bad parameter", "resolved must be true or false");
   const jobs::Job job = find_job(app, req);
-  const auto posted = app.store.scene(job.id);
-  if (!posted) fail(404, "unknown-job", "Unknown job", "no job " + job.id.str());
-  if (resolved == "false") return send_json(res, 200, *posted);
+  // Stored resolved at POST (every default filled in); ?resolved=true also resolves the scene of a job
+  // queued by an older server, which stored it as posted.
+  const auto stored = app.store.scene(job.id);
+  if (!stored) fail(404, "unknown-job", "Unknown job", "no job " + job.id.str());
+  if (resolved == "false") return send_json(res, 200, *stored);
   try {
-    send_json(res, 200, scene::load(*posted, app.files.mesh_files()).scene);
+    send_json(res, 200, scene::load(*stored, app.files.mesh_files()).scene);
   } catch (const std::exception& e) {
     fail(500, "internal", "Scene cannot be resolved", e.what());
   }

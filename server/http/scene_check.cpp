@@ -87,11 +87,14 @@ nlohmann::json parse_json_body(const httplib::Request& req, const Limits& limits
   }
 }
 
-scene::Summary check_scene(const nlohmann::json& scene, const Limits& limits, const scene::MeshFiles& mesh_files) {
+scene::Summary check_scene(const nlohmann::json& scene, const Limits& limits, const scene::MeshFiles& mesh_files,
+                           nlohmann::json* resolved) {
   if (auto problem = check_scene_limits_early(scene, limits)) throw ProblemError(*problem);
   scene::Summary summary;
   try {
-    summary = scene::summarize(scene::load(scene, mesh_files));
+    model::Model model = scene::load(scene, mesh_files);
+    summary = scene::summarize(model);
+    if (resolved) *resolved = std::move(model.scene);
   } catch (const scene::SceneError& e) {
     nlohmann::json errors = nlohmann::json::array();
     for (const auto& issue : e.issues)

@@ -107,7 +107,7 @@ double check_reference(const nlohmann::json& body, nlohmann::json& errors) {
 
 /// Checks the scene (its own step and frames aside); its 422 errors are added under /scene, a 413 is thrown.
 scene::Summary check_study_scene(const nlohmann::json& body, const Limits& limits, const scene::MeshFiles& mesh_files,
-                                 nlohmann::json& errors) {
+                                 nlohmann::json& resolved, nlohmann::json& errors) {
   if (!body.contains("scene")) {
     add(errors, "/scene", "is required: the scene to study");
     return {};
@@ -116,7 +116,7 @@ scene::Summary check_study_scene(const nlohmann::json& body, const Limits& limit
   relaxed.max_steps = INT_MAX;
   relaxed.max_frames = INT_MAX;
   try {
-    return check_scene(body["scene"], relaxed, mesh_files);
+    return check_scene(body["scene"], relaxed, mesh_files, &resolved);
   } catch (const ProblemError& e) {
     if (e.problem().status != 422) throw;
     for (const auto& error : e.problem().extra.value("errors", nlohmann::json::array()))
@@ -165,12 +165,11 @@ StudyRequest check_study(const nlohmann::json& body, const Limits& limits, const
   request.options.steps = check_steps(body, errors);
   request.options.schemes = check_schemes(body, errors);
   request.options.reference_step = check_reference(body, errors);
-  request.summary = check_study_scene(body, limits, mesh_files, errors);
+  request.summary = check_study_scene(body, limits, mesh_files, request.scene, errors);
   if (!errors.empty()) throw ProblemError(invalid_study(std::move(errors)));
   if (request.options.reference_step == 0)
     request.options.reference_step =
         *std::min_element(request.options.steps.begin(), request.options.steps.end()) / 32;
-  request.scene = body["scene"];
   check_run_limit(request.options, request.scene.value("time", nlohmann::json::object()).value("end", 0.0),
                   limits);
   request.runs = jobs::study_run_count(request.options);

@@ -15,7 +15,7 @@ inline constexpr std::size_t max_study_steps = 100;
 
 /// A study request that passed every check.
 struct StudyRequest {
-  nlohmann::json scene;    ///< the scene as submitted
+  nlohmann::json scene;    ///< the scene as submitted, every default filled in (what the worker runs)
   study::Options options;  ///< defaults filled in: all three schemes, reference_step = min(steps) / 32
   scene::Summary summary;  ///< of the scene (effects, nodes, …)
   int runs = 0;            ///< the reference run plus one per scheme and step

@@ -30,7 +30,7 @@ Outcome InProcessExecutor::run(const Job& job, const std::atomic<bool>& cancel,
     log << "attempt " << job.attempt << " started " << format_rfc3339(clock_.now()) << " by "
         << job.worker.value_or("?") << '\n'
         << std::flush;
-    const model::Model model = scene::load(job.scene, files_.mesh_files());
+    const model::Model model = scene::load_resolved(job.scene, files_.mesh_files());  // validated at POST
     if (job.kind == Kind::study)
       return run_study_job(job, model, {files_, clock_, progress_interval_, log, cancel, progress});
     return simulate_job(job, model, log, cancel, progress);
