@@ -490,3 +490,35 @@ TEST(SceneSchema, OptionalFieldsHaveDefaultAndDescription) {
 
 }  // namespace
 }  // namespace stoss::scene
+
+namespace stoss::scene {
+namespace {
+
+/// The worker's path (docs/api.md, GET /v1/jobs/{id}/scene): a scene resolved at POST is built again
+/// without validation and gives the same model.
+TEST(SceneLoadResolved, BuildsTheSameModelAsLoadFromTheResolvedScene) {
+  const model::Model posted = load_file(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json");
+  const model::Model stored = load_resolved(posted.scene, MeshFiles{});
+  EXPECT_EQ(stored.scene, posted.scene);
+  EXPECT_EQ(stored.mesh.node_count(), posted.mesh.node_count());
+  EXPECT_EQ(stored.effects, posted.effects);
+  ASSERT_EQ(stored.contact.size(), 1u);
+  EXPECT_EQ(stored.contact[0].master_surface, model::MasterSurface::smooth);
+  EXPECT_EQ(stored.contact[0].switch_gap, model::SwitchGap::keep);
+  EXPECT_EQ(stored.time.steps(), posted.time.steps());
+}
+
+TEST(SceneLoadResolved, DoesNotValidateAgainButAScenePostedRawIsStillValidated) {
+  const model::Model posted = load_file(std::string(STOSS_SOURCE_DIR) + "/api/examples/tumbling_bar.json");
+  nlohmann::json resolved = posted.scene;
+  // A stored scene is trusted: a value validation would refuse (ν ≥ 0.5) reaches the model unchecked.
+  resolved["bodies"][0]["material"]["poisson_ratio"] = 0.7;
+  EXPECT_DOUBLE_EQ(load_resolved(resolved, MeshFiles{}).bodies[0].material.poisson_ratio, 0.7);
+  nlohmann::json raw = resolved;
+  raw.erase("solver");  // not resolved (a job an older server stored as posted): validated by load()
+  raw["bodies"][0]["material"]["poisson_ratio"] = 0.7;
+  EXPECT_THROW(load_resolved(raw, MeshFiles{}), SceneError);
+}
+
+}  // namespace
+}  // namespace stoss::scene
