@@ -185,7 +185,7 @@ def live_run(browser, out):
     status = "document.getElementById('job-status').textContent"
     browser.wait_for(f"{points} > 0", "the energy plot holds points")
     seen_running = []  # point counts sampled while the page says running
-    screenshot_taken = False
+    screenshot_taken = contact_screenshot_taken = False
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline:
         now_status, now_points = browser.run(f"[{status}, {points}]")
@@ -195,6 +195,9 @@ def live_run(browser, out):
         if not screenshot_taken and now_points > 10:
             browser.screenshot(out / "running.png")
             screenshot_taken = True
+        if not contact_screenshot_taken and now_points > 45:  # the ball hit the plate near step 32
+            browser.screenshot(out / "running_contact.png")  # the README's picture
+            contact_screenshot_taken = True
         time.sleep(0.1)
     check(len(set(seen_running)) >= 2 and seen_running[-1] > seen_running[0],
           f"the number of plotted points grows while the job runs (sampled {sorted(set(seen_running))})")
