@@ -1,4 +1,4 @@
-// What accuracy costs in time (README, "Accuracy against time"): each scheme at h, h/2, h/4, h/8
+// What accuracy costs in time (docs/measurements.md, "Accuracy against time"): each scheme at h, h/2, h/4, h/8
 // (h = 0.04) against an energy_momentum reference at h/32, on a contact-free case and on the paper's
 // example. Writes bench/results/accuracy_<case>.{csv,md,png} (the PNG needs gnuplot).
 // Run: ./build/bench_accuracy [--quick]   (--quick: h and h/2 only, for a smoke check)

@@ -1,6 +1,6 @@
 // Whole-run benchmark of the tumbling hollow sphere (api/examples/tumbling_sphere.json, 432 hex8,
 // 200 steps of h = 0.01) with each scheme: wall seconds per step and Newton iterations per step.
-// Run: ./build/bench_tumbling_sphere  (see README, "Performance")
+// Run: ./build/bench_tumbling_sphere  (see docs/measurements.md, "Performance")
 #include <benchmark/benchmark.h>
 
 #include "core/scene/scene.hpp"

@@ -71,7 +71,7 @@ std::string to_csv(const Result& result);
 nlohmann::json to_json(const Result& result);
 /// The inverse of to_json (a null error reads as NaN).
 Result result_from_json(const nlohmann::json& table);
-/// A Markdown table, as the README shows it.
+/// A Markdown table, as docs/measurements.md shows it.
 std::string to_markdown(const Result& result);
 
 }  // namespace stoss::study

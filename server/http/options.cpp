@@ -144,7 +144,7 @@ Runs the job service (HTTP/JSON, see api/openapi.yaml) until SIGINT or SIGTERM.
   --data DIR             job database (DIR/jobs.db) and results (DIR/jobs/<id>/) (default ./var)
   --store STORE          the job store: sqlite:PATH (default sqlite:DIR/jobs.db) or
                          postgresql://USER[:PASSWORD]@HOST:PORT/DB, shared by many serve and worker
-                         processes on many hosts (they must share DIR too; see README "More than one machine")
+                         processes on many hosts (they must share DIR too; see docs/many_machines.md)
   --workers N            jobs run at once in this process (default 2; 0 only queues: an API-only front end)
   --token-file F         require "Authorization: Bearer <first line of F>" on every route but /healthz
   --max-body-bytes N     largest request body (default 16777216)

@@ -1,9 +1,9 @@
 #!/bin/bash
-# The README's service walk-through, cancel example and studies shall work as printed: every `$ ` command of its console blocks
-# runs against a live `stoss serve` (README's 127.0.0.1:8080 replaced by the test's port), exits 0,
-# and prints output of the same shape as the README shows — the same lines after ids, numbers,
+# The service walk-through of docs/walkthrough.md, cancel example and studies shall work as printed: every `$ ` command of its console blocks
+# runs against a live `stoss serve` (its 127.0.0.1:8080 replaced by the test's port), exits 0,
+# and prints output of the same shape as the page shows — the same lines after ids, numbers,
 # times and the worker's host name are masked. A job still running when polled is the one allowed
-# difference (the README shows it mid-run).
+# difference (the page shows it mid-run).
 # usage: readme_walkthrough.sh STOSS_BINARY SOURCE_DIR
 set -uo pipefail
 binary=$1
@@ -36,8 +36,8 @@ awk '
   block && /^\$ / { cmd = substr($0, 3); while (cmd ~ /\\$/) { getline more; sub(/\\$/, "", cmd); cmd = cmd more }
                     print "C\t" cmd; next }
   block { print "O\t" $0 }
-' "$source_dir/README.md" >"$work/steps"
-[ "$(grep -c '^C' "$work/steps")" -ge 8 ] || { echo "walk-through not found in README.md"; exit 1; }
+' "$source_dir/docs/walkthrough.md" >"$work/steps"
+[ "$(grep -c '^C' "$work/steps")" -ge 8 ] || { echo "walk-through not found in docs/walkthrough.md"; exit 1; }
 
 mask() {  # what may differ between runs: ids, numbers, timestamps, the worker host; HTTP status codes stay
   perl -pe 's/\r$//; s/\b[0-9a-f]{32}\b/ID/g; s/"(created|started|finished)":"[^"]*"/"$1":T/g; s/by \S+/by HOST/;
@@ -61,7 +61,7 @@ check() {  # command, expected output file
     echo "$actual" | grep -qE '"status":"(queued|running|succeeded)"' && return
   fi
   if ! diff <(mask <"$expected") <(printf '%s\n' "$actual" | tr -d '\r' | sed '/^$/d' | mask) >"$work/diff"; then
-    echo "FAIL (output differs from README): $command"; cat "$work/diff"; failures=$((failures + 1))
+    echo "FAIL (output differs from docs/walkthrough.md): $command"; cat "$work/diff"; failures=$((failures + 1))
   fi
 }
 
@@ -80,5 +80,5 @@ done <"$work/steps"
 [ -n "$command" ] && check "$command" expected
 
 commands=$(grep -c '^C' "$work/steps")
-echo "$commands README commands run, $failures failed"
+echo "$commands walk-through commands run, $failures failed"
 [ $failures -eq 0 ]

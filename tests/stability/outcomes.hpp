@@ -1,6 +1,6 @@
 #pragma once
 // Test helper for tests/stability: run a case with a scheme whose outcome is recorded, not asserted,
-// and append it to <build>/stability_outcomes.md (the README's side-by-side table).
+// and append it to <build>/stability_outcomes.md (the side-by-side table of docs/measurements.md).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // Hard cases (issue: "hard cases stay numerically stable"). The system shall, with energy_momentum,
 // complete each case with every Newton solve converged, no NaN, energy and momenta within the stated
 // bounds. The same cases run with midpoint and hht; their outcome is recorded in
-// <build>/stability_outcomes.md (not asserted), for the README's side-by-side table.
+// <build>/stability_outcomes.md (not asserted), for the side-by-side table of docs/measurements.md.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
