@@ -90,8 +90,8 @@ void ElasticityTerm::add(const time::StepContext& step, const Eigen::VectorXd& z
   Matrix24 Ke;
   for (size_t e = 0; e < hex8_.size(); ++e) {
     element_step(step, static_cast<int>(e), z, f, K ? &Ke : nullptr);
-    for (int I = 0; I < 8; ++I) R.segment<3>(3 * hex8_[e][I]) += step.h * f.segment<3>(3 * I);
-    if (K) K->scatter(block_[e], step.h * Ke);
+    for (int I = 0; I < 8; ++I) R.segment<3>(3 * hex8_[e][I]) += step.force_factor * f.segment<3>(3 * I);
+    if (K) K->scatter(block_[e], step.force_factor * Ke);
   }
 }
 
@@ -102,7 +102,7 @@ GravityTerm::GravityTerm(const solve::SparseMatrix& mass, const Eigen::Vector3d&
 
 void GravityTerm::add(const time::StepContext& step, const Eigen::VectorXd&, Eigen::VectorXd& R,
                       solve::BlockPattern*) const {
-  R.head(load_.size()) -= step.h * load_;  // a linear potential is exact in every scheme (§2.3)
+  R.head(load_.size()) -= step.force_factor * load_;  // a linear potential is exact in every scheme (§2.3)
 }
 
 }  // namespace stoss::fem

@@ -23,6 +23,9 @@ class Scheme {
   virtual ~Scheme() = default;
   /// Where and with which weights the terms evaluate their force (term.hpp).
   virtual ForceRule force_rule() const = 0;
+  /// The factor on the algorithmic forces in the momentum rows of the step residual: h for every scheme
+  /// of docs/theory.md §2, whose residuals (2.3), h × (2.11), h × (2.12) are momenta.
+  virtual double force_factor(double h) const { return h; }
   /// Adds the inertia part of the residual (momentum units) at x_1 to R.
   virtual void add_inertia(const State& s, double h, const solve::SparseMatrix& M, const Eigen::VectorXd& x_1,
                            Eigen::VectorXd& R) const = 0;

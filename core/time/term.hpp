@@ -47,6 +47,9 @@ struct StepContext {
   double h = 0;                ///< step size
   ForceRule rule = ForceRule::discrete_gradient();
   const LogFunction* log = nullptr;  ///< solver log of the run; may be null
+  /// The factor the scheme puts on every algorithmic force in the momentum rows of (2.3) (Scheme::
+  /// force_factor): terms add force_factor · f_alg, so that they never multiply by h themselves.
+  double force_factor = h;
 };
 
 /// Scales that make a term's rows and increments dimensionless (Integrator::residual_measure).
@@ -55,8 +58,9 @@ struct MeasureScales {
   double length = 1;  ///< model length (bounding-box diagonal)
 };
 
-/// A term adds h · f_alg (the scheme's algorithmic force, momentum units) to the position rows of the
-/// step residual, its own equations to the rows of its auxiliary unknowns (contact multipliers), and
+/// A term adds step.force_factor · f_alg (momentum units: the scheme's factor, h for every scheme of §2,
+/// times the algorithmic force the scheme's ForceRule asks for) to the position rows of the step
+/// residual, its own equations to the rows of its auxiliary unknowns (contact multipliers), and
 /// their derivatives with respect to the unknowns z = [x_{n+1}; auxiliaries] to the Jacobian.
 ///
 /// Order of calls in a step (Integrator::step): prepare_step → layout (auxiliary_count,

@@ -10,7 +10,7 @@ void HhtContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z
                          solve::BlockPattern* K) const {
   for (const auto& [dofs, force] : previous_force_)
     for (size_t i = 0; i < dofs.size(); ++i)
-      R[dofs[i]] += step.rule.previous_weight * step.h * force[i];  // h w_n λ_n N_s(x_n) (2.11), (2.12)
+      R[dofs[i]] += step.rule.previous_weight * step.force_factor * force[i];  // h w_n λ_n N_s(x_n) (2.11), (2.12)
   if (surfaces_.smooth()) {
     for (size_t k = 0; k < elements_.size(); ++k) {
       const ContactElement& e = elements_[k];
@@ -18,7 +18,7 @@ void HhtContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z
       const TensorPatch& patch = surfaces_.patches[e.face];
       scatter_patch(e, o,
                     patch_hht_element(local_patch(patch), local_positions(slave_node(e), patch, z), z[o], e.f3,
-                                      step.h, step.rule.weight, e.xi),
+                                      step.force_factor, step.rule.weight, e.xi),
                     R, K);  // (2.11)
     }
     return;
@@ -27,7 +27,7 @@ void HhtContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z
     const ContactElement& e = elements_[k];
     const int o = element_offset(static_cast<int>(k));
     const Vector15 x_1 = element_positions(slave_node(e), face_of(e), z);
-    scatter(e, o, hht_element(x_1, z[o], e.f3, step.h, step.rule.weight, e.xi), R, K);  // (2.11)
+    scatter(e, o, hht_element(x_1, z[o], e.f3, step.force_factor, step.rule.weight, e.xi), R, K);  // (2.11)
   }
 }
 

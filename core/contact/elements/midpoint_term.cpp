@@ -30,7 +30,7 @@ void MidpointContactTerm::add(const time::StepContext& step, const Eigen::Vector
       const TensorPatch& patch = surfaces_.patches[e.face];
       const PatchNtsResult r =
           patch_midpoint_element(local_patch(patch), local_positions(slave_node(e), patch, step.x_n),
-                                 local_positions(slave_node(e), patch, z), z[o], e.f3, step.h, e.xi);  // (4.2)
+                                 local_positions(slave_node(e), patch, z), z[o], e.f3, step.force_factor, e.xi);  // (4.2)
       scatter_patch(e, o, r, R, K);
     }
     return;
@@ -40,7 +40,7 @@ void MidpointContactTerm::add(const time::StepContext& step, const Eigen::Vector
     const int o = element_offset(static_cast<int>(k));
     const Vector15 x_n = element_positions(slave_node(e), face_of(e), step.x_n);
     const Vector15 x_1 = element_positions(slave_node(e), face_of(e), z);
-    scatter(e, o, midpoint_element(x_n, x_1, z[o], e.f3, step.h, e.xi), R, K);  // (4.2)
+    scatter(e, o, midpoint_element(x_n, x_1, z[o], e.f3, step.force_factor, e.xi), R, K);  // (4.2)
   }
 }
 

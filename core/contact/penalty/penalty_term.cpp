@@ -73,7 +73,7 @@ void PenaltyContactTerm::prepare_step(const time::StepContext& step) {
                                         ", Coulomb μ = " + scientific(params_.friction)
                                   : ", frictionless (μ = 0): no tangential traction, no return mapping"));
   }
-  broad_.update(surfaces_, step.x_n, step.x_n + step.h * step.v_n);
+  broad_.update(surfaces_, step.x_n, step.x_n + step.force_factor * step.v_n);
   std::vector<PenaltyContact> next;
   switches_ = 0;
   switch_jump_ = 0;
@@ -122,8 +122,8 @@ void PenaltyContactTerm::add(const time::StepContext& step, const Eigen::VectorX
     const PenaltyResult r = evaluate(c, step.x_n, z);
     if (!r.closed) continue;
     const std::array<int, 15> dofs = element_dofs(surfaces_.slave_nodes[c.slave], surfaces_.faces[c.face]);
-    for (int i = 0; i < 15; ++i) R[dofs[i]] += step.h * r.force[i];  // h·(5.2)
-    if (K) K->scatter(c.block, step.h * r.tangent);
+    for (int i = 0; i < 15; ++i) R[dofs[i]] += step.force_factor * r.force[i];  // h·(5.2)
+    if (K) K->scatter(c.block, step.force_factor * r.tangent);
   }
 }
 

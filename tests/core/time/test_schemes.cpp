@@ -12,6 +12,7 @@
 #include "core/fem/neo_hookean.hpp"
 #include "core/mesh/generators.hpp"
 #include "core/time/generalized_alpha.hpp"
+#include "core/time/integrator.hpp"
 #include "core/time/scheme.hpp"
 
 namespace stoss::time {
@@ -199,6 +200,54 @@ TEST(GeneralizedAlpha, WithoutHighFrequencyDampingKeepsTheLinearOscillatorsEnerg
   State d{Eigen::VectorXd::Constant(1, 1), Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, -4)};
   for (int n = 0; n < 1000; ++n) oscillator_step(damped, d, 0.3, 2);
   EXPECT_LT(0.5 * d.v[0] * d.v[0] + 2 * d.x[0] * d.x[0], 1.9) << "ρ∞ < 1 dissipates at hω = 0.6";
+}
+
+}  // namespace
+}  // namespace stoss::time
+
+namespace stoss::time {
+namespace {
+
+/// A scheme that puts its own factor on the forces, and a term that records what it is handed.
+class DoubledForces : public Scheme {
+ public:
+  ForceRule force_rule() const override { return ForceRule::midpoint(); }
+  double force_factor(double h) const override { return 2 * h; }
+  void add_inertia(const State& s, double h, const solve::SparseMatrix& M, const Eigen::VectorXd& x_1,
+                   Eigen::VectorXd& R) const override {
+    R.head(x_1.size()) += M * ((2.0 / h) * (x_1 - s.x) - 2.0 * s.v);
+  }
+  double inertia_jacobian_factor(double h) const override { return 2.0 / h; }
+  void advance(State& s, double h, const Eigen::VectorXd& x_1) const override {
+    s.v = (2.0 / h) * (x_1 - s.x) - s.v;
+    s.x = x_1;
+  }
+};
+
+class RecordingTerm : public Term {
+ public:
+  std::string name() const override { return "recording"; }
+  void register_blocks(solve::BlockPattern&) override {}
+  void add(const StepContext& step, const Eigen::VectorXd&, Eigen::VectorXd&, solve::BlockPattern*) const override {
+    factors.push_back(step.force_factor);
+    rules.push_back(step.rule);
+  }
+  mutable std::vector<double> factors;
+  mutable std::vector<ForceRule> rules;
+};
+
+TEST(Integrator, HandsTheTermsTheSchemesForceFactorAndRule) {
+  OneElement o;
+  const solve::SparseMatrix M = fem::assemble_mass(o.mesh, fem::precompute_mesh(o.mesh), {2.0});
+  RecordingTerm term;
+  Integrator integrator(M, {&term}, std::vector<char>(o.x_n.size(), 0), std::make_unique<DoubledForces>(), {}, 1.0,
+                        2.0);
+  State s{o.x_n, o.v_n, Eigen::VectorXd::Zero(o.x_n.size())};
+  ASSERT_TRUE(integrator.step(s, 0.01).converged);
+  ASSERT_FALSE(term.factors.empty());
+  for (double f : term.factors) EXPECT_DOUBLE_EQ(f, 0.02);
+  for (const ForceRule& r : term.rules) EXPECT_TRUE(r.is_midpoint());
+  EXPECT_DOUBLE_EQ(make_scheme(spec(model::Scheme::energy_momentum))->force_factor(0.01), 0.01);
 }
 
 }  // namespace
