@@ -263,11 +263,26 @@ constexpr int max_step_halvings = 4;
 /// Newton from the scene's solver settings. Factorisations are kept while they contract the residual
 /// by half per iteration (and reach the tolerance within the budget): on the contact scenes a
 /// refactorisation costs as much as ~20 reused solves (bench/contact_ball.cpp).
-/// The linear solver named by solver.linear (validated by the scene: direct, iterative, petsc_gamg).
+/// The linear solver named by solver.linear (validated by the scene: auto, direct, iterative,
+/// petsc_gamg); auto picks petsc_gamg from model::SolverSpec::auto_iterative_elements elements on,
+/// where it overtakes the LU (docs/measurements.md, "Linear solvers"), direct below.
 solve::LinearMethod linear_method(const Model& m) {
   if (m.solver.linear == "iterative") return solve::LinearMethod::iterative;
   if (m.solver.linear == "petsc_gamg") return solve::LinearMethod::petsc_gamg;
+  if (m.solver.linear == "auto" && m.mesh.element_count() >= model::SolverSpec::auto_iterative_elements)
+    return solve::LinearMethod::petsc_gamg;
   return solve::LinearMethod::direct;
+}
+
+/// The log line naming the linear solver of the run (and why, for auto).
+std::string linear_solver_line(const Model& m) {
+  const solve::LinearMethod method = linear_method(m);
+  const std::string name = method == solve::LinearMethod::petsc_gamg ? "petsc_gamg (PETSc GMRES + GAMG, rigid-body modes)"
+                           : method == solve::LinearMethod::iterative ? "iterative (BiCGSTAB, Jacobi preconditioner)"
+                                                                       : "direct (UMFPACK LU)";
+  if (m.solver.linear != "auto") return "linear solver: " + name;
+  return "linear solver: auto → " + name + ": " + std::to_string(m.mesh.element_count()) + " elements, petsc_gamg from " +
+         std::to_string(model::SolverSpec::auto_iterative_elements);
 }
 
 /// The log's line on the Krylov solves of a run (none with the direct solver).
@@ -330,9 +345,7 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
   double output_seconds = 0;  // series rows, frames and the observer's calls
   auto t_out = Clock::now();
   observer.begin(m, layout);
-  if (m.solver.linear == "iterative") observer.log("linear solver: iterative (BiCGSTAB, Jacobi preconditioner)");
-  if (m.solver.linear == "petsc_gamg")
-    observer.log("linear solver: petsc_gamg (PETSc GMRES + GAMG, rigid-body modes)");
+  if (m.solver.linear != "direct") observer.log(linear_solver_line(m));
   const Balance b0 = balance(p, s);
   observer.step(step_row(s, b0, contact_row(p, nullptr), layout, nullptr, 0.0));
   observer.frame(frame_of(s, p));

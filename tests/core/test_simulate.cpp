@@ -324,6 +324,26 @@ bool logged(const RecordingObserver& r, const std::string& text) {
                      [&](const std::string& line) { return line.find(text) != std::string::npos; });
 }
 
+// solver.linear "auto" (the default) picks the LU below 14,000 elements and PETSc from there on, and
+// the log says which and why. The large model translates rigidly, so the predictor solves its step.
+TEST(Simulate, AutoLinearSolverPicksByElementCountAndSaysSo) {
+  RecordingObserver small;
+  ASSERT_TRUE(simulate(tumbling_bar(model::Scheme::energy_momentum, 0.01, 1), small).completed);
+  EXPECT_TRUE(logged(small, "linear solver: auto → direct (UMFPACK LU): 16 elements, petsc_gamg from 14000"));
+  model::Model large;
+  large.mesh.add_body("block", mesh::box({0, 0, 0}, {28, 21, 24}, {28, 21, 24}));  // 14,112 elements
+  model::BodySpec b;
+  b.name = "block";
+  b.material = {"saint_venant_kirchhoff", 100, 0.3, 1};
+  b.initial_velocity = {0.3, -0.2, 0.1};
+  large.bodies.push_back(b);
+  large.time = {model::Scheme::energy_momentum, 0.01, 0.01};
+  large.effects = model::resolve_effects(large);
+  RecordingObserver r;
+  ASSERT_TRUE(simulate(large, r).completed);
+  EXPECT_TRUE(logged(r, "linear solver: auto → petsc_gamg (PETSc GMRES + GAMG, rigid-body modes): 14112 elements"));
+}
+
 // The system shall give the direct solver's answer, to the Newton tolerance, with either Krylov path.
 // Both Newton solves stop at increments ≤ 1e-12 of the model size (diagonal ≈ 2); ten steps of such
 // differences stay far below 1e-9.

@@ -82,7 +82,7 @@ TEST(SceneLoad, SceneCopyHasDefaultsFilledIn) {
   EXPECT_EQ(s["boundary"], json::array());
   EXPECT_EQ(s["gravity"], json({0, 0, 0}));
   EXPECT_EQ(s["time"], json({{"scheme", "energy_momentum"}, {"step", 0.01}, {"end", 1.0}}));
-  EXPECT_EQ(s["solver"], json({{"tolerance", 1e-10}, {"max_iterations", 25}, {"linear", "direct"}}));
+  EXPECT_EQ(s["solver"], json({{"tolerance", 1e-10}, {"max_iterations", 25}, {"linear", "auto"}}));
   EXPECT_EQ(s["output"], json({{"every", 1}}));
   const json& ball = s["bodies"][0];
   EXPECT_EQ(ball["mesh"]["hollow_sphere"], json({{"center", {0, 0, 0}},

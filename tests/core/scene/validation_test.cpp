@@ -251,7 +251,7 @@ INSTANTIATE_TEST_SUITE_P(Rules, SceneRule, ::testing::Values(
             "must be an integer, got 2.5"},
   Violation{"solver object", {{"/solver", "newton"}}, "/solver", R"(must be an object, got "newton")"},
   Violation{"linear solver name", {{"/solver/linear", "amg"}}, "/solver/linear",
-            R"(must be one of direct, iterative, petsc_gamg, got "amg")"},
+            R"(must be one of auto, direct, iterative, petsc_gamg, got "amg")"},
   Violation{"output every", {{"/output/every", 0}}, "/output/every", "must be >= 1, got 0"}));
 // clang-format on
 
