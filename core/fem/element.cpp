@@ -60,11 +60,12 @@ void internal_force(const ElementGeometry& e, const Material& m, const Matrix83&
   for (const GaussPoint& gp : e.gp) {
     const Eigen::Matrix3d F = deformation_gradient(x, gp);
     const Eigen::Matrix3d E = green_lagrange_strain(F);
-    const Eigen::Matrix3d S = m.stress(E);
+    Matrix6d D;
+    const Eigen::Matrix3d S = m.evaluate_stress(E, K ? &D : nullptr);
     add_nodal_force(gp.dN_dX, S, F, gp.wJ, f);
     if (!K) continue;
     const Matrix6x24 B = strain_displacement(F, gp.dN_dX);
-    K->noalias() += gp.wJ * B.transpose() * m.tangent(E) * B;  // material part of (1.8)
+    K->noalias() += gp.wJ * B.transpose() * D * B;  // material part of (1.8)
     add_geometric_stiffness(gp.dN_dX, S, gp.wJ, *K);
   }
 }
@@ -78,11 +79,12 @@ void discrete_gradient_force(const ElementGeometry& e, const Material& m, const 
     const Eigen::Matrix3d F_n = deformation_gradient(x_n, gp), F_1 = deformation_gradient(x_1, gp);
     const Eigen::Matrix3d F_m = deformation_gradient(x_m, gp);
     const Eigen::Matrix3d E_n = green_lagrange_strain(F_n), E_1 = green_lagrange_strain(F_1);
-    const Eigen::Matrix3d S_alg = m.discrete_stress(E_n, E_1);
+    Matrix6d D_alg;
+    const Eigen::Matrix3d S_alg = m.evaluate_discrete_stress(E_n, E_1, K ? &D_alg : nullptr);
     add_nodal_force(gp.dN_dX, S_alg, F_m, gp.wJ, f);  // (2.6)
     if (!K) continue;
     const Matrix6x24 B_m = strain_displacement(F_m, gp.dN_dX), B_1 = strain_displacement(F_1, gp.dN_dX);
-    K->noalias() += gp.wJ * B_m.transpose() * m.discrete_stress_tangent(E_n, E_1) * B_1;  // (2.9), material part
+    K->noalias() += gp.wJ * B_m.transpose() * D_alg * B_1;  // (2.9), material part
     add_geometric_stiffness(gp.dN_dX, S_alg, 0.5 * gp.wJ, *K);                    // (2.9), ½ ∂F_m/∂x_1
   }
 }

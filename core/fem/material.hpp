@@ -42,15 +42,30 @@ class Material {
   virtual std::string name() const = 0;
   /// W(E), per unit reference volume.
   virtual double energy_density(const Eigen::Matrix3d& E) const = 0;
-  /// S = ∂W/∂E.
-  virtual Eigen::Matrix3d stress(const Eigen::Matrix3d& E) const = 0;
-  /// ∂S/∂E in Voigt form (voigt_matrix).
-  virtual Matrix6d tangent(const Eigen::Matrix3d& E) const = 0;
+  /// S = ∂W/∂E, and ∂S/∂E in Voigt form (voigt_matrix) into *tangent when it is not null: one
+  /// evaluation for both, as the element needs them together at every Gauss point.
+  virtual Eigen::Matrix3d evaluate_stress(const Eigen::Matrix3d& E, Matrix6d* tangent) const = 0;
   /// A symmetric stress S_alg with W(E_b) − W(E_a) = S_alg : (E_b − E_a) to round-off (2.6), which
-  /// tends to S(E) as E_a, E_b → E: the energy–momentum scheme's stress.
-  virtual Eigen::Matrix3d discrete_stress(const Eigen::Matrix3d& E_a, const Eigen::Matrix3d& E_b) const = 0;
-  /// ∂S_alg/∂E_b in Voigt form.
-  virtual Matrix6d discrete_stress_tangent(const Eigen::Matrix3d& E_a, const Eigen::Matrix3d& E_b) const = 0;
+  /// tends to S(E) as E_a, E_b → E: the energy–momentum scheme's stress; ∂S_alg/∂E_b in Voigt form into
+  /// *tangent when it is not null.
+  virtual Eigen::Matrix3d evaluate_discrete_stress(const Eigen::Matrix3d& E_a, const Eigen::Matrix3d& E_b,
+                                                   Matrix6d* tangent) const = 0;
+
+  /// The parts of the two evaluations alone.
+  Eigen::Matrix3d stress(const Eigen::Matrix3d& E) const { return evaluate_stress(E, nullptr); }
+  Matrix6d tangent(const Eigen::Matrix3d& E) const {
+    Matrix6d D;
+    evaluate_stress(E, &D);
+    return D;
+  }
+  Eigen::Matrix3d discrete_stress(const Eigen::Matrix3d& E_a, const Eigen::Matrix3d& E_b) const {
+    return evaluate_discrete_stress(E_a, E_b, nullptr);
+  }
+  Matrix6d discrete_stress_tangent(const Eigen::Matrix3d& E_a, const Eigen::Matrix3d& E_b) const {
+    Matrix6d D;
+    evaluate_discrete_stress(E_a, E_b, &D);
+    return D;
+  }
 };
 
 /// The names make_material knows, for validation and the schema.

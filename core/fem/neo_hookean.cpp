@@ -37,19 +37,16 @@ double NeoHookean::energy_density(const Eigen::Matrix3d& E) const {
   return 0.5 * lame_.mu * (C.trace() - 3) - lame_.mu * lnJ + 0.5 * lame_.lambda * lnJ * lnJ;  // (2.14)
 }
 
-Eigen::Matrix3d NeoHookean::stress(const Eigen::Matrix3d& E) const {
+Eigen::Matrix3d NeoHookean::evaluate_stress(const Eigen::Matrix3d& E, Matrix6d* tangent) const {
   const Eigen::Matrix3d C = right_cauchy_green(E), C_inv = C.inverse();
   const double lnJ = 0.5 * std::log(C.determinant());
+  if (tangent) {
+    const double shear = 2 * (lame_.mu - lame_.lambda * lnJ);
+    *tangent = voigt_matrix([&](const Eigen::Matrix3d& dE) -> Eigen::Matrix3d {
+      return shear * C_inv * dE * C_inv + lame_.lambda * (C_inv.cwiseProduct(dE)).sum() * C_inv;  // δS (2.14)
+    });
+  }
   return lame_.mu * (Eigen::Matrix3d::Identity() - C_inv) + lame_.lambda * lnJ * C_inv;  // (2.14)
-}
-
-Matrix6d NeoHookean::tangent(const Eigen::Matrix3d& E) const {
-  const Eigen::Matrix3d C = right_cauchy_green(E), C_inv = C.inverse();
-  const double lnJ = 0.5 * std::log(C.determinant());
-  const double shear = 2 * (lame_.mu - lame_.lambda * lnJ);
-  return voigt_matrix([&](const Eigen::Matrix3d& dE) -> Eigen::Matrix3d {
-    return shear * C_inv * dE * C_inv + lame_.lambda * (C_inv.cwiseProduct(dE)).sum() * C_inv;  // δS (2.14)
-  });
 }
 
 NeoHookean::VolumetricQuotient NeoHookean::volumetric_quotient(double a, double b) const {
@@ -65,22 +62,21 @@ NeoHookean::VolumetricQuotient NeoHookean::volumetric_quotient(double a, double 
   return {log_quotient * s, dq_db * s + log_quotient * 0.125 * lame_.lambda / b};
 }
 
-Eigen::Matrix3d NeoHookean::discrete_stress(const Eigen::Matrix3d& E_a, const Eigen::Matrix3d& E_b) const {
+Eigen::Matrix3d NeoHookean::evaluate_discrete_stress(const Eigen::Matrix3d& E_a, const Eigen::Matrix3d& E_b,
+                                                      Matrix6d* tangent) const {
   const Eigen::Matrix3d C_a = right_cauchy_green(E_a), C_b = right_cauchy_green(E_b);
-  const double w_bar = volumetric_quotient(C_a.determinant(), C_b.determinant()).value;
-  return lame_.mu * Eigen::Matrix3d::Identity() + 2 * w_bar * mean_cofactor(C_a, C_b);  // (2.15)
-}
-
-Matrix6d NeoHookean::discrete_stress_tangent(const Eigen::Matrix3d& E_a, const Eigen::Matrix3d& E_b) const {
-  const Eigen::Matrix3d C_a = right_cauchy_green(E_a), C_b = right_cauchy_green(E_b);
-  const Eigen::Matrix3d C_m = 0.5 * (C_a + C_b), G = mean_cofactor(C_a, C_b), cof_b = cofactor(C_b);
+  const Eigen::Matrix3d G = mean_cofactor(C_a, C_b);
   const VolumetricQuotient w = volumetric_quotient(C_a.determinant(), C_b.determinant());
-  return voigt_matrix([&](const Eigen::Matrix3d& dE) -> Eigen::Matrix3d {
-    const Eigen::Matrix3d dC = 2 * dE;  // δC_b; δC_m = ½ δC_b
-    const double dI3 = cof_b.cwiseProduct(dC).sum();
-    const Eigen::Matrix3d dG = (2 * cofactor_derivative(C_m, dC) + cofactor_derivative(C_b, dC)) / 6;
-    return 2 * w.derivative_b * dI3 * G + 2 * w.value * dG;  // δ of (2.15)
-  });
+  if (tangent) {
+    const Eigen::Matrix3d C_m = 0.5 * (C_a + C_b), cof_b = cofactor(C_b);
+    *tangent = voigt_matrix([&](const Eigen::Matrix3d& dE) -> Eigen::Matrix3d {
+      const Eigen::Matrix3d dC = 2 * dE;  // δC_b; δC_m = ½ δC_b
+      const double dI3 = cof_b.cwiseProduct(dC).sum();
+      const Eigen::Matrix3d dG = (2 * cofactor_derivative(C_m, dC) + cofactor_derivative(C_b, dC)) / 6;
+      return 2 * w.derivative_b * dI3 * G + 2 * w.value * dG;  // δ of (2.15)
+    });
+  }
+  return lame_.mu * Eigen::Matrix3d::Identity() + 2 * w.value * G;  // (2.15)
 }
 
 }  // namespace stoss::fem

@@ -16,12 +16,11 @@ class NeoHookean final : public Material {
 
   /// NaN when det C ≤ 0 (an inverted point has no energy; Newton backtracks from it).
   double energy_density(const Eigen::Matrix3d& E) const override;
-  /// S = μ (1 − C⁻¹) + λ ln J C⁻¹ (2.14).
-  Eigen::Matrix3d stress(const Eigen::Matrix3d& E) const override;
-  Matrix6d tangent(const Eigen::Matrix3d& E) const override;
-  /// S_alg = μ 1 + 2 w̄′ Ḡ (2.15).
-  Eigen::Matrix3d discrete_stress(const Eigen::Matrix3d& E_a, const Eigen::Matrix3d& E_b) const override;
-  Matrix6d discrete_stress_tangent(const Eigen::Matrix3d& E_a, const Eigen::Matrix3d& E_b) const override;
+  /// S = μ (1 − C⁻¹) + λ ln J C⁻¹ (2.14), and its δS.
+  Eigen::Matrix3d evaluate_stress(const Eigen::Matrix3d& E, Matrix6d* tangent) const override;
+  /// S_alg = μ 1 + 2 w̄′ Ḡ (2.15), and δ of (2.15).
+  Eigen::Matrix3d evaluate_discrete_stress(const Eigen::Matrix3d& E_a, const Eigen::Matrix3d& E_b,
+                                           Matrix6d* tangent) const override;
 
  private:
   /// The volumetric part w(I₃) = −μ/2 ln I₃ + λ/8 (ln I₃)² and its divided difference w̄′ between I₃ᵃ, I₃ᵇ,

@@ -14,14 +14,11 @@ class SaintVenantKirchhoff final : public Material {
   double mu() const { return lame_.mu; }
 
   double energy_density(const Eigen::Matrix3d& E) const override;
-  Eigen::Matrix3d stress(const Eigen::Matrix3d& E) const override;
-  /// Constant: λ 1⊗1 + 2μ 𝕀.
-  Matrix6d tangent(const Eigen::Matrix3d&) const override { return tangent_; }
-  /// ½ (S(E_a) + S(E_b)) (2.6).
-  Eigen::Matrix3d discrete_stress(const Eigen::Matrix3d& E_a, const Eigen::Matrix3d& E_b) const override;
-  Matrix6d discrete_stress_tangent(const Eigen::Matrix3d&, const Eigen::Matrix3d&) const override {
-    return 0.5 * tangent_;
-  }
+  /// S = λ tr E 1 + 2μ E; the tangent is constant: λ 1⊗1 + 2μ 𝕀.
+  Eigen::Matrix3d evaluate_stress(const Eigen::Matrix3d& E, Matrix6d* tangent) const override;
+  /// ½ (S(E_a) + S(E_b)) (2.6), tangent ½ (λ 1⊗1 + 2μ 𝕀).
+  Eigen::Matrix3d evaluate_discrete_stress(const Eigen::Matrix3d& E_a, const Eigen::Matrix3d& E_b,
+                                           Matrix6d* tangent) const override;
 
  private:
   Lame lame_;
