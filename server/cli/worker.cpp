@@ -6,10 +6,7 @@
 #include <iostream>
 
 #include "server/http/options.hpp"
-#include "server/jobs/open_store.hpp"
-#include "server/jobs/periodic.hpp"
-#include "server/jobs/process_executor.hpp"
-#include "server/jobs/rescuer.hpp"
+#include "server/jobs/job_runner.hpp"
 
 namespace stoss::cli {
 
@@ -42,25 +39,14 @@ int run(const http::ServeOptions& options) {
   Signals signals;
   jobs::SystemClock clock;
   const jobs::StoreLocation location = http::store_location(options);
-  const std::unique_ptr<jobs::JobStore> store = jobs::open_store(location, clock);
-  std::filesystem::create_directories(options.data / "jobs");
-  jobs::JobFiles files(options.data);
-  jobs::ProcessExecutor executor(files, options.data, std::filesystem::read_symlink("/proc/self/exe"),
-                                 {options.job_timeout, options.job_memory});
-  jobs::WorkerPool pool(*store, executor, jobs::pool_options_for(location, options.pool));
-  const auto subscription =
-      store->subscribe({[&pool] { pool.notify(); }, [&pool](const jobs::JobId& id) { pool.cancel(id); }});
-  jobs::Rescuer rescuer(*store, clock, options.max_attempts);
-  jobs::Periodic rescuing("rescuer", std::chrono::milliseconds(options.pool.renew_every), [&] {
-    if (rescuer.run_once().requeued > 0) pool.notify();
-  });
-  pool.start();
-  std::cout << "stoss worker: " << pool.name() << " running " << options.pool.workers << " workers (store "
-            << location.describe() << ", data " << options.data.string() << ")" << std::endl;
+  jobs::JobRunner runner(http::job_runner_options(options, location), clock);
+  runner.start();
+  std::cout << "stoss worker: " << runner.pool().name() << " running " << options.pool.workers
+            << " workers (store " << location.describe() << ", data " << options.data.string() << ")"
+            << std::endl;
   const int received = signals.wait();
   std::cout << "stoss worker: " << (received == SIGINT ? "SIGINT" : "SIGTERM") << ", stopping" << std::endl;
-  rescuing.stop();
-  pool.stop();
+  runner.stop();
   std::cout << "stoss worker: stopped" << std::endl;
   return 0;
 }

@@ -135,6 +135,10 @@ jobs::StoreLocation store_location(const ServeOptions& options) {
   return options.store ? *options.store : jobs::default_store_location(options.data);
 }
 
+jobs::JobRunnerOptions job_runner_options(const ServeOptions& options, const jobs::StoreLocation& location) {
+  return {options.data, location, {options.job_timeout, options.job_memory}, options.pool, options.max_attempts};
+}
+
 std::string serve_usage() {
   return R"(usage: stoss serve [options]
 

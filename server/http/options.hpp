@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "server/http/limits.hpp"
+#include "server/jobs/job_runner.hpp"
 #include "server/jobs/open_store.hpp"
 #include "server/jobs/worker_pool.hpp"
 
@@ -53,5 +54,8 @@ std::string worker_usage();
 
 /// The store the options name: --store, or sqlite:DATA/jobs.db.
 jobs::StoreLocation store_location(const ServeOptions& options);
+
+/// What a process's job runner needs of the options (`stoss serve` and `stoss worker`).
+jobs::JobRunnerOptions job_runner_options(const ServeOptions& options, const jobs::StoreLocation& location);
 
 }  // namespace stoss::server::http

@@ -17,10 +17,7 @@
 
 #include "server/http/options.hpp"
 #include "server/http/routes.hpp"
-#include "server/jobs/process_executor.hpp"
-#include "server/jobs/periodic.hpp"
-#include "server/jobs/rescuer.hpp"
-#include "server/jobs/open_store.hpp"
+#include "server/jobs/job_runner.hpp"
 
 namespace stoss::server {
 
@@ -104,21 +101,10 @@ int run(const ServeOptions& options) {
   SignalWaiter signals;
   jobs::SystemClock clock;
   const jobs::StoreLocation location = store_location(options);
-  const std::unique_ptr<jobs::JobStore> opened = jobs::open_store(location, clock);
-  jobs::JobStore& store = *opened;
-  std::filesystem::create_directories(options.data / "jobs");
-  jobs::JobFiles files(options.data);
-  // Each job runs in a process of its own (this binary, `stoss run-job`): a job that crashes or runs
-  // over a limit fails alone.
-  jobs::ProcessExecutor executor(files, options.data, std::filesystem::read_symlink("/proc/self/exe"),
-                                 {options.job_timeout, options.job_memory});
-  jobs::WorkerPool pool(store, executor, jobs::pool_options_for(location, options.pool));
-  // Jobs queued, and cancels posted, through other processes.
-  const auto subscription =
-      store.subscribe({[&pool] { pool.notify(); }, [&pool](const jobs::JobId& id) { pool.cancel(id); }});
+  jobs::JobRunner runner(job_runner_options(options, location), clock);
   std::optional<BearerAuth> auth;
   if (options.token_file) auth = BearerAuth::from_file(*options.token_file);
-  App app{store, pool, files, options.limits, auth, {}};
+  App app{runner.store(), runner.pool(), runner.files(), options.limits, auth, {}};
 
   Server server;
   server.set_payload_max_length(options.limits.max_body_bytes);
@@ -139,19 +125,14 @@ int run(const ServeOptions& options) {
   const int port = bind_server(server, options.host, options.port);
   if (!server.raise_backlog(1024)) std::cerr << "stoss serve: cannot raise the listen backlog" << std::endl;
 
-  jobs::Rescuer rescuer(store, clock, options.max_attempts);
-  rescuer.run_once();  // jobs of a dead process whose lease already ran out go back to the queue first
-  jobs::Periodic rescuing("rescuer", std::chrono::milliseconds(options.pool.renew_every), [&] {
-    if (rescuer.run_once().requeued > 0) pool.notify();
-  });
   signals.start(server);
-  pool.start();
+  runner.start();
   std::cout << "stoss serve: listening on http://" << options.host << ":" << port << " (data "
             << options.data.string() << (options.store ? ", store " + location.describe() : std::string())
             << ", " << options.pool.workers << " workers)" << std::endl;
   server.listen_after_bind();
   signals.stop();
-  pool.stop();
+  runner.stop();
   std::cout << "stoss serve: stopped" << std::endl;
   return 0;
 }
