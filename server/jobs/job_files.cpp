@@ -23,6 +23,16 @@ void sync_to_disk(const std::filesystem::path& path) {
 
 }  // namespace
 
+void write_synced(const std::filesystem::path& path, std::string_view bytes) {
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.flush();
+    if (!out) throw std::system_error(EIO, std::generic_category(), "cannot write " + path.string());
+  }
+  sync_to_disk(path);
+}
+
 std::optional<std::filesystem::path> JobFiles::stored_mesh(const std::string& id) const {
   const bool hex = id.size() == 64 &&
                    std::all_of(id.begin(), id.end(), [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
@@ -58,14 +68,7 @@ void JobFiles::discard_partial(const JobId& id) const {
 }
 
 void JobFiles::write_study(const JobId& id, const std::string& text) const {
-  {
-    std::ofstream out(study_partial(id), std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out)
-      throw std::system_error(EIO, std::generic_category(), "cannot write " + study_partial(id).string());
-  }
-  sync_to_disk(study_partial(id));
+  write_synced(study_partial(id), text);
   std::filesystem::rename(study_partial(id), study(id));
   sync_to_disk(dir(id));
 }

@@ -6,12 +6,17 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "core/output/result_writer.hpp"
 #include "core/scene/scene.hpp"
 #include "server/jobs/id.hpp"
 
 namespace stoss::server::jobs {
+
+/// Writes `bytes` to `path` (replacing it) and fsyncs the file, so that a rename after it cannot expose
+/// a torn file. @throws std::system_error naming the path.
+void write_synced(const std::filesystem::path& path, std::string_view bytes);
 
 class JobFiles {
  public:

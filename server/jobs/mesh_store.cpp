@@ -1,13 +1,9 @@
 #include "server/jobs/mesh_store.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <fstream>
+#include <cstdio>
 #include <random>
-#include <system_error>
 
+#include "server/jobs/job_files.hpp"
 #include "server/jobs/sha256.hpp"
 
 namespace stoss::server::jobs {
@@ -27,20 +23,6 @@ std::filesystem::path temporary_name(const std::filesystem::path& directory, con
   char digits[17];
   std::snprintf(digits, sizeof digits, "%016llx", static_cast<unsigned long long>(random()));
   return directory / (".upload-" + std::string(digits) + "." + format);
-}
-
-void write_synced(const std::filesystem::path& path, std::string_view bytes) {
-  {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.flush();
-    if (!out) throw std::system_error(errno, std::generic_category(), "cannot write " + path.string());
-  }
-  const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd < 0) throw std::system_error(errno, std::generic_category(), "cannot open " + path.string());
-  const int status = ::fsync(fd);
-  ::close(fd);
-  if (status != 0) throw std::system_error(errno, std::generic_category(), "cannot sync " + path.string());
 }
 
 }  // namespace
