@@ -48,19 +48,9 @@ LiveServer::LiveServer(const std::filesystem::path& data, const std::vector<std:
   static std::atomic<int> counter{0};
   std::filesystem::create_directories(data);
   out_ = data / ("server-" + std::to_string(counter++) + ".log");
-  std::vector<std::string> args = {STOSS_BINARY, "serve", "--listen", "127.0.0.1:0", "--data", data.string()};
+  std::vector<std::string> args = {"serve", "--listen", "127.0.0.1:0", "--data", data.string()};
   args.insert(args.end(), extra_args.begin(), extra_args.end());
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, out_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  const int rc = posix_spawn(&pid_, STOSS_BINARY, &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) throw std::runtime_error("cannot start " + std::string(STOSS_BINARY));
+  pid_ = spawn_stoss(args, out_);
 
   const std::regex listening(R"(listening on http://127\.0\.0\.1:(\d+))");
   const bool up = eventually(
@@ -121,6 +111,23 @@ bool LiveServer::alive() const {
 
 std::string LiveServer::output() const {
   return read_text(out_);
+}
+
+pid_t spawn_stoss(const std::vector<std::string>& arguments, const std::filesystem::path& log) {
+  std::vector<std::string> args = {STOSS_BINARY};
+  args.insert(args.end(), arguments.begin(), arguments.end());
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, STOSS_BINARY, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) throw std::runtime_error("cannot start " + std::string(STOSS_BINARY) + " " + arguments.front());
+  return pid;
 }
 
 CommandResult run_stoss(const std::vector<std::string>& arguments, std::chrono::milliseconds deadline,

@@ -64,6 +64,10 @@ struct CommandResult {
   std::string err;
 };
 
+/// Starts the `stoss` binary with `args` in the background, stdout and stderr into `log` (truncated).
+/// @throws std::runtime_error when it cannot be started.
+pid_t spawn_stoss(const std::vector<std::string>& args, const std::filesystem::path& log);
+
 /// Runs the `stoss` binary with `args`, waits at most `deadline` (then SIGKILL, signal 9 reported).
 CommandResult run_stoss(const std::vector<std::string>& args,
                         std::chrono::milliseconds deadline = std::chrono::seconds(60),

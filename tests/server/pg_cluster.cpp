@@ -1,9 +1,7 @@
 #include "tests/server/pg_cluster.hpp"
 
-#include <fcntl.h>
 #include <netinet/in.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -20,8 +18,6 @@
 #include "server/jobs/pg_store.hpp"
 #include "server/jobs/sqlite_store.hpp"
 #include "tests/server/live_server.hpp"
-
-extern char** environ;
 
 namespace stoss::test {
 
@@ -150,18 +146,9 @@ LiveWorker::LiveWorker(const std::string& store, const std::filesystem::path& da
   static std::atomic<int> counter{0};
   std::filesystem::create_directories(data);
   out_ = data / ("worker-" + std::to_string(counter++) + ".log");
-  std::vector<std::string> args = {STOSS_BINARY, "worker", "--store", store, "--data", data.string()};
+  std::vector<std::string> args = {"worker", "--store", store, "--data", data.string()};
   args.insert(args.end(), extra.begin(), extra.end());
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, out_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  const int rc = posix_spawn(&pid_, STOSS_BINARY, &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) throw std::runtime_error("cannot start stoss worker");
+  pid_ = spawn_stoss(args, out_);
   if (!eventually([&] { return read_text(out_).find(" running ") != std::string::npos; },
                   std::chrono::seconds(30))) {
     kill9();
