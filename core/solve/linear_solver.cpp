@@ -100,20 +100,11 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) const {
   if (method_ == LinearMethod::petsc_gamg) return solve_amg(b);
   const auto t0 = std::chrono::steady_clock::now();
   if (method_ == LinearMethod::iterative) {
-    Eigen::VectorXd x = krylov_->bicgstab.solve(b);
-    ++krylov_solves_;
-    krylov_iterations_ += krylov_->bicgstab.iterations();
-    krylov_max_iterations_ = std::max(krylov_max_iterations_, int(krylov_->bicgstab.iterations()));
-    if (krylov_->bicgstab.info() != Eigen::Success || !x.allFinite()) {
-      // No convergence (an indefinite or badly scaled system, e.g. contact multipliers): solve this
-      // matrix directly rather than hand Newton a poor increment.
-      ++krylov_fallbacks_;
-      if (!krylov_->lu_ready) {
-        impl_->lu.compute(krylov_->A);
-        krylov_->lu_ready = true;
-      }
-      x = impl_->lu.solve(b);
-    }
+    // No convergence (an indefinite or badly scaled system, e.g. contact multipliers): this matrix is
+    // solved directly rather than handing Newton a poor increment.
+    Eigen::VectorXd x = krylov_->bicgstab.solve(b);  // before asking for its iterations and info
+    x = checked_krylov(std::move(x), int(krylov_->bicgstab.iterations()), krylov_->bicgstab.info() == Eigen::Success,
+                       [this] { return krylov_->A; }, krylov_->lu_ready, b);
     seconds_ += seconds_since(t0);
     return x;
   }
@@ -138,19 +129,25 @@ Eigen::VectorXd LinearSolver::solve_amg(const Eigen::VectorXd& b) const {
   const auto t0 = std::chrono::steady_clock::now();
   Eigen::VectorXd x;
   const KrylovOutcome outcome = amg_->solver->solve(b, x);
-  ++krylov_solves_;
-  krylov_iterations_ += outcome.iterations;
-  krylov_max_iterations_ = std::max(krylov_max_iterations_, outcome.iterations);
-  if (!outcome.converged || !x.allFinite()) {
-    ++krylov_fallbacks_;  // Newton gets a solution of this matrix either way
-    if (!amg_->lu_ready) {
-      impl_->lu.compute(amg_->solver->matrix());
-      amg_->lu_ready = true;
-    }
-    x = impl_->lu.solve(b);
-  }
+  x = checked_krylov(std::move(x), outcome.iterations, outcome.converged, [this] { return amg_->solver->matrix(); },
+                     amg_->lu_ready, b);
   seconds_ += seconds_since(t0);
   return x;
+}
+
+Eigen::VectorXd LinearSolver::checked_krylov(Eigen::VectorXd x, int iterations, bool converged,
+                                             const std::function<SparseMatrix()>& matrix, bool& lu_ready,
+                                             const Eigen::VectorXd& b) const {
+  ++krylov_solves_;
+  krylov_iterations_ += iterations;
+  krylov_max_iterations_ = std::max(krylov_max_iterations_, iterations);
+  if (converged && x.allFinite()) return x;
+  ++krylov_fallbacks_;  // Newton gets a solution of this matrix either way
+  if (!lu_ready) {
+    impl_->lu.compute(matrix());
+    lu_ready = true;
+  }
+  return impl_->lu.solve(b);
 }
 
 void LinearSolver::set_krylov_tolerance(double relative) {

@@ -3,6 +3,7 @@
 /// Krylov method (iterative, Eigen's BiCGSTAB), or GMRES with PETSc's algebraic multigrid (petsc_gamg).
 
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -67,6 +68,12 @@ class LinearSolver {
   struct Amg;
   bool factorize_amg(const BlockPattern& A);
   Eigen::VectorXd solve_amg(const Eigen::VectorXd& b) const;
+  /// Counts a Krylov solve of A x = b that took `iterations`; when it did not converge (or x is not
+  /// finite), solves A directly instead, factorising A (asked of `matrix` only then) once, `lu_ready`,
+  /// for the solves that follow.
+  Eigen::VectorXd checked_krylov(Eigen::VectorXd x, int iterations, bool converged,
+                                 const std::function<SparseMatrix()>& matrix, bool& lu_ready,
+                                 const Eigen::VectorXd& b) const;
   std::unique_ptr<Impl> impl_;
   std::unique_ptr<Krylov> krylov_;
   std::unique_ptr<Amg> amg_;
