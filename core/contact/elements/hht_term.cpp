@@ -17,7 +17,7 @@ void HhtContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z
       const int o = element_offset(static_cast<int>(k));
       const TensorPatch& patch = surfaces_.patches[e.face];
       scatter_patch(e, o,
-                    patch_hht_element(local_patch(patch), local_positions(slave_node(e), patch, z), z[o], e.f3,
+                    patch_hht_element(local_patch_of(e.face), local_positions(slave_node(e), patch, z), z[o], e.f3,
                                       step.force_factor, step.rule.weight, e.xi),
                     R, K);  // (2.11)
     }
@@ -41,7 +41,7 @@ void HhtContactTerm::end_step(const time::StepContext& step, const Eigen::Vector
       previous_force_.emplace_back(dofs, hht_element_force(x, e.lambda[0], e.xi));
       continue;
     }
-    const TensorPatch local = local_patch(surfaces_.patches[e.face]);
+    const TensorPatch& local = local_patch_of(e.face);
     const Eigen::VectorXd x = local_positions(slave_node(e), surfaces_.patches[e.face], z);
     const Projection p = patch_projection(x.head<3>(), local, x, e.xi);
     previous_force_.emplace_back(dofs, p.converged ? Eigen::VectorXd(e.lambda[0] * patch_gap_gradient(local, x, p.xi))

@@ -7,6 +7,11 @@
 
 namespace stoss::contact {
 
+MidpointContactTerm::MidpointContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair)
+    : LagrangeContactTerm(mesh, pair) {
+  for (const TensorPatch& patch : surfaces_.patches) local_patches_.push_back(local_patch(patch));
+}
+
 void MidpointContactTerm::scatter_patch(const ContactElement& e, int offset, const PatchNtsResult& r,
                                         Eigen::VectorXd& R, solve::BlockPattern* K) const {
   const std::vector<int> dofs = element_dofs(slave_node(e), surfaces_, e.face);
@@ -29,7 +34,7 @@ void MidpointContactTerm::add(const time::StepContext& step, const Eigen::Vector
       const int o = element_offset(static_cast<int>(k));
       const TensorPatch& patch = surfaces_.patches[e.face];
       const PatchNtsResult r =
-          patch_midpoint_element(local_patch(patch), local_positions(slave_node(e), patch, step.x_n),
+          patch_midpoint_element(local_patch_of(e.face), local_positions(slave_node(e), patch, step.x_n),
                                  local_positions(slave_node(e), patch, z), z[o], e.f3, step.force_factor, e.xi);  // (4.2)
       scatter_patch(e, o, r, R, K);
     }

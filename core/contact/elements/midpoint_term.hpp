@@ -3,6 +3,7 @@
 /// eqs 50–52): one multiplier per active element after x_{n+1} in z.
 
 #include <array>
+#include <vector>
 
 #include "core/contact/lagrange/lagrange_term.hpp"
 #include "core/contact/elements/patch_nts_element.hpp"
@@ -16,7 +17,7 @@ namespace stoss::contact {
 ///       measured (the rows it enters are).
 class MidpointContactTerm : public LagrangeContactTerm {
  public:
-  using LagrangeContactTerm::LagrangeContactTerm;
+  MidpointContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair);
   void add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
            solve::BlockPattern* K) const override;
   double auxiliary_residual_measure(const Eigen::VectorXd& R, const time::MeasureScales& s) const override;
@@ -28,6 +29,9 @@ class MidpointContactTerm : public LagrangeContactTerm {
   void read_auxiliaries(ContactElement& e, const Eigen::VectorXd& z, int offset) const override;
   /// (g_N(x_n) − f_3, 0, …): the analogue of g(π_n).
   Vector6 start_residual(const ContactElement& e, const Eigen::VectorXd& x_n) const override;
+
+  /// Face f's patch with its nodes renumbered for the element kernels (local_patch), made once.
+  const TensorPatch& local_patch_of(int face) const { return local_patches_[face]; }
 
   /// Adds one element's rows (Rx to its 15 dofs, Rl to its multiplier row at `offset`) and, if K is
   /// given, its 16 × 16 block [Kxx Kxl; Klx 0]. Result: MidpointResult or HhtElementResult.
@@ -48,6 +52,9 @@ class MidpointContactTerm : public LagrangeContactTerm {
     block.bottomLeftCorner<1, 15>() = r.Klx;
     K->scatter(e.block, block);
   }
+
+ private:
+  std::vector<TensorPatch> local_patches_;  ///< per master face, empty on the faceted surface
 };
 
 }  // namespace stoss::contact
