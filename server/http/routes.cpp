@@ -267,25 +267,26 @@ void get_result(App& app, const Request& req, Response& res) {
   stream_file(req, res, path, "application/x-hdf5");
 }
 
-void get_result_xdmf(App& app, const Request& req, Response& res) {
+/// One of a succeeded job's XDMF sidecars, `path` of its directory, as an attachment named by the file.
+void send_xdmf(App& app, const Request& req, Response& res,
+               std::filesystem::path (jobs::JobFiles::*path)(const jobs::JobId&) const) {
   const jobs::Job job = find_job(app, req);
   require_result_file(job);
-  auto text = read_file(app.files.xdmf(job.id));
+  const std::filesystem::path file = (app.files.*path)(job.id);
+  auto text = read_file(file);
   if (!text)
-    fail(500, "missing-result", "Result missing", "job " + job.id.str() + " succeeded but its XDMF is gone");
-  res.set_header("Content-Disposition", "attachment; filename=\"result.xdmf\"");
+    fail(500, "missing-result", "Result missing",
+         "job " + job.id.str() + " succeeded but its " + file.filename().string() + " is gone");
+  res.set_header("Content-Disposition", "attachment; filename=\"" + file.filename().string() + "\"");
   res.set_content(*text, "application/xml");
 }
 
+void get_result_xdmf(App& app, const Request& req, Response& res) {
+  send_xdmf(app, req, res, &jobs::JobFiles::xdmf);
+}
+
 void get_result_mesh_xdmf(App& app, const Request& req, Response& res) {
-  const jobs::Job job = find_job(app, req);
-  require_result_file(job);
-  auto text = read_file(app.files.xdmf_mesh(job.id));
-  if (!text)
-    fail(500, "missing-result", "Result missing",
-         "job " + job.id.str() + " succeeded but its result_mesh.xdmf is gone");
-  res.set_header("Content-Disposition", "attachment; filename=\"result_mesh.xdmf\"");
-  res.set_content(*text, "application/xml");
+  send_xdmf(app, req, res, &jobs::JobFiles::xdmf_mesh);
 }
 
 /// The `format` query parameter: `allowed[0]` when absent, 400 when not one of `allowed`.
