@@ -2,8 +2,12 @@
 /// @file One physical effect in the discrete equations of a step (docs/architecture.md, "Terms").
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <functional>
+#include <map>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/solve/block_pattern.hpp"
 
@@ -50,6 +54,30 @@ struct StepContext {
   /// The factor the scheme puts on every algorithmic force in the momentum rows of (2.3) (Scheme::
   /// force_factor): terms add force_factor · f_alg, so that they never multiply by h themselves.
   double force_factor = h;
+};
+
+/// What a term carries from one converged step to the next (active set, multipliers, friction history), as
+/// named flat arrays: what a checkpoint stores for the term (core/output/checkpoint.hpp) and gives back
+/// to it on resume.
+struct TermState {
+  std::map<std::string, std::vector<double>> reals;
+  std::map<std::string, std::vector<std::int64_t>> integers;
+
+  /// The array `name` with `size` entries. @throws std::invalid_argument naming the array and the size.
+  template <class T>
+  static const std::vector<T>& sized(const std::map<std::string, std::vector<T>>& arrays, const std::string& name,
+                                     size_t size) {
+    const auto it = arrays.find(name);
+    if (it == arrays.end()) throw std::invalid_argument("term state: array '" + name + "' is missing");
+    if (it->second.size() != size)
+      throw std::invalid_argument("term state: array '" + name + "' has " + std::to_string(it->second.size()) +
+                                  " entries, expected " + std::to_string(size));
+    return it->second;
+  }
+  const std::vector<double>& real(const std::string& name, size_t size) const { return sized(reals, name, size); }
+  const std::vector<std::int64_t>& integer(const std::string& name, size_t size) const {
+    return sized(integers, name, size);
+  }
 };
 
 /// Scales that make a term's rows and increments dimensionless (Integrator::residual_measure).
@@ -113,6 +141,13 @@ class Term {
                                   double& energy_jump) const {}
   /// After a converged step: commit history (friction slip, active sets).
   virtual void end_step(const StepContext& step, const Eigen::VectorXd& z) {}
+  /// Between two steps (after end_step): the history the next step needs (checkpoint). Empty for terms
+  /// that keep none (elasticity, gravity: everything they use is recomputed from x_n).
+  virtual TermState save_state() const { return {}; }
+  /// On resume, in place of the steps before: sets the history save_state gave after the step that ended
+  /// at positions `x` and velocities `v`, as if that step had just converged in this run.
+  /// @throws std::invalid_argument when `state` does not fit the term (TermState::real, integer).
+  virtual void restore_state(const TermState& state, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {}
 };
 
 }  // namespace stoss::time

@@ -51,6 +51,11 @@ class LagrangeContactTerm : public ContactTerm {
   void initialize_auxiliaries(const time::StepContext& step, Eigen::VectorXd& z) override;
   bool update_active_set(const time::StepContext& step, const Eigen::VectorXd& z) override;
   void end_step(const time::StepContext& step, const Eigen::VectorXd& z) override;
+  /// The active elements after the last converged step: slave, face, f3, d, ξ, λ (lagrange_state.cpp).
+  time::TermState save_state() const override;
+  /// Sets the elements and replays end_step at (x, v), so that a subclass rebuilds what it keeps of the
+  /// step (HHT: λ_n N_s(x_n)); the elements are then exactly the saved ones (lagrange_state.cpp).
+  void restore_state(const time::TermState& state, const Eigen::VectorXd& x, const Eigen::VectorXd& v) override;
 
   const std::vector<ContactElement>& elements() const { return elements_; }
 

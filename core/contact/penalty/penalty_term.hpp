@@ -58,6 +58,9 @@ class PenaltyContactTerm : public ContactTerm {
            solve::BlockPattern* K) const override;
   int structure_generation() const override { return generation_; }
   void end_step(const time::StepContext& step, const Eigen::VectorXd& z) override;
+  /// Per slave node: face, ξ, friction history, gap offset; the Coulomb work so far (penalty_state.cpp).
+  time::TermState save_state() const override;
+  void restore_state(const time::TermState& state, const Eigen::VectorXd& x, const Eigen::VectorXd& v) override;
 
   double dissipated_energy() const override { return dissipated_; }
 
