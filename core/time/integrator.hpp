@@ -36,6 +36,10 @@ class Integrator {
   /// over the solves and lists every residual. `log` receives solver events.
   solve::NewtonResult step(State& s, double h, const LogFunction& log = {});
 
+  /// The next step starts with a fresh Jacobian pattern and factorisation, as a new integrator would: after a
+  /// checkpoint, the run that goes on and a run resumed from it solve the next step alike.
+  void forget_factorization() { auxiliary_layout_ = -1; }
+
   /// Σ of the terms' potential energies at x.
   double potential_energy(const Eigen::VectorXd& x) const;
   const Scheme& scheme() const { return *scheme_; }
