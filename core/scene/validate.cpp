@@ -312,8 +312,10 @@ void check_solver(json& s, const std::string& p, Checker& c) {
 }
 
 void check_output(json& o, const std::string& p, Checker& c) {
-  if (!object_with(o, p, {"every"}, c)) return;
+  if (!object_with(o, p, {"every", "checkpoint_seconds", "checkpoint_every"}, c)) return;
   integer_field(o, "every", p, Presence::or_default(1), at_least(1), c);
+  number_field(o, "checkpoint_seconds", p, Presence::or_default(60.0), between(0, 1e7, false, true, "0, 1e7"), c);
+  integer_field(o, "checkpoint_every", p, Presence::may(), at_least(1), c);
 }
 
 /// Rules between a contact pair and the time scheme (after both were checked and defaulted), from
