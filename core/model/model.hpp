@@ -107,6 +107,8 @@ struct SolverSpec {
 
 struct OutputSpec {
   int every = 1;                       ///< a frame every this many steps (plus the first and last)
+  double checkpoint_seconds = 60;      ///< a checkpoint this often (wall time) when checkpoint_every is 0
+  int checkpoint_every = 0;            ///< a checkpoint every this many steps; 0: by checkpoint_seconds
   /// Whether step `step` of `steps` writes a frame: step 0, every `every`-th step and the last.
   bool frame_due(int step, int steps) const { return step % std::max(every, 1) == 0 || step == steps; }
   /// Frames a run of `steps` steps writes (frame_due counted).

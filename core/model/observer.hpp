@@ -42,6 +42,7 @@ struct Frame {
 struct Summary {
   bool completed = false;  ///< false when canceled or failed
   int steps = 0;           ///< converged steps
+  int resumed_from_step = 0;  ///< the checkpoint's step when the run went on from one (0: from the start)
   double end_time = 0;
   double initial_energy = 0;
   double energy_drift = 0;            ///< max over steps |H_n − H_0| / |H_0|

@@ -122,7 +122,8 @@ model::Model build_model(const json& scene, const MeshFiles& mesh_files) {
   m.time = time_spec(scene["time"]);
   m.solver = {scene["solver"]["tolerance"].get<double>(), scene["solver"]["max_iterations"].get<int>(),
               scene["solver"]["linear"].get<std::string>()};
-  m.output = {scene["output"]["every"].get<int>()};
+  const json& output = scene["output"];
+  m.output = {output["every"].get<int>(), output.value("checkpoint_seconds", 60.0), output.value("checkpoint_every", 0)};
   m.effects = model::resolve_effects(m);
   return m;
 }
