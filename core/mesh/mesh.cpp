@@ -1,6 +1,7 @@
 #include "core/mesh/mesh.hpp"
 
 #include <algorithm>
+#include <set>
 #include <stdexcept>
 
 namespace stoss::mesh {
@@ -48,6 +49,28 @@ const std::vector<Quad>& Mesh::surface(const std::string& body_slash_surface) co
   if (it == surfaces.end())
     throw std::out_of_range("body '" + bodies[b].name + "' has no surface '" + body_slash_surface.substr(slash + 1) + "'");
   return it->second;
+}
+
+std::string Mesh::add_surface_union(const std::vector<std::string>& body_slash_surfaces) {
+  if (body_slash_surfaces.empty()) throw std::invalid_argument("a surface union needs at least one surface");
+  if (body_slash_surfaces.size() == 1) return body_slash_surfaces.front();
+  const std::string body_name = body_slash_surfaces.front().substr(0, body_slash_surfaces.front().find('/'));
+  std::string name;
+  std::vector<Quad> faces;
+  std::set<std::array<int, 4>> seen;
+  for (const std::string& ref : body_slash_surfaces) {
+    if (ref.substr(0, ref.find('/')) != body_name)
+      throw std::invalid_argument("surfaces of one union must belong to one body: " + ref + " is not on body '" +
+                                  body_name + "'");
+    name += (name.empty() ? "" : "+") + ref.substr(ref.find('/') + 1);
+    for (const Quad& q : surface(ref)) {
+      std::array<int, 4> key = q;
+      std::sort(key.begin(), key.end());
+      if (seen.insert(key).second) faces.push_back(q);
+    }
+  }
+  bodies[find_body(body_name)].surfaces[name] = std::move(faces);
+  return body_name + "/" + name;
 }
 
 std::vector<int> Mesh::surface_nodes(const std::string& body_slash_surface) const {

@@ -43,6 +43,11 @@ struct Mesh {
   int find_body(const std::string& name) const;
   /// Surface "body/surface"; throws std::out_of_range naming what is missing.
   const std::vector<Quad>& surface(const std::string& body_slash_surface) const;
+  /// Adds the union of surfaces `body_slash_surfaces` (all "body/…" of one body) to that body as one surface
+  /// named "body/a+b+…" and returns the name: faces in list order, a face named twice (same nodes) kept
+  /// once. A single name is returned as it is. '+' is not allowed in surface names, so the union's name
+  /// cannot clash with a named surface. Throws std::out_of_range / std::invalid_argument naming what is wrong.
+  std::string add_surface_union(const std::vector<std::string>& body_slash_surfaces);
   /// Sorted unique node indices of a surface.
   std::vector<int> surface_nodes(const std::string& body_slash_surface) const;
   /// Stacked reference coordinates (3 per node).

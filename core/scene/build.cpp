@@ -48,10 +48,17 @@ model::Boundary boundary(const json& e) {
            fix.find('z') != std::string::npos}};
 }
 
-model::ContactPair contact_pair(const json& e) {
+/// A contact side as one "body/surface" name: the name itself, or for a list the union surface the mesh gets
+/// (mesh::Mesh::add_surface_union), which the contact code then sees like any named surface.
+std::string contact_side(const json& side, mesh::Mesh& mesh) {
+  if (side.is_string()) return side.get<std::string>();
+  return mesh.add_surface_union(side.get<std::vector<std::string>>());
+}
+
+model::ContactPair contact_pair(const json& e, mesh::Mesh& mesh) {
   model::ContactPair pair;
-  pair.slave = e["slave"].get<std::string>();
-  pair.master = e["master"].get<std::string>();
+  pair.slave = contact_side(e["slave"], mesh);
+  pair.master = contact_side(e["master"], mesh);
   pair.enforcement =
       e["enforcement"] == "penalty" ? model::Enforcement::penalty : model::Enforcement::lagrange;
   pair.friction = e["friction"].get<double>();
@@ -116,7 +123,7 @@ model::Model build_model(const json& scene, const MeshFiles& mesh_files) {
     m.bodies.push_back(body_spec(b));
   }
   for (const json& e : scene["boundary"]) m.boundary.push_back(boundary(e));
-  for (const json& e : scene["contact"]) m.contact.push_back(contact_pair(e));
+  for (const json& e : scene["contact"]) m.contact.push_back(contact_pair(e, m.mesh));
   const Eigen::Vector3d g = vector3(scene["gravity"]);
   if (g.norm() > 0) m.gravity = g;
   m.time = time_spec(scene["time"]);

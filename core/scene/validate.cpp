@@ -221,6 +221,29 @@ std::optional<std::string> check_surface_ref(const json& value, const std::strin
   return body;
 }
 
+/// A contact side: one "body/surface" reference, or a non-empty list of them on one body without repeats
+/// (their union, docs/scene.md "Contact"). Returns the body name when every reference was good.
+std::optional<std::string> check_surface_refs(const json& value, const std::string& p, const SurfaceIndex& index,
+                                              Checker& c) {
+  if (!value.is_array()) return check_surface_ref(value, p, index, c);
+  if (!non_empty_array(value, p, c)) return std::nullopt;
+  const size_t start = c.mark();
+  std::optional<std::string> body;
+  std::map<std::string, std::string> first_pointer;
+  for (size_t k = 0; k < value.size(); ++k) {
+    const std::string at = child(p, k);
+    const auto this_body = check_surface_ref(value[k], at, index, c);
+    if (!this_body) continue;
+    if (const auto [it, fresh] = first_pointer.try_emplace(value[k].get<std::string>(), at); !fresh)
+      c.fail(at, "must not repeat a surface, got " + shown(value[k]) + " (also " + it->second + ")");
+    if (!body) body = this_body;
+    else if (*this_body != *body)
+      c.fail(at, "must be a surface of body " + shown(*body) + " like " + child(p, 0) +
+                     " (the surfaces of one list belong to one body), got " + shown(value[k]));
+  }
+  return c.mark() == start ? body : std::nullopt;
+}
+
 void check_contact_pair(json& e, const std::string& p, const SurfaceIndex& index, Checker& c) {
   const std::initializer_list<std::string_view> fields{"slave",
                                                        "master",
@@ -236,8 +259,8 @@ void check_contact_pair(json& e, const std::string& p, const SurfaceIndex& index
   if (!object_with(e, p, fields, c)) return;
   const json* slave = member(e, "slave", p, Presence::must(), c);
   const json* master = member(e, "master", p, Presence::must(), c);
-  const auto slave_body = slave ? check_surface_ref(*slave, child(p, "slave"), index, c) : std::nullopt;
-  const auto master_body = master ? check_surface_ref(*master, child(p, "master"), index, c) : std::nullopt;
+  const auto slave_body = slave ? check_surface_refs(*slave, child(p, "slave"), index, c) : std::nullopt;
+  const auto master_body = master ? check_surface_refs(*master, child(p, "master"), index, c) : std::nullopt;
   if (slave_body && master_body && *slave_body == *master_body)
     c.fail(child(p, "master"), "must be on another body than slave, got " + shown(*master));
   const auto friction = number_field(e, "friction", p, Presence::or_default(0.0), at_least(0), c);
