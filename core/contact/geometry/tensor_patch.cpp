@@ -12,6 +12,15 @@ constexpr double bspline_factors[4][4] = {{1.0 / 48, -3.0 / 48, 3.0 / 48, -1.0 /
                                           {1.0 / 48, 3.0 / 48, 3.0 / 48, 1.0 / 48}};
 
 double second_derivative(const double* c, double t) { return 2 * c[2] + 6 * c[3] * t; }
+
+/// Node values of the slot values B_s = u_i v_j for per-direction derivative orders (du, dv).
+Eigen::VectorXd tensor_nodes(const TensorPatch& p, const Eigen::Vector2d& xi, int du, int dv) {
+  const int n = p.factors();
+  std::vector<double> B(n * n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) B[i + n * j] = factor(p.family, i, xi[0], du) * factor(p.family, j, xi[1], dv);
+  return as_vector(detail::to_nodes(p, B));
+}
 }  // namespace
 
 const double* factor_coefficients(PatchFamily family, int i) {
@@ -22,7 +31,8 @@ double factor(PatchFamily family, int i, double t, int derivative) {
   const double* c = factor_coefficients(family, i);
   if (derivative == 0) return polynomial(c, t);
   if (derivative == 1) return polynomial_slope(c, t);
-  return second_derivative(c, t);
+  if (derivative == 2) return second_derivative(c, t);
+  return 6 * c[3];
 }
 
 BasisCurvatures patch_curvatures(const TensorPatch& p, const Eigen::Vector2d& xi) {
@@ -50,6 +60,26 @@ BasisCurvatures patch_curvatures(const TensorPatch& p, const Eigen::Vector2d& xi
     }
   const auto nodes = [&p](const std::vector<double>& slots) { return as_vector(detail::to_nodes(p, slots)); };
   return {nodes(B11), nodes(B12), nodes(B22)};
+}
+
+BasisThirdDerivatives patch_third_derivatives(const TensorPatch& p, const Eigen::Vector2d& xi) {
+  if (p.pieces) {  // N_{,αβγ} = Σ J_δα J_εβ J_ζγ G_{,δεζ} on the piece that holds ξ, J = ∂s/∂ξ (2.6)
+    const ExtraordinaryPieces& e = *p.pieces;
+    const detail::PieceLocation l = detail::locate(e, xi);
+    const auto s = detail::to_piece(e, l, xi[0], xi[1]);
+    const BasisThirdDerivatives g = patch_third_derivatives(e.rings[l.ring - 1][l.square], {s[0], s[1]});
+    const Eigen::VectorXd* G[4] = {&g.N111, &g.N112, &g.N122, &g.N222};  // by the number of 2s
+    const Eigen::Matrix2d J = l.scale * detail::corner_rotation(e.corner);
+    const auto third = [&](int a, int b, int c) {
+      Eigen::VectorXd out = Eigen::VectorXd::Zero(g.N111.size());
+      for (int d = 0; d < 2; ++d)
+        for (int f = 0; f < 2; ++f)
+          for (int k = 0; k < 2; ++k) out += J(d, a) * J(f, b) * J(k, c) * *G[d + f + k];
+      return out;
+    };
+    return {third(0, 0, 0), third(0, 0, 1), third(0, 1, 1), third(1, 1, 1)};
+  }
+  return {tensor_nodes(p, xi, 3, 0), tensor_nodes(p, xi, 2, 1), tensor_nodes(p, xi, 1, 2), tensor_nodes(p, xi, 0, 3)};
 }
 
 Eigen::Vector3d combine_nodes(const TensorPatch& p, const Eigen::VectorXd& c, const Eigen::VectorXd& x) {

@@ -80,7 +80,12 @@ struct BasisCurvatures {
   Eigen::VectorXd N11, N12, N22;
 };
 
-/// Univariate factor i of `family` at t: value, first and second derivative.
+/// Third derivatives N_{K,111}, N_{K,112}, N_{K,122}, N_{K,222}.
+struct BasisThirdDerivatives {
+  Eigen::VectorXd N111, N112, N122, N222;
+};
+
+/// Univariate factor i of `family` at t: value, first, second and third derivative.
 double factor(PatchFamily family, int i, double t, int derivative);
 
 /// The polynomial coefficients (degree ≤ 3, ascending) of factor i of `family`.
@@ -297,6 +302,10 @@ inline Eigen::VectorXd as_vector(const std::vector<double>& v) {
 
 /// N_{K,11}, N_{K,12}, N_{K,22} at ξ.
 BasisCurvatures patch_curvatures(const TensorPatch& p, const Eigen::Vector2d& xi);
+
+/// N_{K,αβγ} at ξ (constant on a piece of degree ≤ 3 per direction; the friction tangent needs them,
+/// docs/smooth_master_surface.md §3.8).
+BasisThirdDerivatives patch_third_derivatives(const TensorPatch& p, const Eigen::Vector2d& xi);
 
 /// Σ_K c_K y_K for node values c and stacked positions x (3 per global node).
 Eigen::Vector3d combine_nodes(const TensorPatch& p, const Eigen::VectorXd& c, const Eigen::VectorXd& x);
