@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <cstdlib>
 #include <sstream>
 
@@ -13,6 +14,7 @@
 
 #include "core/contact/contact.hpp"
 #include "core/fem/assembly.hpp"
+#include "core/output/checkpoint.hpp"
 #include "core/time/integrator.hpp"
 #include "core/time/step_reduction.hpp"
 
@@ -323,9 +325,101 @@ model::Frame frame_of(const time::State& s, const Problem& p) {
   return f;
 }
 
+/// What a run reports, remembered for its checkpoints: series rows and frames go to the observer and, when
+/// the run keeps checkpoints, into the checkpoint (rows) and its directory (frames).
+class Recorder {
+ public:
+  Recorder(model::Observer& observer, output::CheckpointStore* store) : observer_(observer), store_(store) {}
+  void step(const model::StepRow& row) {
+    observer_.step(row);
+    if (store_) rows_.push_back(row);
+  }
+  void frame(int step, const model::Frame& frame) {
+    observer_.frame(frame);
+    if (!store_) return;
+    store_->write_frame(static_cast<int>(frame_steps_.size()), frame);
+    frame_steps_.push_back(step);
+  }
+  /// Gives the observer the rows and frames up to the checkpoint again, in the order the run gave them.
+  void replay(const output::Checkpoint& c) {
+    size_t k = 0;
+    for (const model::StepRow& row : c.rows) {
+      observer_.step(row);
+      for (; k < c.frame_steps.size() && c.frame_steps[k] == row.step; ++k)
+        observer_.frame(store_->read_frame(static_cast<int>(k)));
+    }
+    rows_ = c.rows;
+    frame_steps_ = c.frame_steps;
+  }
+  const std::vector<model::StepRow>& rows() const { return rows_; }
+  const std::vector<int>& frame_steps() const { return frame_steps_; }
+
+ private:
+  model::Observer& observer_;
+  output::CheckpointStore* store_;
+  std::vector<model::StepRow> rows_;
+  std::vector<int> frame_steps_;
+};
+
+/// When a run writes a checkpoint: after every checkpoint_every-th step, or once checkpoint_seconds of wall
+/// time passed since the last; never after the last step (the result has it all).
+class CheckpointSchedule {
+ public:
+  explicit CheckpointSchedule(const model::OutputSpec& output) : output_(output), last_(Clock::now()) {}
+  bool due(int step, int steps) const {
+    if (step >= steps) return false;
+    if (output_.checkpoint_every > 0) return step % output_.checkpoint_every == 0;
+    return seconds_since(last_) >= output_.checkpoint_seconds;
+  }
+  void written() { last_ = Clock::now(); }
+
+ private:
+  model::OutputSpec output_;
+  Clock::time_point last_;
+};
+
+/// The checkpoint to resume from, checked against the run: the same scene, step size and terms.
+output::Checkpoint load_checkpoint(const output::CheckpointStore& store, const Model& m,
+                                   const std::vector<time::Term*>& terms) {
+  output::Checkpoint c;
+  try {
+    c = store.read();
+  } catch (const std::exception& e) {
+    throw std::invalid_argument("cannot resume from " + store.state_file().string() + ": " + e.what());
+  }
+  const auto refuse = [&](const std::string& why) {
+    throw std::invalid_argument("cannot resume from " + store.state_file().string() + ": " + why);
+  };
+  if (c.scene != m.scene.dump()) refuse("it was written for another scene");
+  if (c.step_size != m.time.step) refuse("it was written with another time.step");
+  if (c.terms.size() != terms.size()) refuse("it holds " + std::to_string(c.terms.size()) + " terms, the run has " +
+                                             std::to_string(terms.size()));
+  for (size_t k = 0; k < terms.size(); ++k)
+    if (c.terms[k].first != terms[k]->name()) refuse("term " + std::to_string(k) + " is " + c.terms[k].first);
+  if (c.state.x.size() != m.dof_count() || c.state.v.size() != m.dof_count() || c.state.a.size() != m.dof_count())
+    refuse("its state does not have " + std::to_string(m.dof_count()) + " dofs");
+  if (c.rows.empty() || c.rows.back().step != c.state.step) refuse("its series does not end at its step");
+  return c;
+}
+
+/// The checkpoint of the run at the end of step s.step.
+output::Checkpoint checkpoint_of(const Model& m, const time::State& s, const std::vector<time::Term*>& terms,
+                                 const model::Summary& sum, const Recorder& recorder) {
+  output::Checkpoint c;
+  c.scene = m.scene.dump();
+  c.state = s;
+  c.step_size = m.time.step;
+  for (const time::Term* t : terms) c.terms.emplace_back(t->name(), t->save_state());
+  c.summary = sum;
+  c.rows = recorder.rows();
+  c.frame_steps = recorder.frame_steps();
+  return c;
+}
+
 }  // namespace
 
-model::Summary simulate(const Model& m, model::Observer& observer, const CancelFlag* cancel) {
+model::Summary simulate(const Model& m, model::Observer& observer, const CancelFlag* cancel,
+                        const Checkpoints& checkpoints) {
   const auto wall0 = Clock::now();
   Problem p = build_problem(m);
   std::vector<time::Term*> terms{p.elasticity.get()};
@@ -340,18 +434,35 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
   s.a = Eigen::VectorXd::Zero(s.x.size());
   integrator.initialize(s);
 
+  std::optional<output::CheckpointStore> store;
+  if (!checkpoints.directory.empty()) store.emplace(checkpoints.directory);
+  std::optional<output::Checkpoint> resumed;
+  if (store && checkpoints.resume && store->exists()) resumed = load_checkpoint(*store, m, terms);
+
   const model::SeriesLayout layout = series_layout(m);
   const int steps = m.time.steps();
   double output_seconds = 0;  // series rows, frames and the observer's calls
   auto t_out = Clock::now();
+  Recorder recorder(observer, store ? &*store : nullptr);
   observer.begin(m, layout);
   if (m.solver.linear != "direct") observer.log(linear_solver_line(m));
-  const Balance b0 = balance(p, s);
-  observer.step(step_row(s, b0, contact_row(p, nullptr), layout, nullptr, 0.0));
-  observer.frame(frame_of(s, p));
+  const Balance b0 = balance(p, s);  // the initial state, also when resuming: the drifts are against it
+  model::Summary sum;
+  if (resumed) {
+    recorder.replay(*resumed);
+    s = resumed->state;
+    for (size_t k = 0; k < terms.size(); ++k) terms[k]->restore_state(resumed->terms[k].second, s.x, s.v);
+    sum = resumed->summary;
+    sum.resumed_from_step = s.step;
+    observer.log("resumed from step " + std::to_string(s.step) + " (t = " + std::to_string(s.t) +
+                 ") of the checkpoint " + store->state_file().string() + ": computing steps " +
+                 std::to_string(s.step + 1) + " to " + std::to_string(steps));
+  } else {
+    recorder.step(step_row(s, b0, contact_row(p, nullptr), layout, nullptr, 0.0));
+    recorder.frame(0, frame_of(s, p));
+  }
   output_seconds += seconds_since(t_out);
 
-  model::Summary sum;
   sum.initial_energy = b0.total();
   auto finish = [&](bool completed) {
     sum.completed = completed;
@@ -378,7 +489,8 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
     return sum;
   };
   const auto log = [&](const std::string& line) { observer.log(line); };
-  for (int n = 1; n <= steps; ++n) {
+  CheckpointSchedule schedule(m.output);
+  for (int n = s.step + 1; n <= steps; ++n) {
     if (cancel && cancel->load()) return finish(false);
     const double h = std::min(m.time.step, m.time.end - s.t);
     const auto t0 = Clock::now();
@@ -400,8 +512,13 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
     sum.max_penetration = std::max(sum.max_penetration, c.max_penetration);
     sum.max_own_face_penetration = std::max(sum.max_own_face_penetration, c.own_face_penetration);
     sum.max_faceted_penetration = std::max(sum.max_faceted_penetration, c.faceted_penetration);
-    observer.step(step_row(s, b, c, layout, &r, seconds_since(t0)));
-    if (frame_due(m, n, steps)) observer.frame(frame_of(s, p));
+    recorder.step(step_row(s, b, c, layout, &r, seconds_since(t0)));
+    if (frame_due(m, n, steps)) recorder.frame(n, frame_of(s, p));
+    if (store && schedule.due(n, steps)) {
+      store->write(checkpoint_of(m, s, terms, sum, recorder));
+      integrator.forget_factorization();  // the next step as a run resumed from here computes it
+      schedule.written();
+    }
     output_seconds += seconds_since(t_out);
   }
   return finish(true);

@@ -2,6 +2,7 @@
 /// @file The one entry point of the core: run a model, report to an observer, stop when asked.
 
 #include <atomic>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 
@@ -19,8 +20,21 @@ class SolverError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Runs `model` from t = 0 to model.time.end. Throws SolverError when a step fails
+/// Checkpoints of a run (core/output/checkpoint.hpp, docs/results.md "Checkpoints").
+struct Checkpoints {
+  /// Where the run writes them: every model.output.checkpoint_every steps, or every checkpoint_seconds of
+  /// wall time; empty: the run writes none. Every checkpoint makes the next step start with a fresh
+  /// factorisation, so a run resumed from it computes what the run that went on computes.
+  std::filesystem::path directory;
+  /// Go on from the checkpoint in `directory` when there is one: the observer gets the series rows and
+  /// frames up to it again, a log line "resumed from step N", then the steps after N only.
+  bool resume = false;
+};
+
+/// Runs `model` from t = 0 (or from a checkpoint) to model.time.end. Throws SolverError when a step fails
 /// (after observer.end with completed = false). Returns with completed = false when canceled.
-model::Summary simulate(const model::Model& model, model::Observer& observer, const CancelFlag* cancel = nullptr);
+/// @throws std::invalid_argument when the checkpoint to resume from is of another scene or unreadable.
+model::Summary simulate(const model::Model& model, model::Observer& observer, const CancelFlag* cancel = nullptr,
+                        const Checkpoints& checkpoints = {});
 
 }  // namespace stoss
