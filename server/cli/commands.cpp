@@ -7,6 +7,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "core/output/checkpoint.hpp"
 #include "core/output/result_writer.hpp"
 #include "core/scene/scene.hpp"
 #include "core/simulate.hpp"
@@ -74,38 +75,84 @@ void precheck_scene_file(const std::string& path) {
 
 }  // namespace
 
+namespace {
+
+namespace fs = std::filesystem;
+
+/// DIR/checkpoint/run.json: what `stoss run --resume DIR` needs besides the checkpoint, the resolved scene
+/// and the directory its mesh files are read from.
+fs::path run_file(const fs::path& out_dir) {
+  return out_dir / output::checkpoint_directory_name / "run.json";
+}
+
+void write_run_file(const fs::path& out_dir, const model::Model& model, const std::string& scene_path) {
+  const fs::path path = run_file(out_dir);
+  fs::create_directories(path.parent_path());
+  const nlohmann::json run = {{"scene", model.scene},
+                              {"mesh_directory", fs::absolute(fs::path(scene_path)).parent_path().string()}};
+  const fs::path temporary = path.string() + ".tmp";
+  std::ofstream(temporary, std::ios::binary | std::ios::trunc) << run.dump();
+  fs::rename(temporary, path);
+}
+
+/// The model of the run that wrote DIR's checkpoint. @throws std::invalid_argument when DIR has none.
+model::Model resumed_model(const fs::path& out_dir) {
+  std::ifstream in(run_file(out_dir), std::ios::binary);
+  if (!in)
+    throw std::invalid_argument(out_dir.string() + " holds no checkpoint of stoss run (" + run_file(out_dir).string() +
+                                " is missing)");
+  const nlohmann::json run = nlohmann::json::parse(in);
+  return scene::load_resolved(run.at("scene"), {fs::path(run.at("mesh_directory").get<std::string>()), {}});
+}
+
+}  // namespace
+
 int run_command(const std::vector<std::string>& args) {
   constexpr const char* text =
-      "stoss run SCENE.json [-o DIR]\n"
+      "stoss run SCENE.json [-o DIR] | stoss run --resume DIR\n"
       "  simulates the scene; writes DIR/result.h5 and DIR/result.xdmf (DIR defaults to out/, which must\n"
-      "  then be absent or empty: pass -o DIR to write into, or over, an existing directory).\n"
+      "  then be absent or empty: pass -o DIR to write into, or over, an existing directory). While it runs\n"
+      "  it keeps a checkpoint in DIR/checkpoint/ (every output.checkpoint_seconds, or checkpoint_every steps);\n"
+      "  --resume DIR goes on from it after a crash and writes the result the run would have written.\n"
       "  exit 0 success, 1 solver failure, 2 invalid scene or command line";
   if (wants_help(args)) {
     std::cout << "usage: " << text << "\n";
     return success;
   }
-  std::string scene_path, out_dir = "out";
+  std::string scene_path, out_dir = "out", resume_dir;
   bool out_given = false;
   for (size_t i = 0; i < args.size(); ++i) {
     if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size()) out_dir = args[++i], out_given = true;
+    else if (args[i] == "--resume" && i + 1 < args.size()) resume_dir = args[++i];
     else if (scene_path.empty() && args[i].rfind("-", 0) != 0) scene_path = args[i];
     else return usage(text);
   }
-  if (scene_path.empty()) return usage(text);
+  const bool resume = !resume_dir.empty();
+  if (resume == !scene_path.empty() || (resume && out_given)) return usage(text);
+  if (resume) out_dir = resume_dir;
   std::error_code error;
-  if (!out_given && std::filesystem::exists(out_dir, error) &&
+  if (!resume && !out_given && std::filesystem::exists(out_dir, error) &&
       !(std::filesystem::is_directory(out_dir, error) && std::filesystem::is_empty(out_dir, error))) {
     std::cerr << "stoss run: " << out_dir << "/ exists and is not empty; nothing was overwritten. Pass -o "
               << out_dir << " to overwrite it, or -o DIR for another directory.\n";
     return invalid_scene;
   }
+  const fs::path checkpoint_dir = fs::path(out_dir) / output::checkpoint_directory_name;
   try {
-    precheck_scene_file(scene_path);
-    const model::Model model = scene::load_file(scene_path);
+    model::Model model;
+    if (resume) {
+      model = resumed_model(out_dir);
+    } else {
+      precheck_scene_file(scene_path);
+      model = scene::load_file(scene_path);
+      fs::remove_all(checkpoint_dir, error);  // a checkpoint of an earlier run in DIR
+      write_run_file(out_dir, model, scene_path);
+    }
     output::ResultWriter writer(out_dir);
     ProgressObserver progress;
     model::ObserverList observers({&writer, &progress});
-    const model::Summary summary = simulate(model, observers);
+    const model::Summary summary = simulate(model, observers, nullptr, {checkpoint_dir, true});
+    fs::remove_all(checkpoint_dir, error);  // result.h5 has it all
     print_summary(model, summary);
     std::printf("result: %s/result.h5\n", out_dir.c_str());
     return success;
@@ -113,11 +160,15 @@ int run_command(const std::vector<std::string>& args) {
     print_scene_error(e);
     return invalid_scene;
   } catch (const std::invalid_argument& e) {
-    std::cerr << "invalid scene: " << e.what() << "\n";
+    std::cerr << (resume ? "stoss run --resume: " : "invalid scene: ") << e.what() << "\n";
     return invalid_scene;
   } catch (const nlohmann::json::exception& e) {  // a scene value the core could not take
     std::cerr << "invalid scene: " << e.what() << "\n";
     return invalid_scene;
+  } catch (const SolverError& e) {
+    fs::remove_all(checkpoint_dir, error);  // the same step would fail again
+    std::cerr << "solver failure: " << e.what() << "\n";
+    return solver_failure;
   } catch (const std::exception& e) {
     std::cerr << "solver failure: " << e.what() << "\n";
     return solver_failure;

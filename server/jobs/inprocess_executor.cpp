@@ -66,7 +66,13 @@ Outcome InProcessExecutor::simulate_job(const Job& job, const model::Model& mode
     ProgressObserver reporter(progress, clock_, progress_interval_);
     LogObserver logger(log);
     model::ObserverList observers({&writer, &reporter, &logger, &series});
-    summary = stoss::simulate(model, observers, &cancel);
+    summary = stoss::simulate(model, observers, &cancel, {files_.checkpoint(job.id), true});
+  } catch (const SolverError& e) {
+    std::error_code ignored;
+    std::filesystem::remove_all(files_.checkpoint(job.id), ignored);  // the same step would fail again
+    if (!series.summary()) throw;
+    files_.discard_partial(job.id);
+    return failed(log, e.what(), job_summary(*series.summary(), model, series));
   } catch (const std::exception& e) {
     if (!series.summary()) throw;
     // A step failed: the series and summary up to the last completed step stay readable.
@@ -76,6 +82,7 @@ Outcome InProcessExecutor::simulate_job(const Job& job, const model::Model& mode
   if (summary->completed) {
     std::error_code ignored;
     std::filesystem::remove(files_.dir(job.id) / partial_series_file, ignored);  // result.h5 has it all
+    std::filesystem::remove_all(files_.checkpoint(job.id), ignored);
     return {Status::succeeded, job_summary(*summary, model, series), std::nullopt};
   }
   files_.discard_partial(job.id);

@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/output/checkpoint.hpp"
 #include "core/output/result_writer.hpp"
 #include "core/scene/scene.hpp"
 #include "server/jobs/id.hpp"
@@ -30,6 +31,9 @@ class JobFiles {
   /// result.h5.partial and renames it when the run completed, to result.incomplete.h5 otherwise).
   std::filesystem::path result(const JobId& id) const { return dir(id) / output::result_file_name; }
   std::filesystem::path xdmf(const JobId& id) const { return dir(id) / output::xdmf_file_name; }
+  /// The run's checkpoints (core/output/checkpoint.hpp): kept across attempts, so that a retried attempt goes
+  /// on from the last one; removed once the job succeeded or failed in the solver.
+  std::filesystem::path checkpoint(const JobId& id) const { return dir(id) / output::checkpoint_directory_name; }
   std::filesystem::path xdmf_mesh(const JobId& id) const { return dir(id) / output::xdmf_mesh_file_name; }
 
   /// DIR/meshes: the mesh files posted to /v1/meshes, named <sha256 of the bytes>.msh or .inp; written once
@@ -44,7 +48,8 @@ class JobFiles {
   std::filesystem::path study(const JobId& id) const { return dir(id) / "study.json"; }
   std::filesystem::path study_partial(const JobId& id) const { return dir(id) / "study.json.partial"; }
 
-  /// Creates the job's directory and removes what an interrupted attempt left behind (results, not the log).
+  /// Creates the job's directory and removes what an interrupted attempt left behind (results; not the log,
+  /// not the checkpoint).
   void prepare_attempt(const JobId& id) const;
   /// Removes what a canceled or failed run left (result.h5.partial, result.incomplete.h5,
   /// study.json.partial): never served.
