@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 
 #include "../core/recording_observer.hpp"
 #include "core/scene/scene.hpp"
@@ -18,31 +19,29 @@ namespace {
 
 using nlohmann::json;
 
-/// A 4×4×2 box and a 2×2×2 block above it. `sliding`: the box clamped at its base, gravity, the block
-/// put down on the top and sliding at speed 3 over the top–xmax edge and down its side; otherwise both
-/// free, the block thrown at the edge obliquely, spinning.
+/// `sliding`: api/examples/block_over_edge.json (a 4×4×2 box clamped at its base, gravity, a 2×2×2 block put
+/// down on the top and sliding at speed 3 over the top–xmax edge and down its side) with `contact`.
+/// Otherwise the same box and block free, the block thrown at the edge obliquely, spinning.
 json block_at_edge(const json& contact, bool sliding) {
-  const json material = {{"youngs_modulus", 400}, {"poisson_ratio", 0.3}, {"density", 1}};
-  const json block_min = sliding ? json{1.3, 0.8, 1.005} : json{2.02, 0.8, 1.03};
-  const json block_max = sliding ? json{1.7, 1.2, 1.405} : json{2.42, 1.2, 1.43};
-  json scene = {
-      {"format", "stoss-scene/1"},
-      {"bodies",
-       {{{"name", "box"},
-         {"mesh", {{"box", {{"min", {0, 0, 0}}, {"max", {2, 2, 1}}, {"divisions", {4, 4, 2}}}}}},
-         {"material", material}},
-        {{"name", "block"},
-         {"mesh", {{"box", {{"min", block_min}, {"max", block_max}, {"divisions", {2, 2, 2}}}}}},
-         {"material", material},
-         {"initial_velocity", sliding ? json{3.0, 0.1, 0} : json{-1.0, 0.1, -1.6}},
-         {"initial_angular_velocity", sliding ? json{0, 0, 0} : json{0, 0.5, 0}}}}},
-      {"contact", contact},
-      {"time", {{"scheme", "energy_momentum"}, {"step", 0.005}, {"end", sliding ? 0.5 : 0.3}}}};
   if (sliding) {
-    scene["gravity"] = {0, 0, -10};
-    scene["boundary"] = json::array({{{"surface", "box/bottom"}}});
+    std::ifstream in(std::string(STOSS_SOURCE_DIR) + "/api/examples/block_over_edge.json");
+    json scene = json::parse(in);
+    scene["contact"] = contact;
+    return scene;
   }
-  return scene;
+  const json material = {{"youngs_modulus", 400}, {"poisson_ratio", 0.3}, {"density", 1}};
+  return {{"format", "stoss-scene/1"},
+          {"bodies",
+           {{{"name", "box"},
+             {"mesh", {{"box", {{"min", {0, 0, 0}}, {"max", {2, 2, 1}}, {"divisions", {4, 4, 2}}}}}},
+             {"material", material}},
+            {{"name", "block"},
+             {"mesh", {{"box", {{"min", {2.02, 0.8, 1.03}}, {"max", {2.42, 1.2, 1.43}}, {"divisions", {2, 2, 2}}}}}},
+             {"material", material},
+             {"initial_velocity", {-1.0, 0.1, -1.6}},
+             {"initial_angular_velocity", {0, 0.5, 0}}}}},
+          {"contact", contact},
+          {"time", {{"scheme", "energy_momentum"}, {"step", 0.005}, {"end", 0.3}}}};
 }
 
 json pair(const json& master, const std::string& surface) {
@@ -93,6 +92,9 @@ TEST(SurfaceEdge, ABlockThrownAtTheEdgeOfTopAndXmaxKeepsEnergyAndMomentaAndProje
 }
 
 TEST(SurfaceEdge, ABlockSlidingOverTheEdgeOfTopAndXmaxKeepsEnergyAndProjectsEveryNode) {
+  const model::Model example = scene::load_file(std::string(STOSS_SOURCE_DIR) + "/api/examples/block_over_edge.json");
+  EXPECT_EQ(example.contact.at(0).master, "box/top+xmax");
+  EXPECT_EQ(example.contact.at(0).master_surface, model::MasterSurface::smooth);
   const EdgeRun smooth = run(json::array({pair({"box/top", "box/xmax"}, "smooth")}), true);
   print("sliding, [top, xmax] smooth", smooth);
   EXPECT_GE(smooth.max_active, 3);
