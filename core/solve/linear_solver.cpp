@@ -27,6 +27,17 @@ void keep_large_blocks_in_heap() {
   });
 }
 
+/// METIS orders the LU's unknowns (UMFPACK_ORDERING_METIS, below), and Debian's METIS draws its random
+/// numbers from the C library's rand(), one generator for the whole process, seeded at every call.
+/// Two runs ordering at once on two threads interleave their draws, get other orderings than alone and
+/// differ in round-off (tests/physics/test_concurrent_runs.cpp). Orderings therefore take turns.
+namespace {
+std::mutex& ordering_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+}  // namespace
+
 struct LinearSolver::Impl {
   Impl() {
     keep_large_blocks_in_heap();
@@ -85,6 +96,7 @@ bool LinearSolver::factorize(const BlockPattern& A) {
     return ok;
   }
   if (analyzed_generation_ != A.generation()) {
+    std::lock_guard ordering(ordering_mutex());
     impl_->lu.analyzePattern(A.matrix());
     analyzed_generation_ = A.generation();
   }
@@ -144,6 +156,7 @@ Eigen::VectorXd LinearSolver::checked_krylov(Eigen::VectorXd x, int iterations, 
   if (converged && x.allFinite()) return x;
   ++krylov_fallbacks_;  // Newton gets a solution of this matrix either way
   if (!lu_ready) {
+    std::lock_guard ordering(ordering_mutex());
     impl_->lu.compute(matrix());
     lu_ready = true;
   }
