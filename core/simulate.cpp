@@ -362,14 +362,22 @@ class Recorder {
 };
 
 /// When a run writes a checkpoint: after every checkpoint_every-th step, or once checkpoint_seconds of wall
-/// time passed since the last; never after the last step (the result has it all).
+/// time passed since the last; never after the last step (the result has it all). A checkpoint makes the
+/// next step refactorise, so where checkpoints may land must not depend on wall time, or a run would
+/// compute other round-off when slower (beside another job): by wall time they land only on every
+/// wall_time_stride-th step, and the run refactorises after each of those whether one is written or not.
 class CheckpointSchedule {
  public:
+  static constexpr int wall_time_stride = 10;
   explicit CheckpointSchedule(const model::OutputSpec& output) : output_(output), last_(Clock::now()) {}
-  bool due(int step, int steps) const {
+  /// Whether a checkpoint may follow `step`: the run refactorises after it (step-driven, never wall time).
+  bool may_land(int step, int steps) const {
     if (step >= steps) return false;
-    if (output_.checkpoint_every > 0) return step % output_.checkpoint_every == 0;
-    return seconds_since(last_) >= output_.checkpoint_seconds;
+    return step % (output_.checkpoint_every > 0 ? output_.checkpoint_every : wall_time_stride) == 0;
+  }
+  bool due(int step, int steps) const {
+    if (!may_land(step, steps)) return false;
+    return output_.checkpoint_every > 0 || seconds_since(last_) >= output_.checkpoint_seconds;
   }
   void written() { last_ = Clock::now(); }
 
@@ -514,10 +522,12 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
     sum.max_faceted_penetration = std::max(sum.max_faceted_penetration, c.faceted_penetration);
     recorder.step(step_row(s, b, c, layout, &r, seconds_since(t0)));
     if (frame_due(m, n, steps)) recorder.frame(n, frame_of(s, p));
-    if (store && schedule.due(n, steps)) {
-      store->write(checkpoint_of(m, s, terms, sum, recorder));
+    if (store && schedule.may_land(n, steps)) {
+      if (schedule.due(n, steps)) {
+        store->write(checkpoint_of(m, s, terms, sum, recorder));
+        schedule.written();
+      }
       integrator.forget_factorization();  // the next step as a run resumed from here computes it
-      schedule.written();
     }
     output_seconds += seconds_since(t_out);
   }
