@@ -105,6 +105,19 @@ TEST(SurfaceEdge, ABlockSlidingOverTheEdgeOfTopAndXmaxKeepsEnergyAndProjectsEver
   EXPECT_LT(smooth.block_end_centre.z(), 1.0) << "and below the top";
 }
 
+// A penalty pair on the same union (frictionless: the penalty energy is part of H and conserved).
+TEST(SurfaceEdge, APenaltyPairSlidesOverTheEdgeOfTopAndXmaxKeepingEnergy) {
+  json penalty = pair({"box/top", "box/xmax"}, "smooth");
+  penalty["enforcement"] = "penalty";
+  const EdgeRun smooth = run(json::array({penalty}), true);
+  print("sliding, penalty, smooth", smooth);
+  EXPECT_GE(smooth.max_active, 3);
+  EXPECT_LT(smooth.summary.energy_drift, 1e-9);
+  EXPECT_EQ(smooth.max_unprojected, 0);
+  EXPECT_GT(smooth.block_end_centre.x(), 2.2);
+  EXPECT_LT(smooth.block_end_centre.z(), 1.0);
+}
+
 // The comparators: the faceted union has a blind spot at the convex edge, and two separate pairs (each
 // surface smooth on its own, with a rim at the edge) see slave nodes beyond each rim as unprojected.
 TEST(SurfaceEdge, FacetedAndTwoSeparatePairsHaveBlindSpotsAtTheEdge) {
