@@ -40,9 +40,6 @@ std::unique_ptr<ContactTerm> make_pair_term(const model::Model& m, const model::
   if (pair.enforcement != model::Enforcement::penalty) return make_contact_term(m.mesh, pair, m.time.scheme);
   if (const auto conflict = model::contact_scheme_conflict(m.time.scheme, pair.enforcement, pair.impact))
     throw std::invalid_argument(pair_label(pair) + conflict->field + " " + conflict->reason);
-  if (pair.master_surface == model::MasterSurface::smooth)
-    throw std::invalid_argument(pair_label(pair) + "master_surface \"smooth\" is implemented for lagrange pairs "
-                                                   "only so far; use \"faceted\" with penalty");
   return std::make_unique<PenaltyContactTerm>(m.mesh, pair, master_youngs_modulus(m, pair));
 }
 

@@ -11,8 +11,6 @@ namespace {
 
 /// Why pair p cannot use the smooth surface, or nothing.
 std::optional<std::string> smooth_unavailable(const model::Model& m, const model::ContactPair& p) {
-  if (p.enforcement != model::Enforcement::lagrange)
-    return "\"smooth\" is implemented for enforcement \"lagrange\" so far; use \"faceted\" with \"penalty\"";
   const contact::SmoothSurface s = contact::smooth_surface(m.mesh.surface(p.master));
   if (!s.ok()) return "master " + p.master + " cannot carry a smooth surface: " + s.problem;
   return std::nullopt;

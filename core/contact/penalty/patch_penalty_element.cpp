@@ -2,6 +2,7 @@
 
 #include "core/contact/geometry/patch_projection.hpp"
 #include "core/contact/geometry/patch_variations.hpp"
+#include "core/contact/penalty/rigid_free_increment.hpp"
 
 namespace stoss::contact {
 namespace {
@@ -9,8 +10,50 @@ namespace {
 using namespace penalty_law;
 constexpr int dynamic = Eigen::Dynamic;
 
+/// |q|² ≤ this × |d|²: the increment is rigid to round-off and the midpoint gradients stand (§3.9).
+constexpr double rigid_increment = 1e-16;
+
 Projection project(const TensorPatch& local, const Eigen::VectorXd& x, const Eigen::Vector2d& xi_start) {
   return patch_projection(x.head<3>(), local, x, xi_start);
+}
+
+/// The discrete gradients ∇̄g_N, ∇̄ξ^α of a closed step and the tangent of their correction
+/// (docs/smooth_master_surface.md (3.9)): ∇̄f = ∇f(x_m) + c_f q with c_f = (Δf − ∇f(x_m)·d)/(d·q), so
+/// that ∇̄f·d = Δf exactly and q (rigid_free_increment.hpp) adds no net force or torque.
+struct DiscreteGradients {
+  Eigen::VectorXd Ns;  ///< ∇̄g_N
+  PatchRows2 D;        ///< ∇̄ξ^α as rows
+  Eigen::MatrixXd correction_tangent;  ///< ∂(C q)/∂x_{n+1} at fixed tractions, C = t_N c_g + t_α c_ξ^α
+};
+
+/// What the correction needs of the step: the CPPs at both ends, the gradients at x_m and x_{n+1}
+/// and the tractions' Hessian terms ½ H d (t_N ∇²g_N and Σ t_α ∇²ξ^α at x_m).
+struct StepGradients {
+  const Projection &at_n, &at_1;
+  const PatchGapVariations& mid;
+  const PatchRows2& D_m;
+  const Eigen::VectorXd& Ns_1;
+  const PatchRows2& D_1;
+  const Eigen::MatrixXd& xi_hessian;
+};
+
+DiscreteGradients discrete_gradients(const StepGradients& s, const Eigen::VectorXd& x_n, const Eigen::VectorXd& x_1,
+                                     double t_N, const Eigen::Vector2d& t) {
+  const Eigen::Index n = x_1.size();
+  DiscreteGradients out{s.mid.Ns, s.D_m, Eigen::MatrixXd::Zero(n, n)};
+  const Eigen::VectorXd d = x_1 - x_n;
+  const RigidFreeIncrement r = rigid_free_increment(x_n, x_1);
+  if (!(r.size > rigid_increment * d.squaredNorm())) return out;
+  const double c_g = (s.at_1.gap - s.at_n.gap - s.mid.Ns.dot(d)) / r.size;              // (3.9)
+  const Eigen::Vector2d c_xi = (s.at_1.xi - s.at_n.xi - s.D_m * d) / r.size;            // (3.9)
+  out.Ns += c_g * r.q;
+  out.D += c_xi * r.q.transpose();
+  const double C = t_N * c_g + t.dot(c_xi);
+  const Eigen::VectorXd dmismatch = t_N * (s.Ns_1 - s.mid.Ns - 0.5 * s.mid.dNs.transpose() * d) +
+                                    (s.D_1 - s.D_m).transpose() * t - 0.5 * s.xi_hessian.transpose() * d;
+  const Eigen::RowVectorXd dC = (dmismatch.transpose() - C * r.dsize) / r.size;
+  out.correction_tangent = r.q * dC + C * r.dq;
+  return out;
 }
 
 }  // namespace
@@ -42,7 +85,10 @@ PatchPenaltyResult patch_penalty_element(const TensorPatch& local, const Eigen::
                                  : patch_contracted_xi_hessian(local, x_m, out.at_m.xi, out.at_m.gap, mid, dtau,
                                                                tangential.value);  // smooth_master_surface §3.8
   const PatchRows2 D_m = mid.D;
-  fill_closed_step<dynamic>(out, {mid.Ns, mid.dNs, D_m}, xi_hessian, normal, tangential, p);
+  const DiscreteGradients bar = discrete_gradients({out.at_n, out.at_1, mid, D_m, Ns_1, D_1, xi_hessian}, x_n, x_1,
+                                                   normal.value, tangential.value);
+  fill_closed_step<dynamic>(out, {bar.Ns, mid.dNs, bar.D}, xi_hessian, normal, tangential, p);  // (5.2) with (3.9)
+  out.tangent += bar.correction_tangent;
   return out;
 }
 

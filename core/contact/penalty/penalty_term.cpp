@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/contact/elements/patch_nts_element.hpp"
 #include "core/contact/geometry/assignment.hpp"
 #include "core/contact/geometry/face_switch.hpp"
+#include "core/contact/penalty/patch_penalty_element.hpp"
 
 namespace stoss::contact {
 namespace {
@@ -34,18 +36,29 @@ PenaltyContactTerm::PenaltyContactTerm(const mesh::Mesh& mesh, const model::Cont
     : ContactTerm(mesh, pair) {
   params_ = parameters_of(pair, penalty_default_stiffness(master_youngs_modulus, surfaces_.mean_face_size));
   committed_.assign(surfaces_.slave_nodes.size(), PenaltyNodeState{});
+  for (const TensorPatch& patch : surfaces_.patches) local_patches_.push_back(local_patch(patch));
 }
 
-PenaltyResult PenaltyContactTerm::evaluate(const PenaltyContact& c, const Eigen::VectorXd& x_n,
-                                           const Eigen::VectorXd& x_1) const {
+template <class Use>
+void PenaltyContactTerm::evaluate(const PenaltyContact& c, const Eigen::VectorXd& x_n, const Eigen::VectorXd& x_1,
+                                  Use&& use) const {
   const int node = surfaces_.slave_nodes[c.slave];
-  const mesh::Quad& face = surfaces_.faces[c.face];
   PenaltyParameters p = params_;
   p.gap_offset = c.gap_offset;
-  PenaltyResult r = penalty_element(element_positions(node, face, x_n), element_positions(node, face, x_1),
-                                    c.history, p, c.xi_n);  // §5.2
-  if (r.closed && params_.tangential_stiffness > 0) ++return_maps_;
-  return r;
+  const auto counted = [&](const auto& r) {
+    if (r.closed && params_.tangential_stiffness > 0) ++return_maps_;
+    use(r);
+  };
+  if (surfaces_.smooth()) {
+    const TensorPatch& patch = surfaces_.patches[c.face];
+    counted(patch_penalty_element(local_patches_[c.face], local_positions(node, patch, x_n),
+                                  local_positions(node, patch, x_1), c.history, p, c.xi_n,
+                                  surfaces_.face_size[c.face]));  // §5.2 on the patch
+  } else {
+    const mesh::Quad& face = surfaces_.faces[c.face];
+    counted(penalty_element(element_positions(node, face, x_n), element_positions(node, face, x_1), c.history, p,
+                            c.xi_n));  // §5.2
+  }
 }
 
 int PenaltyContactTerm::face_for(int slave, const time::StepContext& step, Eigen::Vector2d& xi) const {
@@ -110,20 +123,19 @@ double PenaltyContactTerm::switch_face(int slave, int face, const Eigen::VectorX
 }
 
 void PenaltyContactTerm::register_blocks(solve::BlockPattern& pattern) {
-  for (PenaltyContact& c : contacts_) {
-    const std::array<int, 15> dofs = element_dofs(surfaces_.slave_nodes[c.slave], surfaces_.faces[c.face]);
-    c.block = pattern.add_block(std::vector<int>(dofs.begin(), dofs.end()));  // non-symmetric values
-  }
+  for (PenaltyContact& c : contacts_)
+    c.block = pattern.add_block(element_dofs(surfaces_.slave_nodes[c.slave], surfaces_, c.face));  // non-symmetric
 }
 
 void PenaltyContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
                              solve::BlockPattern* K) const {
   for (const PenaltyContact& c : contacts_) {
-    const PenaltyResult r = evaluate(c, step.x_n, z);
-    if (!r.closed) continue;
-    const std::array<int, 15> dofs = element_dofs(surfaces_.slave_nodes[c.slave], surfaces_.faces[c.face]);
-    for (int i = 0; i < 15; ++i) R[dofs[i]] += step.force_factor * r.force[i];  // h·(5.2)
-    if (K) K->scatter(c.block, step.force_factor * r.tangent);
+    evaluate(c, step.x_n, z, [&](const auto& r) {
+      if (!r.closed) return;
+      const std::vector<int> dofs = element_dofs(surfaces_.slave_nodes[c.slave], surfaces_, c.face);
+      for (size_t i = 0; i < dofs.size(); ++i) R[dofs[i]] += step.force_factor * r.force[i];  // h·(5.2)
+      if (K) K->scatter(c.block, step.force_factor * r.tangent);
+    });
   }
 }
 
@@ -133,8 +145,7 @@ void PenaltyContactTerm::end_step(const time::StepContext& step, const Eigen::Ve
   report_ = ContactReport{};
   pressure_.clear();
   last_slip_work_ = 0;
-  for (const PenaltyContact& c : contacts_) {
-    const PenaltyResult r = evaluate(c, step.x_n, x);
+  for (const PenaltyContact& c : contacts_) evaluate(c, step.x_n, x, [&](const auto& r) {
     PenaltyNodeState& node = next[c.slave];
     node.face = c.face;
     node.xi = r.at_1.converged ? r.at_1.xi : c.xi_n;
@@ -142,12 +153,12 @@ void PenaltyContactTerm::end_step(const time::StepContext& step, const Eigen::Ve
     const bool clear = r.at_1.converged && r.at_1.gap >= 0 && r.at_1.gap - c.gap_offset >= 0;
     node.gap_offset = clear ? 0.0 : c.gap_offset;  // W_N = 0 with or without it: clearing changes nothing
     if (r.at_1.converged) report_.max_own_face_penetration = std::max(report_.max_own_face_penetration, -r.at_1.gap);
-    if (!r.closed) continue;
+    if (!r.closed) return;
     ++report_.active;
     report_.slipping += r.slip;
     last_slip_work_ += r.slip_work;  // D += t_{n+1}·Δξ_p (§5.2 item 7)
     add_pressure(c.slave, -r.normal_traction);  // t_N ≤ 0 (5.1)
-  }
+  });
   measure_closest_penetration(step, x);
   report_.switches = switches_;
   report_.energy_jump = switch_jump_;

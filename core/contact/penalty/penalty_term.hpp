@@ -1,7 +1,9 @@
 #pragma once
 /// @file Frictional penalty contact of one pair as a time::Term (docs/theory.md §5): no auxiliary
 /// unknowns; per step every near slave node gets one master face, fixed for the step (§3.4), and
-/// penalty_element() (§5.2) adds h·(5.2) and its non-symmetric tangent. The friction history is
+/// the element of §5.2 adds h·(5.2) and its non-symmetric tangent: penalty_element() on a faceted
+/// master, patch_penalty_element() on the face's patch of a smooth one
+/// (docs/smooth_master_surface.md §3.8). The friction history is
 /// committed in end_step only (§5.2 item 7).
 
 #include <Eigen/Core>
@@ -73,13 +75,16 @@ class PenaltyContactTerm : public ContactTerm {
   double last_slip_work() const { return last_slip_work_; }
 
  private:
-  PenaltyResult evaluate(const PenaltyContact& c, const Eigen::VectorXd& x_n,
-                         const Eigen::VectorXd& x_1) const;
+  /// Evaluates the element of contact c over the step on the pair's surface and hands its result
+  /// (PenaltyResult or PatchPenaltyResult) to use(result).
+  template <class Use>
+  void evaluate(const PenaltyContact& c, const Eigen::VectorXd& x_n, const Eigen::VectorXd& x_1, Use&& use) const;
   int face_for(int slave, const time::StepContext& step, Eigen::Vector2d& xi) const;
   /// Counts a switch of `slave` to `face` at x_n, adds its W_N jump, returns the new gap offset.
   double switch_face(int slave, int face, const Eigen::VectorXd& x_n);
 
   PenaltyParameters params_;
+  std::vector<TensorPatch> local_patches_;   ///< per master face of a smooth surface, renumbered (local_patch)
   std::vector<PenaltyContact> contacts_;     ///< elements of the current step
   std::vector<PenaltyNodeState> committed_;  ///< per slave node, after the last converged step
   int generation_ = 0;
