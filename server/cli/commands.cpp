@@ -140,6 +140,10 @@ int run_command(const std::vector<std::string>& args) {
   const fs::path checkpoint_dir = fs::path(out_dir) / output::checkpoint_directory_name;
   try {
     model::Model model;
+    if (resume && !fs::exists(run_file(out_dir)) && fs::exists(fs::path(out_dir) / output::result_file_name)) {
+      std::printf("result: %s/result.h5 (the run had completed: nothing to resume)\n", out_dir.c_str());
+      return success;
+    }
     if (resume) {
       model = resumed_model(out_dir);
     } else {
