@@ -81,6 +81,7 @@ TEST_P(PatchNtsElement, HhtTangentMatchesCentralDifferences) { check_tangent(tru
 INSTANTIATE_TEST_SUITE_P(
     Cases, PatchNtsElement,
     ::testing::Values(Case{"interior", 1, 2, {0.2, -0.3}}, Case{"on_edge", 1, 1, {0.98, 0.1}},
+                      Case{"corner", 1, 1, {0.97, -0.99}},
                       Case{"rim", 0, 2, {-0.9, 0.3}}, Case{"bilinear", 1, 1, {0.3, 0.4}, true},
                       Case{"extraordinary", -1, -1, {0.1, 0.06}, false, true}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
