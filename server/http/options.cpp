@@ -77,6 +77,8 @@ const std::map<std::string, Setter>& setters() {
        [](auto& f, auto& v, auto& o) { o.limits.max_frames = int(parse_integer(f, v, 1, 1'000'000'000)); }},
       {"--http-threads",
        [](auto& f, auto& v, auto& o) { o.http_threads = int(parse_integer(f, v, 4, 4096)); }},
+      {"--max-connections-per-client",
+       [](auto& f, auto& v, auto& o) { o.max_connections_per_client = int(parse_integer(f, v, 1, 1'000'000)); }},
       {"--read-timeout", [](auto& f, auto& v, auto& o) { o.read_timeout = parse_seconds(f, v); }},
       {"--job-timeout",
        [](auto& f, auto& v, auto& o) {
@@ -156,8 +158,10 @@ Runs the job service (HTTP/JSON, see api/openapi.yaml) until SIGINT or SIGTERM.
   --max-steps N          most time steps in a scene (default 100000)
   --max-frames N         most output frames in a scene (default 2000)
   --max-queue N          most queued jobs; more submissions get 503 (default 1000)
-  --http-threads N       HTTP connections served at once, one thread each (default 128); there is no
-                         per-client cap: one client may hold them all (put a proxy in front if needed)
+  --http-threads N       HTTP connections served at once, one thread each (default 128)
+  --max-connections-per-client N
+                         connections one client address may hold at once; more are answered 503 and
+                         closed (default 64)
   --read-timeout S       longest wait for the next bytes of a request's head or body (default 5)
   --job-timeout S        wall-time limit of one job attempt; 0: none (default 0); a scene may set a
                          lower one in solver.max_wall_seconds

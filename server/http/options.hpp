@@ -24,9 +24,11 @@ struct ServeOptions {
   int max_attempts = 3;  ///< --max-attempts: runs before an expired lease fails a job
   Limits limits;         ///< --max-body-bytes, --max-nodes, --max-steps, --max-frames, --max-queue
   /// --http-threads: connections served at once, one thread each (a stalled upload holds one for at most
-  /// the read timeout per read; further connections wait in the accept queue). No per-client cap: a
-  /// client may hold them all; put a reverse proxy in front where clients are not trusted.
+  /// the read timeout per read; further connections wait in the accept queue).
   int http_threads = 128;
+  /// --max-connections-per-client: connections one client address may hold at once; more get 503 and are
+  /// closed (connection_limit.hpp). Half the default threads: one client cannot take them all.
+  int max_connections_per_client = 64;
   jobs::Millis read_timeout = 5'000;  ///< --read-timeout: longest wait for the next bytes of a request
   jobs::Millis job_timeout = 0;       ///< --job-timeout: wall-time limit of one job attempt (0: none)
   std::size_t job_memory = 0;         ///< --job-memory: address-space limit of a job's process (0: none)

@@ -597,8 +597,12 @@ void install_routes(httplib::Server& server, App& app) {
   }
 }
 
-void install_request_defaults(httplib::Server& server) {
-  server.set_pre_routing_handler([](const Request& req, Response& res) {
+void install_request_defaults(httplib::Server& server, ConnectionLimit* limit) {
+  server.set_pre_routing_handler([limit](const Request& req, Response& res) {
+    if (limit && !limit->admit(req.remote_addr)) {
+      refuse_connection(*limit, req, res);
+      return httplib::Server::HandlerResponse::Handled;
+    }
     // `req` is the server's own non-const Request, handed to this hook as const.
     Request& request = const_cast<Request&>(req);
     const bool framed = req.has_header("Content-Length") || req.has_header("Transfer-Encoding");
@@ -664,7 +668,10 @@ void install_error_handling(httplib::Server& server, Metrics& metrics, const Lim
     std::cerr << "stoss: " << req.method << " " << req.path << " failed: " << what << std::endl;
     Problem{500, "urn:stoss:problem:internal", "Internal Server Error", what}.write(res);
   });
-  server.set_logger([&metrics](const Request&, const Response& res) { metrics.count_request(res.status); });
+  server.set_logger([&metrics](const Request& req, const Response& res) {
+    metrics.count_request(res.status);
+    end_refused_connection(req);  // a connection over the per-client cap ends once told so
+  });
 }
 
 }  // namespace stoss::server::http

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "server/http/auth.hpp"
+#include "server/http/connection_limit.hpp"
 #include "server/http/httplib.hpp"
 #include "server/http/limits.hpp"
 #include "server/http/metrics.hpp"
@@ -46,8 +47,9 @@ void install_routes(httplib::Server& server, App& app);
 /// has an empty body (RFC 9112 §6.3), as `curl -X POST …/cancel` sends it; cpp-httplib 0.11 would
 /// otherwise wait for the client to close the connection. The declared Content-Type moves to
 /// declared_type_header (cpp-httplib would parse and cap form bodies); a known path with a method it does
-/// not have is answered 405 with Allow.
-void install_request_defaults(httplib::Server& server);
+/// not have is answered 405 with Allow. With a `limit`, a connection over the per-client cap is answered
+/// 503 before anything else (connection_limit.hpp).
+void install_request_defaults(httplib::Server& server, ConnectionLimit* limit = nullptr);
 
 /// The error handler (problem+json for statuses httplib sets itself: unknown route, oversize body, …),
 /// the exception handler (catches everything, answers 500, never lets a request take the server down),

@@ -15,6 +15,7 @@
 #include <mutex>
 #include <thread>
 
+#include "server/http/connection_limit.hpp"
 #include "server/http/options.hpp"
 #include "server/http/routes.hpp"
 #include "server/jobs/job_runner.hpp"
@@ -112,14 +113,15 @@ int run(const ServeOptions& options) {
   // the ACK of the first (~40 ms) before the second. TCP_NODELAY is set on the listening socket, and
   // Linux hands it down to every accepted socket.
   server.set_tcp_nodelay(true);
-  const int threads = options.http_threads;
-  server.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
+  const auto threads = static_cast<std::size_t>(options.http_threads);
+  ConnectionLimit connection_limit(options.max_connections_per_client);
+  server.new_task_queue = [threads, &connection_limit] { return counting_thread_pool(threads, connection_limit); };
   const auto timeout = std::chrono::milliseconds(options.read_timeout);
   server.set_read_timeout(timeout);
   server.set_write_timeout(std::max(timeout, std::chrono::milliseconds(5000)));
   server.set_keep_alive_max_count(10'000);
   server.set_keep_alive_timeout(std::max<time_t>(1, static_cast<time_t>(options.read_timeout / 1000)));
-  install_request_defaults(server);
+  install_request_defaults(server, &connection_limit);
   install_error_handling(server, app.metrics, options.limits);
   install_routes(server, app);
   const int port = bind_server(server, options.host, options.port);

@@ -295,7 +295,7 @@ TEST_F(Hostile, AStalledUploadIsDroppedAfterTheReadTimeout) {
   EXPECT_TRUE(reply.empty() || reply.rfind("HTTP/1.1 400", 0) == 0) << reply;
 }
 
-TEST(OneListener, ASecondServerOnAPortInUseExits2WithAddressInUse) {
+TEST(OneListener, ASecondServerOnAPortInUseExits2AndOnAnotherPortSharesTheData) {
   TempDir dir;
   LiveServer first(dir.path() / "a", {"--workers", "0"});
   const auto second = run_stoss({"serve", "--listen", "127.0.0.1:" + std::to_string(first.port()), "--data",
@@ -306,6 +306,17 @@ TEST(OneListener, ASecondServerOnAPortInUseExits2WithAddressInUse) {
   EXPECT_NE((second.out + second.err).find("address in use"), std::string::npos) << second.out << second.err;
   EXPECT_TRUE(first.alive());
   EXPECT_EQ(first.client().Get("/healthz")->status, 200);
+  // On another port, a second server may share the first one's data directory: one queue, both see it.
+  LiveServer sharing(dir.path() / "a", {"--workers", "0"});
+  ASSERT_NE(sharing.port(), first.port());
+  auto a = first.client(), b = sharing.client();
+  const auto posted = submit(a, box_scene(1, 5));
+  ASSERT_TRUE(posted);
+  ASSERT_EQ(posted->status, 201) << posted->body;
+  const std::string id = body_json(posted)["id"];
+  const auto seen = b.Get("/v1/jobs/" + id);
+  ASSERT_TRUE(seen);
+  EXPECT_EQ(seen->status, 200) << seen->body;
 }
 
 /// A succeeded job's result with Range headers, as curl and browsers send them.
