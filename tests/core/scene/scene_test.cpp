@@ -83,7 +83,7 @@ TEST(SceneLoad, SceneCopyHasDefaultsFilledIn) {
   EXPECT_EQ(s["gravity"], json({0, 0, 0}));
   EXPECT_EQ(s["time"], json({{"scheme", "energy_momentum"}, {"step", 0.01}, {"end", 1.0}}));
   EXPECT_EQ(s["solver"], json({{"tolerance", 1e-10}, {"max_iterations", 25}, {"linear", "auto"}}));
-  EXPECT_EQ(s["output"], json({{"every", 1}}));
+  EXPECT_EQ(s["output"], json({{"every", 1}, {"checkpoint_seconds", 60.0}}));
   const json& ball = s["bodies"][0];
   EXPECT_EQ(ball["mesh"]["hollow_sphere"], json({{"center", {0, 0, 0}},
                                                  {"outer_radius", 1.0},
@@ -454,10 +454,11 @@ TEST(SceneSchema, EveryFieldTheValidatorAcceptsIsDeclared) {
 /// Every optional property has a description, and a default unless absence has its own meaning.
 void expect_documented(const json& schema, const json& node, const std::string& where) {
   // elements: absent = every element; master_surface, switch_gap: resolved from the master surface
-  // (docs/smooth_master_surface.md §1); max_wall_seconds: absent = no limit.
+  // (docs/smooth_master_surface.md §1); max_wall_seconds: absent = no limit; checkpoint_every: absent =
+  // by checkpoint_seconds.
   const std::set<std::string> without_default{"center",         "normal_stiffness", "tangential_stiffness",
                                                 "elements",       "master_surface",   "switch_gap",
-                                                "max_wall_seconds"};
+                                                "max_wall_seconds", "checkpoint_every"};
   if (node.is_array())
     for (const json& element : node) expect_documented(schema, element, where);
   if (!node.is_object()) return;
