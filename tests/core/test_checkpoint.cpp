@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -30,9 +31,10 @@ struct TempDir {
 };
 
 /// The seed's example shortened (a coarse hollow ball starting just above the plate, 24 steps): impact
-/// within the first steps. `enforcement` "lagrange" (frictionless, mixed energy–momentum) or "penalty" with
-/// Coulomb friction μ = 0.2.
-nlohmann::json ball_on_plate(const std::string& enforcement, int checkpoint_every) {
+/// within the first steps. `enforcement` "lagrange" (frictionless: mixed energy–momentum, or with "hht" the
+/// α-weighted form that keeps λ_n N_s(x_n) between steps) or "penalty" with Coulomb friction μ = 0.2.
+nlohmann::json ball_on_plate(const std::string& enforcement, int checkpoint_every,
+                             const std::string& scheme = "energy_momentum") {
   nlohmann::json contact = {{"slave", "ball/outer"}, {"master", "plate/top"}, {"enforcement", enforcement},
                             {"switch_hysteresis", 0.05}};
   if (enforcement == "penalty") contact["friction"] = 0.2;
@@ -51,7 +53,7 @@ nlohmann::json ball_on_plate(const std::string& enforcement, int checkpoint_ever
          {"material",
           {{"model", "saint_venant_kirchhoff"}, {"youngs_modulus", 1e4}, {"poisson_ratio", 0.4}, {"density", 1}}}}}},
       {"contact", {contact}},
-      {"time", {{"scheme", "energy_momentum"}, {"step", 0.01}, {"end", 0.24}}},
+      {"time", {{"scheme", scheme}, {"step", 0.01}, {"end", 0.24}}},
       {"solver", {{"tolerance", 1e-10}, {"max_iterations", 25}}},
       {"output", {{"every", 3}, {"checkpoint_every", checkpoint_every}}}};
 }
@@ -80,22 +82,27 @@ class CrashingObserver : public RecordingObserver {
   int crash_at_;
 };
 
-/// Every series but the wall-time one equal in both runs to the Newton tolerance (relative to the series'
-/// scale), every frame's positions and velocities too.
+/// Every physical series (not the wall time nor the solver's own: step_seconds, residual_norm,
+/// newton_iterations, substeps) equal in both runs to `tolerance` relative to the series' scale (its largest
+/// value over steps and components, at least 1e-6: the scenes' energies, momenta and lengths are of order 1),
+/// every frame's positions and velocities too.
 void expect_same_run(const RecordingObserver& a, const RecordingObserver& b, double tolerance) {
   ASSERT_EQ(a.rows.size(), b.rows.size());
   ASSERT_EQ(a.frames.size(), b.frames.size());
+  const std::set<std::string> not_physical{"step_seconds", "residual_norm", "newton_iterations", "substeps"};
   int column = 0;
   for (const model::SeriesSpec& spec : a.layout.series) {
-    for (int k = 0; k < spec.components; ++k, ++column) {
-      if (spec.name == "step_seconds") continue;
-      double scale = 1e-300;
-      for (const auto& row : a.rows) scale = std::max(scale, std::abs(row.values[column]));
-      for (size_t n = 0; n < a.rows.size(); ++n) {
-        EXPECT_EQ(a.rows[n].step, b.rows[n].step);
-        EXPECT_NEAR(a.rows[n].values[column], b.rows[n].values[column], tolerance * scale)
-            << spec.name << "[" << k << "] at step " << a.rows[n].step;
-      }
+    const int first = column;
+    column += spec.components;
+    if (not_physical.contains(spec.name)) continue;
+    double scale = 1e-6;
+    for (const auto& row : a.rows)
+      for (int k = first; k < column; ++k) scale = std::max(scale, std::abs(row.values[k]));
+    for (size_t n = 0; n < a.rows.size(); ++n) {
+      EXPECT_EQ(a.rows[n].step, b.rows[n].step);
+      for (int k = first; k < column; ++k)
+        EXPECT_NEAR(a.rows[n].values[k], b.rows[n].values[k], tolerance * scale)
+            << spec.name << "[" << k - first << "] at step " << a.rows[n].step;
     }
   }
   for (size_t k = 0; k < a.frames.size(); ++k) {
@@ -106,10 +113,10 @@ void expect_same_run(const RecordingObserver& a, const RecordingObserver& b, dou
   }
 }
 
-class CheckpointResume : public ::testing::TestWithParam<std::string> {};
+class CheckpointResume : public ::testing::TestWithParam<std::pair<std::string, std::string>> {};
 
 TEST_P(CheckpointResume, AResumedRunComputesOnlyTheStepsAfterTheCheckpointAndEndsAsAnUncrashedRun) {
-  const model::Model m = scene::load(ball_on_plate(GetParam(), 4));
+  const model::Model m = scene::load(ball_on_plate(GetParam().first, 4, GetParam().second));
   TempDir uncrashed_dir, crashed_dir;
   CrashingObserver uncrashed;
   const model::Summary reference = simulate(m, uncrashed, nullptr, {uncrashed_dir.path, false});
@@ -129,7 +136,9 @@ TEST_P(CheckpointResume, AResumedRunComputesOnlyTheStepsAfterTheCheckpointAndEnd
     EXPECT_TRUE(summary.completed);
     EXPECT_EQ(summary.resumed_from_step, checkpoint);
     EXPECT_EQ(summary.steps, reference.steps);
-    EXPECT_EQ(summary.newton_iterations, reference.newton_iterations);
+    // HHT's λ_n N_s(x_n) is rebuilt from the checkpoint (its ξ re-projected): equal to round-off, not bit
+    // for bit, so Newton may take another iteration there.
+    if (GetParam().second != "hht") EXPECT_EQ(summary.newton_iterations, reference.newton_iterations);
     EXPECT_NEAR(summary.energy_drift, reference.energy_drift, 1e-8);
     expect_same_run(uncrashed, resumed, 1e-9);
     if (checkpoint == 0) continue;
@@ -146,7 +155,11 @@ TEST_P(CheckpointResume, AResumedRunComputesOnlyTheStepsAfterTheCheckpointAndEnd
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(LagrangeAndPenaltyFriction, CheckpointResume, ::testing::Values("lagrange", "penalty"));
+INSTANTIATE_TEST_SUITE_P(LagrangeAndPenaltyFriction, CheckpointResume,
+                         ::testing::Values(std::pair<std::string, std::string>{"lagrange", "energy_momentum"},
+                                           std::pair<std::string, std::string>{"penalty", "energy_momentum"},
+                                           std::pair<std::string, std::string>{"lagrange", "hht"}),
+                         [](const auto& info) { return info.param.first + "_" + info.param.second; });
 
 TEST(Checkpoint, ACheckpointOfAnotherSceneIsRefusedWithTheReason) {
   TempDir dir;
