@@ -263,8 +263,9 @@ std::string failure_message(int step, double t, double h, const time::ReducedSte
 constexpr int max_step_halvings = 4;
 
 /// Newton from the scene's solver settings. Factorisations are kept while they contract the residual
-/// by half per iteration (and reach the tolerance within the budget): on the contact scenes a
-/// refactorisation costs as much as ~20 reused solves (bench/contact_ball.cpp).
+/// by 5 per iteration with Broyden's update (and reach the tolerance within the budget): on the contact
+/// scenes a refactorisation costs as much as ~20 reused solves (bench/contact_ball.cpp); NewtonOptions
+/// holds the reuse rule (docs/measurements.md, "Newton on hard impacts").
 /// The linear solver named by solver.linear (validated by the scene: auto, direct, iterative,
 /// petsc_gamg); auto picks petsc_gamg from model::SolverSpec::auto_iterative_elements elements on,
 /// where it overtakes the LU (docs/measurements.md, "Linear solvers"), direct below.
@@ -306,7 +307,6 @@ solve::NewtonOptions newton_options(const Model& m) {
   if (o.linear == solve::LinearMethod::petsc_gamg) o.reuse_factorization = false;
   o.tolerance = m.solver.tolerance;
   o.max_iterations = m.solver.max_iterations;
-  o.reuse_contraction = 0.5;
   const bool penalty = std::any_of(m.contact.begin(), m.contact.end(), [](const model::ContactPair& c) {
     return c.enforcement == model::Enforcement::penalty;
   });
@@ -462,7 +462,7 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
     for (size_t k = 0; k < terms.size(); ++k) terms[k]->restore_state(resumed->terms[k].second, s.x, s.v);
     sum = resumed->summary;
     sum.resumed_from_step = s.step;
-    observer.log("resumed from step " + std::to_string(s.step) + " (t = " + std::to_string(s.t) +
+    observer.log(std::string(resumed_log_prefix) + std::to_string(s.step) + " (t = " + std::to_string(s.t) +
                  ") of the checkpoint " + store->state_file().string() + ": computing steps " +
                  std::to_string(s.step + 1) + " to " + std::to_string(steps));
   } else {

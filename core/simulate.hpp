@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "core/model/model.hpp"
 #include "core/model/observer.hpp"
@@ -19,6 +20,10 @@ class SolverError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+/// How the log line of a run resumed from a checkpoint begins: "resumed from step N (t = …) …". Observers
+/// that measure a rate (progress, ETA) start counting from there.
+inline constexpr std::string_view resumed_log_prefix = "resumed from step ";
 
 /// Checkpoints of a run (core/output/checkpoint.hpp, docs/results.md "Checkpoints").
 struct Checkpoints {

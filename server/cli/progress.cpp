@@ -1,5 +1,7 @@
 #include "server/cli/progress.hpp"
 
+#include "core/simulate.hpp"
+
 namespace stoss::cli {
 
 void ProgressObserver::begin(const model::Model& model, const model::SeriesLayout&) {
@@ -9,11 +11,13 @@ void ProgressObserver::begin(const model::Model& model, const model::SeriesLayou
 }
 
 void ProgressObserver::step(const model::StepRow& row) {
+  last_step_ = row.step;
   const auto now = Clock::now();
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  if (row.step == 0 || elapsed < 1.0 || std::chrono::duration<double>(now - last_print_).count() < 0.5) return;
+  if (row.step <= first_step_ || elapsed < 1.0 || std::chrono::duration<double>(now - last_print_).count() < 0.5)
+    return;
   last_print_ = now;
-  const double eta = elapsed / row.step * (steps_ - row.step);
+  const double eta = elapsed / (row.step - first_step_) * (steps_ - row.step);
   std::fprintf(out_, "\rstep %d/%d  t = %.6g/%.6g  elapsed %.1f s  ETA %.1f s   ", row.step, steps_, row.time,
                end_time_, elapsed, eta);
   std::fflush(out_);
@@ -21,6 +25,10 @@ void ProgressObserver::step(const model::StepRow& row) {
 }
 
 void ProgressObserver::log(const std::string& line) {
+  if (line.rfind(resumed_log_prefix, 0) == 0) {  // steps up to the checkpoint came back at once
+    start_ = Clock::now();
+    first_step_ = last_step_;
+  }
   std::fprintf(out_, "%s%s\n", printed_ ? "\n" : "", line.c_str());
   printed_ = false;
 }

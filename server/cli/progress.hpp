@@ -22,6 +22,8 @@ class ProgressObserver : public model::Observer {
   std::FILE* out_;
   Clock::time_point start_, last_print_;
   int steps_ = 0;
+  int last_step_ = 0;
+  int first_step_ = 0;  ///< the step the rate counts from: 0, or the checkpoint's after "resumed from step N"
   double end_time_ = 0;
   bool printed_ = false;
 };

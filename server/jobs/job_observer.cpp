@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/simulate.hpp"
+
 namespace stoss::server::jobs {
 
 ProgressObserver::ProgressObserver(ProgressSink sink, const Clock& clock, Millis interval)
@@ -17,11 +19,18 @@ void ProgressObserver::step(const model::StepRow& row) {
   current_.step = row.step;
   current_.time = row.time;
   const Millis now = clock_.now();
-  if (row.step > 0) {
-    const double per_step = static_cast<double>(now - started_) / 1000.0 / row.step;
+  if (row.step > first_step_) {
+    const double per_step = static_cast<double>(now - started_) / 1000.0 / (row.step - first_step_);
     current_.eta_seconds = per_step * std::max(0, current_.steps - row.step);
   }
   if (!last_report_ || now - *last_report_ >= interval_) report(now);
+}
+
+void ProgressObserver::log(const std::string& line) {
+  if (line.rfind(resumed_log_prefix, 0) != 0) return;
+  started_ = clock_.now();
+  first_step_ = current_.step;
+  current_.eta_seconds.reset();
 }
 
 void ProgressObserver::end(const model::Summary&) {
@@ -69,6 +78,7 @@ nlohmann::json summary_json(const model::Summary& s, const model::Model& model) 
                       {"output_seconds", s.output_seconds},
                       {"peak_memory_mb", s.peak_memory_bytes / 1e6}};
   if (!model.contact.empty()) j["max_penetration"] = s.max_penetration;
+  if (s.resumed_from_step > 0) j["resumed_from_step"] = s.resumed_from_step;
   return j;
 }
 

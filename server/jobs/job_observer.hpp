@@ -18,6 +18,9 @@ class ProgressObserver : public model::Observer {
 
   void begin(const model::Model& model, const model::SeriesLayout& layout) override;
   void step(const model::StepRow& row) override;
+  /// A run resumed from a checkpoint (simulate.hpp, resumed_log_prefix): the ETA counts from its step and
+  /// this moment, not from the rows given back at once.
+  void log(const std::string& line) override;
   void end(const model::Summary& summary) override;
 
   /// The latest progress, reported or not.
@@ -30,6 +33,7 @@ class ProgressObserver : public model::Observer {
   const Clock& clock_;
   Millis interval_;
   Millis started_ = 0;
+  int first_step_ = 0;  ///< the step the rate counts from: 0, or the checkpoint's when resumed
   std::optional<Millis> last_report_;
   Progress current_;
 };

@@ -47,6 +47,32 @@ TEST(ProgressObserver, TheFinalReportOfACompletedRunHasEtaZero) {
   EXPECT_EQ(last.eta_seconds, 0.0);
 }
 
+TEST(ProgressObserver, AResumedRunsEtaCountsFromTheCheckpointNotFromTheRowsGivenBack) {
+  ManualClock clock;
+  std::vector<Progress> reports;
+  ProgressObserver observer([&](const Progress& p) { reports.push_back(p); }, clock, 500);
+  observer.begin(model_of(1000), {});
+  for (int step = 0; step <= 600; ++step) observer.step({step, 0.01 * step, {}});  // given back at once
+  observer.log("resumed from step 600 (t = 6.000000) of the checkpoint c/state.h5: computing steps 601 to 1000");
+  for (int step = 601; step <= 700; ++step) {
+    clock.advance(10);  // 100 steps per second
+    observer.step({step, 0.01 * step, {}});
+  }
+  observer.end({});
+  ASSERT_TRUE(reports.back().eta_seconds);
+  EXPECT_EQ(reports.back().step, 700);
+  EXPECT_NEAR(*reports.back().eta_seconds, 3.0, 1e-9);  // 300 steps to go at 10 ms each
+}
+
+TEST(SummaryJson, NamesTheCheckpointStepOfAResumedRun) {
+  model::Summary s;
+  s.completed = true;
+  s.steps = 10;
+  EXPECT_FALSE(summary_json(s, model_of(10)).contains("resumed_from_step"));
+  s.resumed_from_step = 6;
+  EXPECT_EQ(summary_json(s, model_of(10))["resumed_from_step"], 6);
+}
+
 TEST(SummaryJson, CarriesMaxPenetrationOnlyWithContact) {
   model::Summary s;
   s.completed = true;
