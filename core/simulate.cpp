@@ -393,10 +393,10 @@ output::Checkpoint load_checkpoint(const output::CheckpointStore& store, const M
   try {
     c = store.read();
   } catch (const std::exception& e) {
-    throw std::invalid_argument("cannot resume from " + store.state_file().string() + ": " + e.what());
+    throw CheckpointError("cannot resume from " + store.state_file().string() + ": " + e.what());
   }
   const auto refuse = [&](const std::string& why) {
-    throw std::invalid_argument("cannot resume from " + store.state_file().string() + ": " + why);
+    throw CheckpointError("cannot resume from " + store.state_file().string() + ": " + why);
   };
   if (c.scene != m.scene.dump()) refuse("it was written for another scene");
   if (c.step_size != m.time.step) refuse("it was written with another time.step");
@@ -407,6 +407,8 @@ output::Checkpoint load_checkpoint(const output::CheckpointStore& store, const M
   if (c.state.x.size() != m.dof_count() || c.state.v.size() != m.dof_count() || c.state.a.size() != m.dof_count())
     refuse("its state does not have " + std::to_string(m.dof_count()) + " dofs");
   if (c.rows.empty() || c.rows.back().step != c.state.step) refuse("its series does not end at its step");
+  for (size_t k = 0; k < c.frame_steps.size(); ++k)
+    if (!store.has_frame(static_cast<int>(k))) refuse("frame " + std::to_string(k) + " is missing");
   return c;
 }
 
