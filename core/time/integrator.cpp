@@ -222,7 +222,7 @@ solve::NewtonResult Integrator::step(State& s, double h, const LogFunction& log)
   }
   const int n = prepare_unknowns();
   Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
-  z.head(s.x.size()) = s.x + h * s.v;  // predictor
+  z.head(s.x.size()) = scheme_->predict(s, h);
   for (Eigen::Index i = 0; i < s.x.size(); ++i)
     if (fixed_[i]) z[i] = s.x[i];
   for (size_t k = 0; k < terms_.size(); ++k) {

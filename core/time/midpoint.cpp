@@ -7,8 +7,15 @@ void MidpointKinematics::add_inertia(const State& s, double h, const solve::Spar
   R.head(x_1.size()) += M * ((2.0 / h) * (x_1 - s.x) - 2.0 * s.v);  // (2.3)
 }
 
+Eigen::VectorXd MidpointKinematics::predict(const State& s, double h) const {
+  if (s.a.size() != s.x.size()) return s.x + h * s.v;
+  return s.x + h * s.v - (0.5 * h * h) * s.a;
+}
+
 void MidpointKinematics::advance(State& s, double h, const Eigen::VectorXd& x_1) const {
-  s.v = (2.0 / h) * (x_1 - s.x) - s.v;  // (2.1)
+  const Eigen::VectorXd v_1 = (2.0 / h) * (x_1 - s.x) - s.v;  // (2.1)
+  s.a = (v_1 - s.v) / h;
+  s.v = v_1;
   s.x = x_1;
 }
 

@@ -11,7 +11,9 @@
 
 namespace stoss::time {
 
-/// Positions, velocities and (HHT only) accelerations at t, stacked 3 per node.
+/// Positions, velocities and accelerations at t, stacked 3 per node. The accelerations are the
+/// scheme's: HHT's and generalized-α's a_n (2.10); the midpoint schemes' mean acceleration of the last
+/// step, (v_n − v_{n−1}) / h, which their predictor uses (midpoint.hpp).
 struct State {
   Eigen::VectorXd x, v, a;
   double t = 0;
@@ -31,6 +33,8 @@ class Scheme {
                            Eigen::VectorXd& R) const = 0;
   /// c with ∂(inertia residual)/∂x_1 = c M.
   virtual double inertia_jacobian_factor(double h) const = 0;
+  /// Newton's starting point for x_{n+1}: x_n + h v_n unless the scheme knows better.
+  virtual Eigen::VectorXd predict(const State& s, double h) const { return s.x + h * s.v; }
   /// Sets s.x = x_1 and the matching velocity (and acceleration); does not touch t.
   virtual void advance(State& s, double h, const Eigen::VectorXd& x_1) const = 0;
   /// Whether the scheme needs an initial acceleration (HHT: M a_0 = f_ext − f_int(x_0)).
