@@ -21,6 +21,13 @@ class SolverError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A checkpoint that cannot be resumed: unreadable, of another scene or step size, or missing a frame.
+/// Thrown before the observer hears of the run, so a caller may remove the checkpoint and start over.
+class CheckpointError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
 /// How the log line of a run resumed from a checkpoint begins: "resumed from step N (t = …) …". Observers
 /// that measure a rate (progress, ETA) start counting from there.
 inline constexpr std::string_view resumed_log_prefix = "resumed from step ";
@@ -38,7 +45,7 @@ struct Checkpoints {
 
 /// Runs `model` from t = 0 (or from a checkpoint) to model.time.end. Throws SolverError when a step fails
 /// (after observer.end with completed = false). Returns with completed = false when canceled.
-/// @throws std::invalid_argument when the checkpoint to resume from is of another scene or unreadable.
+/// @throws CheckpointError when the checkpoint to resume from is of another scene or unreadable.
 model::Summary simulate(const model::Model& model, model::Observer& observer, const CancelFlag* cancel = nullptr,
                         const Checkpoints& checkpoints = {});
 

@@ -158,6 +158,11 @@ void CheckpointStore::write_frame(int k, const model::Frame& frame) {
   unsynced_.push_back(path);
 }
 
+bool CheckpointStore::has_frame(int k) const {
+  std::error_code ignored;
+  return fs::is_regular_file(frame_file(k), ignored);
+}
+
 model::Frame CheckpointStore::read_frame(int k) const {
   h5::silence_errors();
   const h5::File file = h5::File::open(frame_file(k));

@@ -57,6 +57,8 @@ class CheckpointStore {
   void write(const Checkpoint& checkpoint);
   /// The last checkpoint. @throws std::runtime_error naming the file and what is wrong with it.
   Checkpoint read() const;
+  /// Whether frame k's file is there.
+  bool has_frame(int k) const;
   /// Frame k, as written by write_frame. @throws std::runtime_error naming the file.
   model::Frame read_frame(int k) const;
   /// Removes the directory and everything in it.

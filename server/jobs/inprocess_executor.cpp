@@ -66,7 +66,15 @@ Outcome InProcessExecutor::simulate_job(const Job& job, const model::Model& mode
     ProgressObserver reporter(progress, clock_, progress_interval_);
     LogObserver logger(log);
     model::ObserverList observers({&writer, &reporter, &logger, &series});
-    summary = stoss::simulate(model, observers, &cancel, {files_.checkpoint(job.id), true});
+    const Checkpoints checkpoints{files_.checkpoint(job.id), true};
+    try {
+      summary = stoss::simulate(model, observers, &cancel, checkpoints);
+    } catch (const CheckpointError& e) {  // nothing was reported yet: start over without it
+      log << e.what() << "; starting from step 0\n" << std::flush;
+      std::error_code ignored;
+      std::filesystem::remove_all(checkpoints.directory, ignored);
+      summary = stoss::simulate(model, observers, &cancel, checkpoints);
+    }
   } catch (const SolverError& e) {
     std::error_code ignored;
     std::filesystem::remove_all(files_.checkpoint(job.id), ignored);  // the same step would fail again

@@ -171,7 +171,7 @@ TEST(Checkpoint, ACheckpointOfAnotherSceneIsRefusedWithTheReason) {
   try {
     simulate(scene::load(other), second, nullptr, {dir.path, true});
     FAIL() << "resumed another scene's checkpoint";
-  } catch (const std::invalid_argument& e) {
+  } catch (const CheckpointError& e) {
     EXPECT_NE(std::string(e.what()).find("it was written for another scene"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("state.h5"), std::string::npos) << e.what();
   }

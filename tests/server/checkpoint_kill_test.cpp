@@ -15,6 +15,8 @@
 #include <thread>
 
 #include "core/output/result_reader.hpp"
+#include "core/scene/scene.hpp"
+#include "server/jobs/inprocess_executor.hpp"
 #include "server/jobs/process_executor.hpp"
 #include "tests/server/live_server.hpp"
 #include "tests/server/pg_cluster.hpp"
@@ -248,6 +250,31 @@ TEST(KillNine, RunsKilledAtRandomStepsResumeFromTheirCheckpointsAndEndAsUncrashe
   EXPECT_EQ(cli.lost + service.lost, 0);
   EXPECT_EQ(cli.partial_served + service.partial_served, 0);
   EXPECT_GE(cli.resumed + service.resumed, 5);
+}
+
+TEST(KillNine, AJobWhoseCheckpointCannotBeReadStartsOverAndSucceeds) {
+  TempDir tmp;
+  const server::jobs::JobFiles files(tmp.path());
+  server::jobs::Job job;
+  job.id = server::jobs::JobId::random();
+  job.kind = server::jobs::Kind::simulation;
+  job.attempt = 2;
+  nlohmann::json scene = short_ball_on_plate(false);
+  scene["time"]["end"] = 0.05;
+  job.scene = scene::load(scene).scene;  // as POST stores it: validated, defaults filled in
+  fs::create_directories(files.checkpoint(job.id));
+  std::ofstream(files.checkpoint(job.id) / "state.h5") << "a torn file, not HDF5";
+  server::jobs::SystemClock clock;
+  server::jobs::InProcessExecutor executor(files, clock);
+  const std::atomic<bool> cancel{false};
+  const server::jobs::Outcome outcome = executor.run(job, cancel, {});
+  EXPECT_EQ(outcome.status, server::jobs::Status::succeeded) << outcome.error.value_or("");
+  const std::string log = read_file(files.log(job.id));
+  EXPECT_NE(log.find("cannot resume from " + (files.checkpoint(job.id) / "state.h5").string()), std::string::npos)
+      << log;
+  EXPECT_NE(log.find("; starting from step 0"), std::string::npos) << log;
+  EXPECT_TRUE(fs::exists(files.result(job.id)));
+  EXPECT_FALSE(fs::exists(files.checkpoint(job.id)));
 }
 
 }  // namespace
