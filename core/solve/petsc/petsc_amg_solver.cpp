@@ -51,6 +51,14 @@ PetscErrorCode default_gamg_options(const std::string& prefix) {
 
 constexpr const char* prefix = "stoss_";
 
+/// The preconditioner of the last setup is kept for new values of the same pattern (Newton iterations,
+/// later steps) while GMRES needs at most this factor times, plus `reuse_slack`, the iterations it needed
+/// right after that setup (docs/measurements.md, "Linear solvers"): the setup (the Galerkin products
+/// PᵀAP on every level) cost about a third of a tumbling-sphere step at 27,648 hex8, and the tangent
+/// of one step hardly changes the preconditioner's quality.
+constexpr double reuse_growth = 1.5;
+constexpr int reuse_slack = 5;
+
 PetscErrorCode set_default_options() {
   PetscCall(default_gamg_options(std::string("-") + prefix));
   PetscCall(default_gamg_options(std::string("-") + prefix + "fieldsplit_0_"));
@@ -84,6 +92,9 @@ class PetscAmgSolver final : public AmgSolver {
       generation_ = generation;
     } else if (refill(R) != success) {
       return false;
+    } else if (preconditioner_still_good()) {
+      ++reuses_;
+      return KSPSetReusePreconditioner(ksp_, PETSC_TRUE) == success;
     }
     return setup() == success;
   }
@@ -120,6 +131,7 @@ class PetscAmgSolver final : public AmgSolver {
     std::string text = std::string("GMRES(100), right-preconditioned, rtol ") + rtol;
     if (whole_setups_ > 0) text += "; " + std::to_string(whole_setups_) + " setups of " + whole_;
     if (split_setups_ > 0) text += "; " + std::to_string(split_setups_) + " setups of " + split_ + " (the last)";
+    if (reuses_ > 0) text += "; the preconditioner reused for " + std::to_string(reuses_) + " more matrices";
     return text;
   }
 
@@ -229,8 +241,14 @@ class PetscAmgSolver final : public AmgSolver {
     return success;
   }
 
+  bool preconditioner_still_good() const {
+    return fresh_iterations_ >= 0 && last_iterations_ <= reuse_growth * fresh_iterations_ + reuse_slack;
+  }
+
   PetscErrorCode setup() {
+    PetscCall(KSPSetReusePreconditioner(ksp_, PETSC_FALSE));
     PetscCall(KSPSetUp(ksp_));
+    fresh_iterations_ = -1;  // set by the next solve
     describe_setup();
     return success;
   }
@@ -247,6 +265,8 @@ class PetscAmgSolver final : public AmgSolver {
     PetscCall(KSPGetIterationNumber(ksp_, &iterations));
     outcome.converged = reason > 0;
     outcome.iterations = int(iterations);
+    last_iterations_ = outcome.converged ? outcome.iterations : amg_max_iterations + 1;  // not converged: rebuild
+    if (fresh_iterations_ < 0) fresh_iterations_ = last_iterations_;
     const PetscScalar* q = nullptr;
     PetscCall(VecGetArrayRead(x_, &q));
     std::copy(q, q + x.size(), x.data());
@@ -264,6 +284,7 @@ class PetscAmgSolver final : public AmgSolver {
     MatDestroy(&A_);
     generation_ = rows_ = positions_ = -1;
     nonzeros_ = -1;
+    fresh_iterations_ = last_iterations_ = -1;
   }
 
   Mat A_ = nullptr;
@@ -274,7 +295,9 @@ class PetscAmgSolver final : public AmgSolver {
   int generation_ = -1, rows_ = -1, positions_ = -1;
   Eigen::Index nonzeros_ = -1;
   double tolerance_ = amg_default_tolerance;
-  int whole_setups_ = 0, split_setups_ = 0;
+  int whole_setups_ = 0, split_setups_ = 0, reuses_ = 0;
+  int fresh_iterations_ = -1;  ///< GMRES iterations of the first solve after the last setup
+  int last_iterations_ = -1;   ///< of the last solve
   std::string whole_, split_;  ///< the last setup of each kind, described
 };
 
