@@ -133,6 +133,24 @@ TEST(PetscGamg, RefactorisingWithTheSamePatternUsesTheNewValues) {
   EXPECT_EQ(amg.factorizations(), 2);
 }
 
+// The preconditioner of the last setup serves new values of the same pattern while GMRES converges
+// about as fast as right after the setup (petsc_amg_solver.cpp): the solve still uses the new matrix.
+TEST(PetscGamg, NewValuesOfTheSamePatternReuseTheLastPreconditionerAndSolveTheNewSystem) {
+  const Lattice l = lattice(6);
+  BlockPattern A = elastic_system(l, 1e-3);
+  LinearSolver amg(LinearMethod::petsc_gamg);
+  amg.set_coordinates(l.positions);
+  amg.set_krylov_tolerance(1e-10);
+  const Eigen::VectorXd b = rhs(A.matrix().rows());
+  ASSERT_TRUE(amg.factorize(A));
+  amg.solve(b);
+  for (int i = 0; i < A.matrix().rows(); ++i) A.add_diagonal(i, 1e-4);  // same pattern, slightly new values
+  ASSERT_TRUE(amg.factorize(A));
+  EXPECT_LT((A.matrix() * amg.solve(b) - b).norm(), 1e-9 * b.norm());
+  EXPECT_NE(amg.preconditioner_description().find("reused for 1 more"), std::string::npos)
+      << amg.preconditioner_description();
+}
+
 TEST(PetscGamg, ByDefaultASolveStopsAtARelativeResidualOf1e4) {
   const Lattice l = lattice(8);
   const BlockPattern A = elastic_system(l, 1e-3);
