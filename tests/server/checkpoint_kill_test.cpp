@@ -4,7 +4,8 @@
 // seed's example shortened) and Coulomb friction with penalty contact (its frictional example shortened), a
 // checkpoint every 2 steps, so that the kills land between checkpoints. Killed: `stoss run` (then
 // `stoss run --resume DIR`), and a worker of the job service together with its job processes (the worker's
-// rescuer and the next worker resume the jobs). Kill moments come from a seeded generator; how many kills land
+// rescuer and the next worker resume the jobs). Kill moments come from a seeded generator, scaled to the wall
+// time of an uncrashed run (so they land mid-run on a quiet machine as on a loaded one); how many kills land
 // mid-run is printed (docs/measurements.md, "Hardening numbers").
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -107,8 +108,11 @@ struct Tally {
 /// `stoss run SCENE -o DIR` killed after random delays, then `stoss run --resume DIR` (or the first command
 /// again when the kill came before it wrote DIR/checkpoint/run.json), killed again, … at most `kills` times,
 /// until an attempt ends by itself or the result is there.
-void cli_campaign(const fs::path& scene, const fs::path& dir, std::mt19937& rng, int kills, Tally& tally) {
-  std::uniform_int_distribution<int> delay_ms(150, 900);
+/// Kill moments are drawn between 20 % and 80 % of `run_ms`, the wall time of an uncrashed run of the scene,
+/// so that the kills land mid-run on a quiet machine as on a loaded one.
+void cli_campaign(const fs::path& scene, const fs::path& dir, std::mt19937& rng, int kills, Tally& tally,
+                  int run_ms) {
+  std::uniform_int_distribution<int> delay_ms(run_ms / 5, run_ms * 4 / 5);
   for (int attempt = 0;; ++attempt) {
     ASSERT_LT(attempt, 60) << "no progress";
     const bool can_resume = fs::exists(dir / output::checkpoint_directory_name / "run.json");
@@ -149,11 +153,15 @@ TEST(KillNine, RunsKilledAtRandomStepsResumeFromTheirCheckpointsAndEndAsUncrashe
   std::mt19937 rng(20261129);
   Tally cli, service;
   std::vector<fs::path> scenes, references;
+  std::vector<int> run_ms;  // wall time of an uncrashed stoss run of each scene
   for (bool friction : {false, true}) {
     scenes.push_back(tmp.path() / (friction ? "friction.json" : "contact.json"));
     std::ofstream(scenes.back()) << short_ball_on_plate(friction).dump();
     const fs::path reference = tmp.path() / (friction ? "friction_reference" : "contact_reference");
+    const auto t0 = std::chrono::steady_clock::now();
     const CommandResult uncrashed = run_stoss({"run", scenes.back().string(), "-o", reference.string()}, 120s);
+    run_ms.push_back(static_cast<int>(
+        std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0).count()));
     ASSERT_EQ(uncrashed.exit_code, 0) << uncrashed.out << uncrashed.err;
     EXPECT_FALSE(fs::exists(reference / output::checkpoint_directory_name));  // removed once the result is there
     references.push_back(reference / output::result_file_name);
@@ -161,10 +169,10 @@ TEST(KillNine, RunsKilledAtRandomStepsResumeFromTheirCheckpointsAndEndAsUncrashe
 
   // The command line: stoss run, then stoss run --resume DIR; the two scenes in turn.
   for (int campaign = 0; cli.kills < 10; ++campaign) {
-    ASSERT_LT(campaign, 10) << "the kills land after the runs ended";
+    ASSERT_LT(campaign, 20) << "the kills land after the runs ended";
     const size_t k = campaign % 2;
     const fs::path dir = tmp.path() / ("cli" + std::to_string(campaign));
-    cli_campaign(scenes[k], dir, rng, 4, cli);
+    cli_campaign(scenes[k], dir, rng, 4, cli, run_ms[k]);
     expect_same_result(references[k], dir / output::result_file_name, "stoss run --resume " + dir.string());
   }
 
@@ -184,7 +192,7 @@ TEST(KillNine, RunsKilledAtRandomStepsResumeFromTheirCheckpointsAndEndAsUncrashe
   std::vector<std::string> worker_args = {"--workers", "2"};
   worker_args.insert(worker_args.end(), fast_rescue.begin(), fast_rescue.end());
   const std::string store = "sqlite:" + (data / "jobs.db").string();
-  std::uniform_int_distribution<int> delay_ms(0, 700);
+  std::uniform_int_distribution<int> delay_ms(0, std::min(run_ms[0], run_ms[1]) / 2);
   const auto unfinished = [&] {
     std::vector<std::string> ids;
     for (const auto& [id, k] : jobs)
@@ -192,7 +200,7 @@ TEST(KillNine, RunsKilledAtRandomStepsResumeFromTheirCheckpointsAndEndAsUncrashe
     return ids;
   };
   for (int round = 0; service.kills < 10; ++round) {
-    ASSERT_LT(round, 40) << "the jobs stopped making progress";
+    ASSERT_LT(round, 60) << "the jobs stopped making progress";
     LiveWorker worker(store, data, worker_args);
     // Wait until a job computes (a step after its start or resume), then a random moment more.
     const bool computing = eventually(
