@@ -25,7 +25,8 @@ void sync_to_disk(const fs::path& path) {
   if (status != 0) throw std::system_error(errno, std::generic_category(), "cannot sync " + path.string());
 }
 
-void write_reals(const h5::File& file, const std::string& name, const double* data, hsize_t rows, hsize_t columns = 0) {
+void write_reals(const h5::File& file, const std::string& name, const double* data, hsize_t rows,
+                 hsize_t columns = 0) {
   const h5::Dims dims = columns > 0 ? h5::Dims{rows, columns} : h5::Dims{rows};
   file.write_dataset(name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, dims, data);
 }
@@ -61,7 +62,8 @@ constexpr SummaryField summary_fields[] = {
 };
 
 void write_summary(const h5::File& file, const model::Summary& summary) {
-  for (const SummaryField& f : summary_fields) file.write_attribute("/", std::string("summary_") + f.name, summary.*f.value);
+  for (const SummaryField& f : summary_fields)
+    file.write_attribute("/", std::string("summary_") + f.name, summary.*f.value);
   file.write_attribute("/", "summary_newton_iterations", summary.newton_iterations);
 }
 
@@ -83,7 +85,8 @@ void write_terms(const h5::File& file, const std::vector<std::pair<std::string, 
     file.create_group(group + "/integers");
     for (const auto& [name, values] : terms[k].second.reals)
       write_reals(file, group + "/reals/" + name, values.data(), values.size());
-    for (const auto& [name, values] : terms[k].second.integers) write_integers(file, group + "/integers/" + name, values);
+    for (const auto& [name, values] : terms[k].second.integers)
+      write_integers(file, group + "/integers/" + name, values);
   }
 }
 
@@ -123,7 +126,8 @@ std::vector<model::StepRow> read_series(const h5::File& file) {
   const h5::Dims shape = file.shape("/series/values");
   const size_t width = shape.size() == 2 ? shape[1] : 0;
   if (times.size() != steps.size() || values.size() != steps.size() * width)
-    throw std::runtime_error("checkpoint " + file.path().string() + ": /series datasets of different lengths");
+    throw std::runtime_error("checkpoint " + file.path().string() +
+                             ": /series datasets of different lengths");
   std::vector<model::StepRow> rows(steps.size());
   for (size_t r = 0; r < rows.size(); ++r) {
     rows[r].step = static_cast<int>(steps[r]);
@@ -193,7 +197,8 @@ void CheckpointStore::write(const Checkpoint& c) {
     write_terms(file, c.terms);
     write_series(file, c.rows);
     file.create_group("/frames");
-    write_integers(file, "/frames/step", std::vector<std::int64_t>(c.frame_steps.begin(), c.frame_steps.end()));
+    write_integers(file, "/frames/step",
+                   std::vector<std::int64_t>(c.frame_steps.begin(), c.frame_steps.end()));
     file.close();
   }
   for (const fs::path& frame : unsynced_) sync_to_disk(frame);
@@ -210,7 +215,8 @@ Checkpoint CheckpointStore::read() const {
   if (format.size() != 1 || format[0] != checkpoint_format)
     throw std::runtime_error("checkpoint " + state_file().string() + ": format is not " + checkpoint_format);
   Checkpoint c;
-  for (double byte : file.read_doubles("/scene")) c.scene.push_back(static_cast<char>(static_cast<unsigned char>(byte)));
+  for (double byte : file.read_doubles("/scene"))
+    c.scene.push_back(static_cast<char>(static_cast<unsigned char>(byte)));
   c.state.step = static_cast<int>(file.read_double_attribute("/", "step"));
   c.state.t = file.read_double_attribute("/", "time");
   c.step_size = file.read_double_attribute("/", "step_size");
@@ -220,7 +226,8 @@ Checkpoint CheckpointStore::read() const {
   c.state.a = read_vector(file, "/state/a");
   c.terms = read_terms(file);
   c.rows = read_series(file);
-  for (std::int64_t step : read_integers(file, "/frames/step")) c.frame_steps.push_back(static_cast<int>(step));
+  for (std::int64_t step : read_integers(file, "/frames/step"))
+    c.frame_steps.push_back(static_cast<int>(step));
   return c;
 }
 

@@ -1,17 +1,18 @@
 #pragma once
-/// @file Checkpoints of a run (docs/results.md, "Checkpoints"): the full state at the end of a step, so that a
-/// run stopped by a crash goes on from there and ends with the result it would have had.
+/// @file Checkpoints of a run (docs/results.md, "Checkpoints"): the full state at the end of a step, so
+/// that a run stopped by a crash goes on from there and ends with the result it would have had.
 ///
 /// A run's checkpoint directory holds
-///   state.h5        the last checkpoint (written as state.h5.tmp, fsync'd, renamed; format stoss-checkpoint/1)
-///   frame_<k>.h5    frame k of the run (written once each, fsync'd before the next checkpoint names it)
+///   state.h5      the last checkpoint (format stoss-checkpoint/1; written as state.h5.tmp, fsync'd, renamed)
+///   frame_<k>.h5  frame k of the run (written once each, fsync'd before the next checkpoint names it)
 /// state.h5:
-///   /                       attributes format, scene (the resolved scene JSON), step, time, step_size, frames,
-///                           summary_* (the run's accumulators: Newton iterations, drifts, penetrations)
-///   /state/x, /state/v, /state/a   [3N] float64   positions, velocities, accelerations (HHT, generalized-α)
-///   /terms/<k>              attribute name; reals/<array> float64, integers/<array> int64 (time::TermState)
-///   /series/step [S] int64, /series/time [S], /series/values [S, row size]   every row so far, step 0 included
-///   /frames/step [K] int64  the step of each frame so far
+///   /             attributes format, step, time, step_size, summary_* (the run's accumulators: Newton
+///                 iterations, drifts, penetrations)
+///   /scene        uint8 [bytes]: the resolved scene JSON
+///   /state/x, /state/v, /state/a    [3N] float64: positions, velocities, the scheme's accelerations
+///   /terms/<k>    attribute name; reals/<array> float64, integers/<array> int64 (time::TermState)
+///   /series/step [S] int64, /series/time [S], /series/values [S, row size]: every row so far, step 0 too
+///   /frames/step [K] int64: the step of each frame so far
 
 #include <Eigen/Core>
 #include <filesystem>
@@ -31,18 +32,19 @@ inline constexpr const char* checkpoint_directory_name = "checkpoint";
 
 /// The state of a run at the end of a converged step: what it needs to go on as if it had never stopped.
 struct Checkpoint {
-  std::string scene;       ///< model.scene of the run (resolved): a checkpoint resumes that scene only
-  time::State state;       ///< x, v, a, t and the step index
-  double step_size = 0;    ///< time.step (step reduction keeps no state from one step to the next)
-  std::vector<std::pair<std::string, time::TermState>> terms;  ///< name and history of every term, in run order
-  model::Summary summary;  ///< accumulators so far: Newton iterations, drifts, penetrations
+  std::string scene;     ///< model.scene of the run (resolved): a checkpoint resumes that scene only
+  time::State state;     ///< x, v, a, t and the step index
+  double step_size = 0;  ///< time.step (step reduction keeps no state from one step to the next)
+  /// Name and history of every term, in run order.
+  std::vector<std::pair<std::string, time::TermState>> terms;
+  model::Summary summary;            ///< accumulators so far: Newton iterations, drifts, penetrations
   std::vector<model::StepRow> rows;  ///< the series so far, step 0 included
   std::vector<int> frame_steps;      ///< the step of every frame so far (frame k in frame_<k>.h5)
 };
 
 /// A run's checkpoint directory.
-/// @note A crash at any moment leaves either the previous checkpoint or the new one, never a torn one: state.h5
-///       is renamed into place only after it and the frames it names are on disk.
+/// @note A crash at any moment leaves either the previous checkpoint or the new one, never a torn one:
+///       state.h5 is renamed into place only after it and the frames it names are on disk.
 class CheckpointStore {
  public:
   explicit CheckpointStore(std::filesystem::path directory) : directory_(std::move(directory)) {}

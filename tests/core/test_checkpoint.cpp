@@ -23,8 +23,8 @@ using testing::RecordingObserver;
 
 /// A fresh directory under the system's temporary directory, removed at the end of the test.
 struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("stoss_checkpoint_" + std::to_string(::getpid()) + "_" +
-                                                std::to_string(counter++));
+  fs::path path = fs::temp_directory_path() /
+                  ("stoss_checkpoint_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
   TempDir() { fs::remove_all(path); }
   ~TempDir() { fs::remove_all(path); }
   static inline int counter = 0;
@@ -35,27 +35,39 @@ struct TempDir {
 /// α-weighted form that keeps λ_n N_s(x_n) between steps) or "penalty" with Coulomb friction μ = 0.2.
 nlohmann::json ball_on_plate(const std::string& enforcement, int checkpoint_every,
                              const std::string& scheme = "energy_momentum") {
-  nlohmann::json contact = {{"slave", "ball/outer"}, {"master", "plate/top"}, {"enforcement", enforcement},
+  nlohmann::json contact = {{"slave", "ball/outer"},
+                            {"master", "plate/top"},
+                            {"enforcement", enforcement},
                             {"switch_hysteresis", 0.05}};
   if (enforcement == "penalty") contact["friction"] = 0.2;
-  return {
-      {"format", "stoss-scene/1"},
-      {"name", "ball on plate, shortened"},
-      {"bodies",
-       {{{"name", "ball"},
-         {"mesh",
-          {{"hollow_sphere",
-            {{"center", {0, 0, 1.03}}, {"outer_radius", 1.0}, {"inner_radius", 0.8}, {"divisions", 4}, {"layers", 1}}}}},
-         {"material", {{"model", "saint_venant_kirchhoff"}, {"youngs_modulus", 1e4}, {"poisson_ratio", 0.4}, {"density", 1}}},
-         {"initial_velocity", {0, 1, -1}}},
-        {{"name", "plate"},
-         {"mesh", {{"box", {{"min", {-2, -1.5, -0.2}}, {"max", {2, 2.5, 0}}, {"divisions", {8, 8, 1}}}}}},
-         {"material",
-          {{"model", "saint_venant_kirchhoff"}, {"youngs_modulus", 1e4}, {"poisson_ratio", 0.4}, {"density", 1}}}}}},
-      {"contact", {contact}},
-      {"time", {{"scheme", scheme}, {"step", 0.01}, {"end", 0.24}}},
-      {"solver", {{"tolerance", 1e-10}, {"max_iterations", 25}}},
-      {"output", {{"every", 3}, {"checkpoint_every", checkpoint_every}}}};
+  return {{"format", "stoss-scene/1"},
+          {"name", "ball on plate, shortened"},
+          {"bodies",
+           {{{"name", "ball"},
+             {"mesh",
+              {{"hollow_sphere",
+                {{"center", {0, 0, 1.03}},
+                 {"outer_radius", 1.0},
+                 {"inner_radius", 0.8},
+                 {"divisions", 4},
+                 {"layers", 1}}}}},
+             {"material",
+              {{"model", "saint_venant_kirchhoff"},
+               {"youngs_modulus", 1e4},
+               {"poisson_ratio", 0.4},
+               {"density", 1}}},
+             {"initial_velocity", {0, 1, -1}}},
+            {{"name", "plate"},
+             {"mesh", {{"box", {{"min", {-2, -1.5, -0.2}}, {"max", {2, 2.5, 0}}, {"divisions", {8, 8, 1}}}}}},
+             {"material",
+              {{"model", "saint_venant_kirchhoff"},
+               {"youngs_modulus", 1e4},
+               {"poisson_ratio", 0.4},
+               {"density", 1}}}}}},
+          {"contact", {contact}},
+          {"time", {{"scheme", scheme}, {"step", 0.01}, {"end", 0.24}}},
+          {"solver", {{"tolerance", 1e-10}, {"max_iterations", 25}}},
+          {"output", {{"every", 3}, {"checkpoint_every", checkpoint_every}}}};
 }
 
 struct Crash : std::runtime_error {
@@ -121,7 +133,8 @@ TEST_P(CheckpointResume, AResumedRunComputesOnlyTheStepsAfterTheCheckpointAndEnd
   CrashingObserver uncrashed;
   const model::Summary reference = simulate(m, uncrashed, nullptr, {uncrashed_dir.path, false});
   ASSERT_TRUE(reference.completed);
-  ASSERT_GT(reference.max_penetration + uncrashed.series("active_contacts").back(), 0) << "no contact: no test";
+  ASSERT_GT(reference.max_penetration + uncrashed.series("active_contacts").back(), 0)
+      << "no contact: no test";
 
   for (int crash_at : {3, 13, 21}) {
     SCOPED_TRACE("crash at step " + std::to_string(crash_at));
@@ -145,13 +158,15 @@ TEST_P(CheckpointResume, AResumedRunComputesOnlyTheStepsAfterTheCheckpointAndEnd
     // Steps 0..N come back as they were (their wall times are the first attempt's), then the log line, then
     // steps N+1.. only.
     ASSERT_EQ(resumed.events.size(), size_t(reference.steps + 2));
-    EXPECT_EQ(resumed.events[checkpoint + 1].rfind("resumed from step " + std::to_string(checkpoint) + " ", 0), 0u)
+    EXPECT_EQ(
+        resumed.events[checkpoint + 1].rfind("resumed from step " + std::to_string(checkpoint) + " ", 0), 0u)
         << resumed.events[checkpoint + 1];
     for (int n = 0; n <= checkpoint; ++n) {
       EXPECT_EQ(resumed.events[n], "step " + std::to_string(n));
       EXPECT_EQ(resumed.series("step_seconds")[n], first.series("step_seconds")[n]);
     }
-    for (int n = checkpoint + 1; n <= reference.steps; ++n) EXPECT_EQ(resumed.events[n + 1], "step " + std::to_string(n));
+    for (int n = checkpoint + 1; n <= reference.steps; ++n)
+      EXPECT_EQ(resumed.events[n + 1], "step " + std::to_string(n));
   }
 }
 
@@ -186,11 +201,12 @@ TEST(Checkpoint, TheStateFileHoldsTheFullStateOfItsStep) {
   EXPECT_EQ(c.state.step, 10);
   EXPECT_NEAR(c.state.t, 0.1, 1e-12);
   EXPECT_EQ(c.state.x.size(), m.dof_count());
-  EXPECT_EQ(c.rows.size(), 11u);                       // steps 0..10
+  EXPECT_EQ(c.rows.size(), 11u);  // steps 0..10
   EXPECT_EQ(c.frame_steps, (std::vector<int>{0, 3, 6, 9}));
-  ASSERT_EQ(c.terms.size(), 2u);                       // elasticity, the pair
+  ASSERT_EQ(c.terms.size(), 2u);  // elasticity, the pair
   EXPECT_EQ(c.terms[1].second.integers.at("face").size(), c.terms[1].second.reals.at("gap_offset").size());
-  EXPECT_EQ(c.terms[1].second.reals.at("friction_traction").size(), 3 * c.terms[1].second.reals.at("gap_offset").size());
+  EXPECT_EQ(c.terms[1].second.reals.at("friction_traction").size(),
+            3 * c.terms[1].second.reals.at("gap_offset").size());
   EXPECT_GE(c.terms[1].second.reals.at("dissipated_energy").at(0), 0.0);
   // Positions of step 10 as the run reported them.
   EXPECT_EQ(c.rows.back().values, run.rows[10].values);

@@ -1,12 +1,12 @@
 // kill -9 trials (issue 10 item 4): the system shall lose no job and serve no partial result when the process
-// computing a run is killed at random moments, and every run resumed from its last checkpoint shall end with the
-// result of a run that never crashed, to the Newton tolerance. Two scenes: frictionless Lagrange contact (the
-// seed's example shortened) and Coulomb friction with penalty contact (its frictional example shortened), a
-// checkpoint every 2 steps, so that the kills land between checkpoints. Killed: `stoss run` (then
-// `stoss run --resume DIR`), and a worker of the job service together with its job processes (the worker's
-// rescuer and the next worker resume the jobs). Kill moments come from a seeded generator, scaled to the wall
-// time of an uncrashed run (so they land mid-run on a quiet machine as on a loaded one); how many kills land
-// mid-run is printed (docs/measurements.md, "Hardening numbers").
+// computing a run is killed at random moments, and every run resumed from its last checkpoint shall end with
+// the result of a run that never crashed, to the Newton tolerance. Two scenes: frictionless Lagrange contact
+// (the seed's example shortened) and Coulomb friction with penalty contact (its frictional example
+// shortened), a checkpoint every 2 steps, so that the kills land between checkpoints. Killed: `stoss run`
+// (then `stoss run --resume DIR`), and a worker of the job service together with its job processes (the
+// worker's rescuer and the next worker resume the jobs). Kill moments come from a seeded generator, scaled to
+// the wall time of an uncrashed run (so they land mid-run on a quiet machine as on a loaded one); how many
+// kills land mid-run is printed (docs/measurements.md, "Hardening numbers").
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -33,7 +33,8 @@ using namespace std::chrono_literals;
 nlohmann::json short_ball_on_plate(bool friction) {
   nlohmann::json contact = {{"slave", "ball/outer"}, {"master", "plate/top"}, {"switch_hysteresis", 0.05}};
   if (friction) {
-    contact.update({{"enforcement", "penalty"}, {"friction", 0.2}, {"normal_traction", "discrete_derivative"}});
+    contact.update(
+        {{"enforcement", "penalty"}, {"friction", 0.2}, {"normal_traction", "discrete_derivative"}});
   } else {
     contact.update({{"enforcement", "lagrange"}, {"impact", "persist"}});
   }
@@ -45,7 +46,11 @@ nlohmann::json short_ball_on_plate(bool friction) {
            {{{"name", "ball"},
              {"mesh",
               {{"hollow_sphere",
-                {{"center", {0, 0, 1.03}}, {"outer_radius", 1.0}, {"inner_radius", 0.8}, {"divisions", 4}, {"layers", 1}}}}},
+                {{"center", {0, 0, 1.03}},
+                 {"outer_radius", 1.0},
+                 {"inner_radius", 0.8},
+                 {"divisions", 4},
+                 {"layers", 1}}}}},
              {"material", material},
              {"initial_velocity", {0, 1, -1}}},
             {{"name", "plate"},
@@ -79,7 +84,8 @@ void expect_same_result(const fs::path& reference, const fs::path& result, const
   for (int k = 0; k < a.frame_count(); ++k) {
     EXPECT_EQ(a.frame_times()[k], b.frame_times()[k]);
     EXPECT_LE((a.frame_positions(k) - b.frame_positions(k)).norm(), 1e-9 * a.frame_positions(k).norm()) << k;
-    EXPECT_LE((a.frame_velocities(k) - b.frame_velocities(k)).norm(), 1e-9 * a.frame_velocities(k).norm()) << k;
+    EXPECT_LE((a.frame_velocities(k) - b.frame_velocities(k)).norm(), 1e-9 * a.frame_velocities(k).norm())
+        << k;
   }
 }
 
@@ -116,8 +122,9 @@ void cli_campaign(const fs::path& scene, const fs::path& dir, std::mt19937& rng,
   for (int attempt = 0;; ++attempt) {
     ASSERT_LT(attempt, 60) << "no progress";
     const bool can_resume = fs::exists(dir / output::checkpoint_directory_name / "run.json");
-    const std::vector<std::string> args = can_resume ? std::vector<std::string>{"run", "--resume", dir.string()}
-                                                     : std::vector<std::string>{"run", scene.string(), "-o", dir.string()};
+    const std::vector<std::string> args =
+        can_resume ? std::vector<std::string>{"run", "--resume", dir.string()}
+                   : std::vector<std::string>{"run", scene.string(), "-o", dir.string()};
     const fs::path log = dir.string() + "." + std::to_string(attempt) + ".log";
     const pid_t pid = spawn_stoss(args, log);
     int exit_code = -1;
@@ -159,11 +166,14 @@ TEST(KillNine, RunsKilledAtRandomStepsResumeFromTheirCheckpointsAndEndAsUncrashe
     std::ofstream(scenes.back()) << short_ball_on_plate(friction).dump();
     const fs::path reference = tmp.path() / (friction ? "friction_reference" : "contact_reference");
     const auto t0 = std::chrono::steady_clock::now();
-    const CommandResult uncrashed = run_stoss({"run", scenes.back().string(), "-o", reference.string()}, 120s);
+    const CommandResult uncrashed =
+        run_stoss({"run", scenes.back().string(), "-o", reference.string()}, 120s);
     run_ms.push_back(static_cast<int>(
-        std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0).count()));
+        std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0)
+            .count()));
     ASSERT_EQ(uncrashed.exit_code, 0) << uncrashed.out << uncrashed.err;
-    EXPECT_FALSE(fs::exists(reference / output::checkpoint_directory_name));  // removed once the result is there
+    EXPECT_FALSE(
+        fs::exists(reference / output::checkpoint_directory_name));  // removed once the result is there
     references.push_back(reference / output::result_file_name);
   }
 
@@ -179,7 +189,8 @@ TEST(KillNine, RunsKilledAtRandomStepsResumeFromTheirCheckpointsAndEndAsUncrashe
   // The job service: an API server that only queues and serves, and a worker killed with its job processes;
   // a new pair of jobs whenever the last pair finished, until 10 kills landed mid-run.
   const fs::path data = tmp.path() / "data";
-  const std::vector<std::string> fast_rescue = {"--lease-seconds", "1", "--renew-seconds", "0.2", "--max-attempts", "60"};
+  const std::vector<std::string> fast_rescue = {"--lease-seconds", "1", "--renew-seconds", "0.2",
+                                                "--max-attempts",  "60"};
   std::vector<std::string> api_args = {"--workers", "0"};
   api_args.insert(api_args.end(), fast_rescue.begin(), fast_rescue.end());
   LiveServer api(data, api_args);
@@ -227,7 +238,8 @@ TEST(KillNine, RunsKilledAtRandomStepsResumeFromTheirCheckpointsAndEndAsUncrashe
       continue;
     }
     worker.kill9();
-    for (pid_t pid : job_processes) ::kill(pid, SIGKILL);  // they die with the worker anyway (PR_SET_PDEATHSIG)
+    for (pid_t pid : job_processes)
+      ::kill(pid, SIGKILL);  // they die with the worker anyway (PR_SET_PDEATHSIG)
     service.kills += static_cast<int>(job_processes.size());
     for (const auto& [id, k] : jobs) {
       const auto result = c.Get("/v1/jobs/" + id + "/result");
@@ -250,10 +262,11 @@ TEST(KillNine, RunsKilledAtRandomStepsResumeFromTheirCheckpointsAndEndAsUncrashe
     }
   }
 
-  std::printf("kill -9 trials: %d mid-run kills (stoss run %d, job service %d), jobs lost %d, partial results served "
-              "%d, attempts that resumed from a checkpoint %d\n",
-              cli.kills + service.kills, cli.kills, service.kills, cli.lost + service.lost,
-              cli.partial_served + service.partial_served, cli.resumed + service.resumed);
+  std::printf(
+      "kill -9 trials: %d mid-run kills (stoss run %d, job service %d), jobs lost %d, partial results served "
+      "%d, attempts that resumed from a checkpoint %d\n",
+      cli.kills + service.kills, cli.kills, service.kills, cli.lost + service.lost,
+      cli.partial_served + service.partial_served, cli.resumed + service.resumed);
   EXPECT_GE(cli.kills + service.kills, 20);
   EXPECT_EQ(cli.lost + service.lost, 0);
   EXPECT_EQ(cli.partial_served + service.partial_served, 0);
@@ -278,7 +291,8 @@ TEST(KillNine, AJobWhoseCheckpointCannotBeReadStartsOverAndSucceeds) {
   const server::jobs::Outcome outcome = executor.run(job, cancel, {});
   EXPECT_EQ(outcome.status, server::jobs::Status::succeeded) << outcome.error.value_or("");
   const std::string log = read_file(files.log(job.id));
-  EXPECT_NE(log.find("cannot resume from " + (files.checkpoint(job.id) / "state.h5").string()), std::string::npos)
+  EXPECT_NE(log.find("cannot resume from " + (files.checkpoint(job.id) / "state.h5").string()),
+            std::string::npos)
       << log;
   EXPECT_NE(log.find("; starting from step 0"), std::string::npos) << log;
   EXPECT_TRUE(fs::exists(files.result(job.id)));
