@@ -273,6 +273,29 @@ TEST(KillNine, RunsKilledAtRandomStepsResumeFromTheirCheckpointsAndEndAsUncrashe
   EXPECT_GE(cli.resumed + service.resumed, 5);
 }
 
+TEST(KillNine, AJobGivenBackAtAGracefulShutdownGoesOnFromItsCheckpoint) {
+  TempDir tmp;
+  const fs::path data = tmp.path() / "data";
+  LiveServer api(data, {"--workers", "0"});
+  auto c = api.client();
+  nlohmann::json scene = short_ball_on_plate(false);
+  scene["time"]["end"] = 0.6;  // 60 steps: still running when the worker stops
+  const std::string id = body_json(submit(c, scene))["id"];
+  const std::string store = "sqlite:" + (data / "jobs.db").string();
+  {
+    LiveWorker worker(store, data, {"--workers", "1"});
+    ASSERT_TRUE(eventually([&] { return job(c, id)["progress"]["step"].get<int>() >= 8; }, 60s));
+  }  // SIGTERM: the job stops within a step and goes back to the queue
+  EXPECT_EQ(job(c, id)["status"], "queued");
+  LiveWorker worker(store, data, {"--workers", "1"});
+  const auto done = wait_for_status(c, id, {"succeeded", "failed", "canceled"}, 120s);
+  EXPECT_EQ(done["status"], "succeeded") << done.dump();
+  const std::vector<int> resumed = resumed_steps(c.Get("/v1/jobs/" + id + "/log")->body);
+  ASSERT_EQ(resumed.size(), 1u);
+  EXPECT_GE(resumed[0], 8);
+  EXPECT_EQ(done["summary"]["resumed_from_step"], resumed[0]);
+}
+
 TEST(KillNine, AJobWhoseCheckpointCannotBeReadStartsOverAndSucceeds) {
   TempDir tmp;
   const server::jobs::JobFiles files(tmp.path());
