@@ -11,6 +11,14 @@
 
 namespace stoss::fem {
 
+/// Threads the element loops of ElasticityTerm::add use: the STOSS_THREADS environment variable when it
+/// is a positive integer, else every core the machine has (one job alone uses both cores of the CI
+/// machine; a service running several jobs at once sets STOSS_THREADS=1 for its workers). Results do
+/// not depend on it: each thread computes whole elements and one thread sums them in element order.
+int element_threads();
+/// Overrides element_threads() for this process (0: back to STOSS_THREADS or the cores).
+void set_element_threads(int threads);
+
 /// Gauss data of every element; throws std::invalid_argument naming the element if one is inverted.
 std::vector<ElementGeometry> precompute_mesh(const mesh::Mesh& mesh);
 
@@ -46,6 +54,9 @@ class ElasticityTerm : public time::Term {
   std::vector<std::shared_ptr<const Material>> material_;  ///< per element, shared per body
   std::vector<int> block_;
   std::vector<Vector24> force_n_;  ///< f_int(x_n) per element, cached for HHT
+  /// One chunk of elements' forces and tangents, computed by the threads before they are summed.
+  mutable std::vector<Vector24> chunk_force_;
+  mutable std::vector<Matrix24> chunk_tangent_;
 };
 
 /// Dead load of gravity: V = −Σ (M g)·x, exact in every scheme.
