@@ -35,7 +35,7 @@ struct NewtonOptions {
   double max_residual_growth = 2;
   /// Keep the last factorisation (across iterations and steps) while it contracts the residual by at
   /// least `reuse_contraction` per iteration; refactorise with a fresh Jacobian otherwise. 0.2 (with
-  /// broyden_update): 11.4 iterations per step on the two balls, none reduced (0.5: 17.8 and one step
+  /// broyden_update): 11.4 iterations per step on the two balls, none reduced (0.5: 14.0 and one step
   /// reduced), at the same CPU time on the seed's example (docs/measurements.md, "Newton on hard impacts").
   bool reuse_factorization = true;
   double reuse_contraction = 0.2;
