@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
 namespace stoss::server::jobs {
 namespace {
 
@@ -92,6 +96,31 @@ TEST(SummaryJson, CarriesMaxPenetrationOnlyWithContact) {
   EXPECT_FALSE(j.contains("max_penetration"));
   m.contact.push_back({});
   EXPECT_EQ(summary_json(s, m)["max_penetration"], 0.25);
+}
+
+// Solver lines in a job's log name the step they belong to and the time it starts from; other lines
+// are written as they come.
+TEST(LogObserver, NewtonLinesNameTheirStepAndItsStartTime) {
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "stoss_log_observer_test.log";
+  {
+    std::ofstream out(path);
+    LogObserver log(out);
+    log.log("linear solver: direct");
+    model::StepRow row;
+    row.step = 4;
+    row.time = 0.05;
+    log.step(row);
+    log.log("newton: residual 3.9e+00 after a full step, halving it (scale 0.5)");
+    log.log("contact ball/outer on plate/top: penalty");
+  }
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::filesystem::remove(path);
+  EXPECT_EQ(text.str(),
+            "linear solver: direct\n"
+            "step 5 (from t = 0.05): newton: residual 3.9e+00 after a full step, halving it (scale 0.5)\n"
+            "contact ball/outer on plate/top: penalty\n");
 }
 
 }  // namespace
