@@ -1,5 +1,10 @@
 #include "server/jobs/job_runner.hpp"
 
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+#include <thread>
+
 namespace stoss::server::jobs {
 
 namespace {
@@ -9,11 +14,24 @@ JobFiles prepared_files(const std::filesystem::path& data) {
   return JobFiles(data);
 }
 
+/// Called before any thread of the runner exists: setenv is not safe beside other threads' getenv.
+JobFiles share_cores_then_prepare(const JobRunnerOptions& options) {
+  if (!std::getenv("STOSS_THREADS") && options.pool.workers > 0) {
+    const int threads = element_threads_per_job(options.pool.workers, std::thread::hardware_concurrency());
+    setenv("STOSS_THREADS", std::to_string(threads).c_str(), 0);  // inherited by every job process
+  }
+  return prepared_files(options.data);
+}
+
 }  // namespace
+
+int element_threads_per_job(int workers, unsigned cores) {
+  return std::max(1, static_cast<int>(cores) / std::max(1, workers));
+}
 
 JobRunner::JobRunner(const JobRunnerOptions& options, const Clock& clock)
     : store_(open_store(options.store, clock)),
-      files_(prepared_files(options.data)),
+      files_(share_cores_then_prepare(options)),
       // Each job runs in a process of its own (this binary, `stoss run-job`): a job that crashes or runs
       // over a limit fails alone.
       executor_(files_, options.data, std::filesystem::read_symlink("/proc/self/exe"), options.limits),

@@ -22,9 +22,15 @@ struct JobRunnerOptions {
   int max_attempts = 3;        ///< runs before an expired lease fails a job
 };
 
+/// Threads for each job process's element loops when `workers` jobs run at once on `cores` cores:
+/// an equal share, at least one (results do not depend on it: core/fem/assembly.hpp).
+int element_threads_per_job(int workers, unsigned cores);
+
 class JobRunner {
  public:
   /// Opens the store (throws StoreOpenError), creates DIR/jobs and subscribes to the store's events.
+  /// Unless the operator set STOSS_THREADS, sets it for the job processes to element_threads_per_job,
+  /// so that concurrent jobs share the cores instead of each taking all of them.
   JobRunner(const JobRunnerOptions& options, const Clock& clock);
   ~JobRunner() { stop(); }
   JobRunner(const JobRunner&) = delete;

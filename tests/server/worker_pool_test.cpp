@@ -9,6 +9,7 @@
 #include <future>
 #include <mutex>
 
+#include "server/jobs/job_runner.hpp"
 #include "server/jobs/sqlite_store.hpp"
 #include "tests/server/live_server.hpp"
 
@@ -146,6 +147,16 @@ TEST_F(WorkerPoolTest, AWorkerThatLostItsLeaseReportsNothing) {
   EXPECT_EQ(job.status, Status::running);
   EXPECT_EQ(job.worker, "someone else");
   pool.stop();
+}
+
+// Job processes that run at once share the cores for their element loops, at least one thread each.
+TEST(JobRunner, ConcurrentJobsShareTheCoresForTheirElementLoops) {
+  EXPECT_EQ(element_threads_per_job(2, 2), 1);
+  EXPECT_EQ(element_threads_per_job(1, 2), 2);
+  EXPECT_EQ(element_threads_per_job(3, 2), 1);
+  EXPECT_EQ(element_threads_per_job(2, 8), 4);
+  EXPECT_EQ(element_threads_per_job(0, 4), 4);
+  EXPECT_EQ(element_threads_per_job(4, 0), 1);  // hardware_concurrency() unknown
 }
 
 }  // namespace
