@@ -79,6 +79,10 @@ nlohmann::json summary_json(const model::Summary& s, const model::Model& model) 
                       {"peak_memory_mb", s.peak_memory_bytes / 1e6}};
   if (!model.contact.empty()) j["max_penetration"] = s.max_penetration;
   if (s.resumed_from_step > 0) j["resumed_from_step"] = s.resumed_from_step;
+  if (s.krylov_iterations_per_solve > 0) {  // a Krylov path (solver.linear iterative, petsc_gamg) ran
+    j["krylov_iterations_per_solve"] = s.krylov_iterations_per_solve;
+    j["krylov_fallbacks"] = s.krylov_fallbacks;
+  }
   return j;
 }
 

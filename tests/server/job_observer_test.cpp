@@ -77,6 +77,18 @@ TEST(SummaryJson, NamesTheCheckpointStepOfAResumedRun) {
   EXPECT_EQ(summary_json(s, model_of(10))["resumed_from_step"], 6);
 }
 
+// Krylov iterations per solve and LU fallbacks appear when a Krylov method ran (docs/api.md).
+TEST(SummaryJson, CarriesKrylovCountsOnlyWhenAKrylovMethodRan) {
+  model::Summary s;
+  const model::Model m = model_of(10);
+  EXPECT_FALSE(summary_json(s, m).contains("krylov_iterations_per_solve"));
+  s.krylov_iterations_per_solve = 23.4;
+  s.krylov_fallbacks = 1;
+  const nlohmann::json j = summary_json(s, m);
+  EXPECT_EQ(j["krylov_iterations_per_solve"], 23.4);
+  EXPECT_EQ(j["krylov_fallbacks"], 1);
+}
+
 TEST(SummaryJson, CarriesMaxPenetrationOnlyWithContact) {
   model::Summary s;
   s.completed = true;
