@@ -35,9 +35,13 @@ BoxGrid::BoxGrid(std::vector<Box> boxes, double cell)
   if (boxes_.empty()) return;
   const Eigen::Array3d extent = bounds_.sizes().array();
   const double max_cells = 8.0 * boxes_.size() + 64;
-  for (;;) {
-    dims_ = (extent / cell_).ceil().max(1.0).cast<int>();
-    if (dims_.cast<double>().prod() <= max_cells) break;
+  dims_ = Eigen::Array3i::Ones();  // positions that are not finite (a diverging run): one cell for all
+  while (extent.allFinite()) {     // counted in double: a huge extent must not overflow an int
+    const Eigen::Array3d dims = (extent / cell_).ceil().max(1.0);
+    if (dims.prod() <= max_cells) {
+      dims_ = dims.cast<int>();
+      break;
+    }
     cell_ *= 2;
   }
   std::vector<int> count(dims_.prod() + 1, 0);
@@ -58,7 +62,10 @@ BoxGrid::BoxGrid(std::vector<Box> boxes, double cell)
 
 Eigen::Array3i BoxGrid::cell_of(const Eigen::Vector3d& p) const {
   const Eigen::Array3d rel = ((p - bounds_.min()).array() / cell_).floor();
-  return rel.max(0.0).min((dims_ - 1).cast<double>()).cast<int>();
+  Eigen::Array3i cell;
+  for (int k = 0; k < 3; ++k)  // clamped before the cast: inf and NaN coordinates land in the grid too
+    cell[k] = std::isnan(rel[k]) ? 0 : static_cast<int>(std::clamp(rel[k], 0.0, double(dims_[k] - 1)));
+  return cell;
 }
 
 void BoxGrid::query(const Box& q, std::vector<int>& out) const {

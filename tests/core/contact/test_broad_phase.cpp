@@ -2,6 +2,8 @@
 // (docs/theory.md §3.4), without an all-pairs loop, and keep its lists local as the mesh grows.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <limits>
 #include <random>
 
 #include "core/contact/geometry/broad_phase.hpp"
@@ -52,6 +54,22 @@ TEST(BoxGrid, EmptyGridAndFarQueriesFindNothing) {
   const BoxGrid grid({Box(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones())}, 0.5);
   grid.query(Box(Eigen::Vector3d::Constant(5), Eigen::Vector3d::Constant(6)), found);
   EXPECT_TRUE(found.empty());
+}
+
+// A diverging run hands the search boxes 1e300 wide or not finite at all (found by the fuzz test: a
+// velocity of 1e300 crashed the grid's int cell count); the grid still answers, and a box it holds
+// overlaps the query it should.
+TEST(BoxGrid, HugeAndNonFiniteBoxesStillGiveAGridThatAnswers) {
+  const Box unit(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones());
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  for (const Box& wild : {Box(Eigen::Vector3d::Zero(), Eigen::Vector3d(1e300, 1, 1)),
+                          Box(Eigen::Vector3d::Zero(), Eigen::Vector3d(inf, 1, 1)),
+                          Box(Eigen::Vector3d(nan, 0, 0), Eigen::Vector3d(1, 1, 1))}) {
+    const BoxGrid grid({unit, wild}, 0.25);
+    std::vector<int> found;
+    grid.query(Box(Eigen::Vector3d::Constant(0.4), Eigen::Vector3d::Constant(0.6)), found);
+    EXPECT_NE(std::find(found.begin(), found.end(), 0), found.end()) << wild.max().transpose();
+  }
 }
 
 /// A cube of side 1 (n × n × 1 cells) above a plate of n × n top faces, gap `gap`.
