@@ -1,14 +1,11 @@
 #include "core/output/checkpoint.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <system_error>
 
+#include "core/output/durable_file.hpp"
 #include "core/output/h5.hpp"
 
 namespace stoss::output {
@@ -16,14 +13,6 @@ namespace stoss::output {
 namespace fs = std::filesystem;
 
 namespace {
-
-void sync_to_disk(const fs::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd < 0) throw std::system_error(errno, std::generic_category(), "cannot open " + path.string());
-  const int status = ::fsync(fd);
-  ::close(fd);
-  if (status != 0) throw std::system_error(errno, std::generic_category(), "cannot sync " + path.string());
-}
 
 void write_reals(const h5::File& file, const std::string& name, const double* data, hsize_t rows,
                  hsize_t columns = 0) {
@@ -202,9 +191,7 @@ void CheckpointStore::write(const Checkpoint& c) {
     file.close();
   }
   for (const fs::path& frame : unsynced_) sync_to_disk(frame);
-  sync_to_disk(temporary);
-  fs::rename(temporary, state_file());
-  sync_to_disk(directory_);
+  rename_durably(temporary, state_file());
   unsynced_.clear();
 }
 

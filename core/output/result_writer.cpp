@@ -1,8 +1,5 @@
 #include "core/output/result_writer.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -10,6 +7,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "core/output/durable_file.hpp"
 #include "core/output/h5.hpp"
 #include "core/output/layout.hpp"
 #include "core/output/stress.hpp"
@@ -29,21 +27,6 @@ constexpr const char* stoss_version = "dev";
 
 constexpr hsize_t series_chunk_rows = 512;
 constexpr hsize_t frame_time_chunk_rows = 64;
-
-/// Pushes a file's (or directory's) data to disk, so a rename after it cannot expose a torn file.
-void sync_to_disk(const fs::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd < 0) throw std::system_error(errno, std::generic_category(), "cannot open " + path.string());
-  const int status = ::fsync(fd);
-  ::close(fd);
-  if (status != 0) throw std::system_error(errno, std::generic_category(), "cannot sync " + path.string());
-}
-
-void rename_durably(const fs::path& from, const fs::path& to) {
-  sync_to_disk(from);
-  fs::rename(from, to);
-  sync_to_disk(to.has_parent_path() ? to.parent_path() : fs::path("."));
-}
 
 void write_text_file(const fs::path& path, const std::string& text) {
   const fs::path partial = path.string() + ".partial";
