@@ -34,8 +34,11 @@ Projection finish(const Eigen::Vector3d& slave, const PatchFrame& f, bool conver
 }  // namespace
 
 PatchFrame patch_frame(const TensorPatch& p, const Eigen::VectorXd& x, const Eigen::Vector2d& xi) {
-  const BasisValues<double> b = patch_values(p, xi[0], xi[1]);
-  const BasisCurvatures c = patch_curvatures(p, xi);
+  return patch_frame(p, x, xi, patch_values(p, xi[0], xi[1]), patch_curvatures(p, xi));
+}
+
+PatchFrame patch_frame(const TensorPatch& p, const Eigen::VectorXd& x, const Eigen::Vector2d& xi,
+                       const BasisValues<double>& b, const BasisCurvatures& c) {
   PatchFrame f;
   f.xi = xi;
   f.y = combine_nodes(p, as_vector(b.N), x);  // (2.3)

@@ -16,6 +16,9 @@ struct PatchFrame {
   Eigen::Matrix2d metric, metric_inv;
 };
 PatchFrame patch_frame(const TensorPatch& p, const Eigen::VectorXd& x, const Eigen::Vector2d& xi);
+/// The same from the basis values and second derivatives at ξ, when the caller needs them too.
+PatchFrame patch_frame(const TensorPatch& p, const Eigen::VectorXd& x, const Eigen::Vector2d& xi,
+                       const BasisValues<double>& b, const BasisCurvatures& c);
 
 /// The CPP of `slave` on patch p: Newton on r_α = (x_s − y)·τ_α with A_αβ = m_αβ − (x_s − y)·y_{,αβ}
 /// (3.4), the stop rules of §3.2, then g_N = (x_s − y)·n (3.5). The returned frame carries the

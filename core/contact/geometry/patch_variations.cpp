@@ -23,11 +23,6 @@ Eigen::RowVectorXd master_only(const Eigen::Vector3d& a, const Eigen::VectorXd& 
 
 }  // namespace
 
-Eigen::VectorXd patch_gap_gradient(const TensorPatch& p, const Eigen::VectorXd& x, const Eigen::Vector2d& xi) {
-  const PatchFrame f = patch_frame(p, x, xi);
-  return slave_minus_master(f.normal, as_vector(patch_values(p, xi[0], xi[1]).N)).transpose();  // (3.6)
-}
-
 namespace {
 
 /// y_{,αβ} of a frame as [α][β].
@@ -44,35 +39,49 @@ Eigen::Matrix2d projection_matrix_at(const PatchFrame& f, const Curvature& k, do
   return A;
 }
 
-/// D_α = A^{αβ} (T_β + g_N N̄_β) (3.7) from the frame and basis values at the CPP.
-Eigen::MatrixXd xi_gradient_at(const PatchFrame& f, const Curvature& k, const Eigen::VectorXd& N,
-                               const Eigen::VectorXd (&dN)[2], double gap) {
-  const Eigen::Vector3d tau[2] = {f.tau1, f.tau2};
-  Eigen::MatrixXd TN(2, 3 + 3 * N.size());  // T_β + g_N N̄_β (3.7)
-  for (int c = 0; c < 2; ++c) TN.row(c) = slave_minus_master(tau[c], N) + gap * master_only(f.normal, dN[c]);
-  return projection_matrix_at(f, k, gap).inverse() * TN;
-}
-
 }  // namespace
 
-Eigen::MatrixXd patch_xi_gradient(const TensorPatch& p, const Eigen::VectorXd& x, const Eigen::Vector2d& xi,
-                                  double gap) {
-  const PatchFrame f = patch_frame(p, x, xi);
+PatchPoint patch_point(const TensorPatch& p, const Eigen::VectorXd& x, const Eigen::Vector2d& xi) {
   const BasisValues<double> b = patch_values(p, xi[0], xi[1]);
-  const Eigen::VectorXd dN[2] = {as_vector(b.N1), as_vector(b.N2)};
-  return xi_gradient_at(f, Curvature(f), as_vector(b.N), dN, gap);
+  PatchPoint at;
+  at.curvatures = patch_curvatures(p, xi);
+  at.frame = patch_frame(p, x, xi, b, at.curvatures);
+  at.N = as_vector(b.N);
+  at.dN[0] = as_vector(b.N1);
+  at.dN[1] = as_vector(b.N2);
+  return at;
+}
+
+Eigen::VectorXd patch_gap_gradient(const PatchPoint& at) {
+  return slave_minus_master(at.frame.normal, at.N).transpose();  // (3.6)
+}
+
+Eigen::VectorXd patch_gap_gradient(const TensorPatch& p, const Eigen::VectorXd& x, const Eigen::Vector2d& xi) {
+  return patch_gap_gradient(patch_point(p, x, xi));
+}
+
+Eigen::MatrixXd patch_xi_gradient(const PatchPoint& at, double gap) {
+  const PatchFrame& f = at.frame;
+  const Eigen::Vector3d tau[2] = {f.tau1, f.tau2};
+  Eigen::MatrixXd TN(2, 3 + 3 * at.N.size());  // T_β + g_N N̄_β (3.7)
+  for (int c = 0; c < 2; ++c) TN.row(c) = slave_minus_master(tau[c], at.N) + gap * master_only(f.normal, at.dN[c]);
+  return projection_matrix_at(f, Curvature(f), gap).inverse() * TN;
 }
 
 PatchGapVariations patch_gap_variations(const TensorPatch& p, const Eigen::VectorXd& x, const Eigen::Vector2d& xi,
                                         double gap) {
-  const PatchFrame f = patch_frame(p, x, xi);
-  const BasisValues<double> b = patch_values(p, xi[0], xi[1]);
-  const Eigen::VectorXd N = as_vector(b.N), dN[2] = {as_vector(b.N1), as_vector(b.N2)};
+  return patch_gap_variations(patch_point(p, x, xi), gap);
+}
+
+PatchGapVariations patch_gap_variations(const PatchPoint& at, double gap) {
+  const PatchFrame& f = at.frame;
+  const Eigen::VectorXd& N = at.N;
+  const Eigen::VectorXd(&dN)[2] = at.dN;
   const Eigen::Vector3d tau[2] = {f.tau1, f.tau2};
   const Curvature k(f);
-  const int n = 3 + 3 * p.size();
+  const Eigen::Index n = 3 + 3 * N.size();
   PatchGapVariations v;
-  v.D = xi_gradient_at(f, k, N, dN, gap);  // D_α (3.7)
+  v.D = patch_xi_gradient(at, gap);  // D_α (3.7)
   const Eigen::MatrixXd& D = v.D;
   Eigen::MatrixXd n_dtau(2, n);  // n·∂τ_α/∂x = [0; N_{K,α} n] + Σ_β (n·y_{,αβ}) D_β (3.8)
   for (int a = 0; a < 2; ++a)
@@ -83,46 +92,44 @@ PatchGapVariations patch_gap_variations(const TensorPatch& p, const Eigen::Vecto
   v.Ns = slave_minus_master(f.normal, N).transpose();  // (3.6)
   v.dNs.resize(n, n);
   v.dNs.topRows<3>() = v.dn;  // (3.9)
-  for (int K = 0; K < p.size(); ++K) {
+  for (Eigen::Index K = 0; K < N.size(); ++K) {
     const Eigen::RowVectorXd dNK = dN[0][K] * D.row(0) + dN[1][K] * D.row(1);  // ∂N_K/∂x = N_{K,α} D_α
     v.dNs.middleRows<3>(3 + 3 * K) = -f.normal * dNK - N[K] * v.dn;           // (3.9)
   }
   return v;
 }
 
-std::array<PatchRows3, 2> patch_tangent_gradients(const TensorPatch& p, const Eigen::VectorXd& x,
-                                                       const Eigen::Vector2d& xi, const Eigen::MatrixXd& D) {
-  const PatchFrame f = patch_frame(p, x, xi);
-  const BasisValues<double> b = patch_values(p, xi[0], xi[1]);
-  const std::vector<double>* dN[2] = {&b.N1, &b.N2};
-  const Curvature k(f);
+std::array<PatchRows3, 2> patch_tangent_gradients(const PatchPoint& at, const Eigen::MatrixXd& D) {
+  const Curvature k(at.frame);
   std::array<PatchRows3, 2> dtau;
   for (int a = 0; a < 2; ++a) {
     dtau[a] = k.y2[a][0] * D.row(0) + k.y2[a][1] * D.row(1);  // y_{,αβ} ⊗ D_β (3.8)
-    for (int K = 0; K < p.size(); ++K) dtau[a].middleCols<3>(3 + 3 * K).diagonal().array() += (*dN[a])[K];
+    for (Eigen::Index K = 0; K < at.N.size(); ++K) dtau[a].middleCols<3>(3 + 3 * K).diagonal().array() += at.dN[a][K];
   }
   return dtau;
 }
 
-Eigen::MatrixXd patch_contracted_xi_hessian(const TensorPatch& p, const Eigen::VectorXd& x, const Eigen::Vector2d& xi,
+Eigen::MatrixXd patch_contracted_xi_hessian(const TensorPatch& p, const Eigen::VectorXd& x, const PatchPoint& at,
                                             double gap, const PatchGapVariations& v,
                                             const std::array<PatchRows3, 2>& dtau, const Eigen::Vector2d& t) {
-  const PatchFrame f = patch_frame(p, x, xi);
-  const BasisValues<double> b = patch_values(p, xi[0], xi[1]);
-  const BasisCurvatures c2 = patch_curvatures(p, xi);
-  const BasisThirdDerivatives c3 = patch_third_derivatives(p, xi);
-  const Eigen::VectorXd N = as_vector(b.N), dN[2] = {as_vector(b.N1), as_vector(b.N2)};
+  const PatchFrame& f = at.frame;
+  const BasisThirdDerivatives c3 = patch_third_derivatives(p, f.xi);
+  const Eigen::VectorXd& N = at.N;
+  const Eigen::VectorXd(&dN)[2] = at.dN;
+  const BasisCurvatures& c2 = at.curvatures;
   const Eigen::VectorXd* d2N[2][2] = {{&c2.N11, &c2.N12}, {&c2.N12, &c2.N22}};
-  const Eigen::VectorXd* d3N[4] = {&c3.N111, &c3.N112, &c3.N122, &c3.N222};  // by the number of 2s
+  // n·y_{,αβγ} by the number of 2s among α, β, γ
+  const double n_y3[4] = {f.normal.dot(combine_nodes(p, c3.N111, x)), f.normal.dot(combine_nodes(p, c3.N112, x)),
+                          f.normal.dot(combine_nodes(p, c3.N122, x)), f.normal.dot(combine_nodes(p, c3.N222, x))};
   const Eigen::Vector3d tau[2] = {f.tau1, f.tau2};
   const Curvature k(f);
   const Eigen::MatrixXd& D = v.D;
   const Eigen::Vector2d s = projection_matrix_at(f, k, gap).inverse() * t;  // A symmetric
-  const int n = 3 + 3 * p.size();
+  const Eigen::Index n = 3 + 3 * N.size();
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
   for (int c = 0; c < 2; ++c) {  // Σ_β s_β ∂B_β, B_β = T_β + g_N N̄_β (3.7)
     H.topRows<3>() += s[c] * dtau[c];
-    for (int K = 0; K < p.size(); ++K) {
+    for (Eigen::Index K = 0; K < N.size(); ++K) {
       const Eigen::RowVectorXd dNK = dN[0][K] * D.row(0) + dN[1][K] * D.row(1);                // ∂N_K
       const Eigen::RowVectorXd dNKc = (*d2N[c][0])[K] * D.row(0) + (*d2N[c][1])[K] * D.row(1);  // ∂N_{K,β}
       H.middleRows<3>(3 + 3 * K) += s[c] * (-N[K] * dtau[c] - tau[c] * dNK + dN[c][K] * f.normal * v.Ns.transpose() +
@@ -134,7 +141,7 @@ Eigen::MatrixXd patch_contracted_xi_hessian(const TensorPatch& p, const Eigen::V
     for (int a = 0; a < 2; ++a) {
       const Eigen::RowVectorXd dm = tau[a].transpose() * dtau[c] + tau[c].transpose() * dtau[a];
       Eigen::RowVectorXd n_dy2 = master_only(f.normal, *d2N[a][c]);  // n·∂y_{,αγ}/∂x
-      for (int d = 0; d < 2; ++d) n_dy2 += f.normal.dot(combine_nodes(p, *d3N[a + c + d], x)) * D.row(d);
+      for (int d = 0; d < 2; ++d) n_dy2 += n_y3[a + c + d] * D.row(d);
       const Eigen::RowVectorXd dcurv =
           f.normal.dot(k.y2[a][c]) * v.Ns.transpose() + gap * (k.y2[a][c].transpose() * v.dn + n_dy2);
       s_dA += s[a] * (dm - dcurv);

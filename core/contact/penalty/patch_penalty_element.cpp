@@ -69,20 +69,21 @@ PatchPenaltyResult patch_penalty_element(const TensorPatch& local, const Eigen::
   out.at_1 = project(local, x_1, xi_start);
   if (!(out.at_n.converged && out.at_m.converged && out.at_1.converged)) return open_result(out, p);
 
-  const PatchGapVariations mid = patch_gap_variations(local, x_m, out.at_m.xi, out.at_m.gap);  // (3.6)–(3.9)
-  const Eigen::VectorXd Ns_1 = patch_gap_gradient(local, x_1, out.at_1.xi);                  // (3.6) at x_{n+1}
+  const PatchPoint mid_point = patch_point(local, x_m, out.at_m.xi), end_point = patch_point(local, x_1, out.at_1.xi);
+  const PatchGapVariations mid = patch_gap_variations(mid_point, out.at_m.gap);  // (3.6)–(3.9)
+  const Eigen::VectorXd Ns_1 = patch_gap_gradient(end_point);                   // (3.6) at x_{n+1}
   const NormalTraction<dynamic> normal =
       normal_traction<dynamic>(p, out.at_n, out.at_m, out.at_1, mid.Ns, Ns_1, face_size);
   if (!(normal.value < 0)) return open_result(out, p);  // open: reset t_T (§5.2 item 7)
 
-  const std::array<PatchRows3, 2> dtau = patch_tangent_gradients(local, x_m, out.at_m.xi, mid.D);  // (3.8)
+  const std::array<PatchRows3, 2> dtau = patch_tangent_gradients(mid_point, mid.D);  // (3.8)
   const HalfGradients<dynamic> half = half_gradients<dynamic>(out.at_m.frame, dtau);
-  const PatchRows2 D_1 = patch_xi_gradient(local, x_1, out.at_1.xi, out.at_1.gap);  // (3.7) at x_{n+1}
+  const PatchRows2 D_1 = patch_xi_gradient(end_point, out.at_1.gap);  // (3.7) at x_{n+1}
   const TangentialKinematics<dynamic> kinematics{out.at_m.frame, half, D_1, out.at_1.xi - out.at_n.xi};
   const TangentialTraction<dynamic> tangential = return_map(kinematics, history.traction, normal, p);  // (5.3)
   const Eigen::MatrixXd xi_hessian =
       tangential.value.isZero(0) ? Eigen::MatrixXd::Zero(x_1.size(), x_1.size())
-                                 : patch_contracted_xi_hessian(local, x_m, out.at_m.xi, out.at_m.gap, mid, dtau,
+                                 : patch_contracted_xi_hessian(local, x_m, mid_point, out.at_m.gap, mid, dtau,
                                                                tangential.value);  // smooth_master_surface §3.8
   const PatchRows2 D_m = mid.D;
   const DiscreteGradients bar = discrete_gradients({out.at_n, out.at_1, mid, D_m, Ns_1, D_1, xi_hessian}, x_n, x_1,
