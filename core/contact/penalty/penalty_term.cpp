@@ -95,6 +95,7 @@ void PenaltyContactTerm::prepare_step(const time::StepContext& step) {
     c.slave = i;
     c.face = face_for(i, step, c.xi_n);
     if (c.face < 0) continue;
+    c.dofs = element_dofs(surfaces_.slave_nodes[i], surfaces_, c.face);
     c.history = committed_[i].history;  // spatial t_{T,n}: carried across a face switch (§5.2 item 3)
     c.gap_offset = committed_[i].gap_offset;
     if (committed_[i].face >= 0 && c.face != committed_[i].face) c.gap_offset = switch_face(i, c.face, step.x_n);
@@ -123,8 +124,7 @@ double PenaltyContactTerm::switch_face(int slave, int face, const Eigen::VectorX
 }
 
 void PenaltyContactTerm::register_blocks(solve::BlockPattern& pattern) {
-  for (PenaltyContact& c : contacts_)
-    c.block = pattern.add_block(element_dofs(surfaces_.slave_nodes[c.slave], surfaces_, c.face));  // non-symmetric
+  for (PenaltyContact& c : contacts_) c.block = pattern.add_block(c.dofs);  // non-symmetric values
 }
 
 void PenaltyContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
@@ -132,8 +132,7 @@ void PenaltyContactTerm::add(const time::StepContext& step, const Eigen::VectorX
   for (const PenaltyContact& c : contacts_) {
     evaluate(c, step.x_n, z, [&](const auto& r) {
       if (!r.closed) return;
-      const std::vector<int> dofs = element_dofs(surfaces_.slave_nodes[c.slave], surfaces_, c.face);
-      for (size_t i = 0; i < dofs.size(); ++i) R[dofs[i]] += step.force_factor * r.force[i];  // h·(5.2)
+      for (size_t i = 0; i < c.dofs.size(); ++i) R[c.dofs[i]] += step.force_factor * r.force[i];  // h·(5.2)
       if (K) K->scatter(c.block, step.force_factor * r.tangent);
     });
   }

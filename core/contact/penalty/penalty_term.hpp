@@ -26,6 +26,7 @@ struct PenaltyContact {
   Eigen::Vector2d xi_n = Eigen::Vector2d::Zero();  ///< CPP start: ξ of the last step, else of x_n
   FrictionHistory history;                         ///< t_{T,n} (§5.2 item 3)
   double gap_offset = 0;                           ///< kept gap of a switch_gap "keep" pair (§3.4)
+  std::vector<int> dofs;                           ///< the element's global dofs (slave first)
   int block = -1;                                  ///< Jacobian block id
 };
 
