@@ -19,6 +19,21 @@ namespace stoss::test {
 
 namespace {
 
+/// The stoss binary followed by `arguments`.
+std::vector<std::string> stoss_command(const std::vector<std::string>& arguments) {
+  std::vector<std::string> args = {STOSS_BINARY};
+  args.insert(args.end(), arguments.begin(), arguments.end());
+  return args;
+}
+
+/// argv for posix_spawn, pointing into `args` (which must outlive it), null-terminated.
+std::vector<char*> argv_of(std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  return argv;
+}
+
 std::string read_text(const std::filesystem::path& p) {
   std::ifstream in(p);
   return std::string(std::istreambuf_iterator<char>(in), {});
@@ -114,11 +129,8 @@ std::string LiveServer::output() const {
 }
 
 pid_t spawn_stoss(const std::vector<std::string>& arguments, const std::filesystem::path& log) {
-  std::vector<std::string> args = {STOSS_BINARY};
-  args.insert(args.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
+  std::vector<std::string> args = stoss_command(arguments);
+  const std::vector<char*> argv = argv_of(args);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -136,11 +148,8 @@ CommandResult run_stoss(const std::vector<std::string>& arguments, std::chrono::
   const auto base = std::filesystem::temp_directory_path() /
                     ("stoss-cmd-" + std::to_string(getpid()) + "-" + std::to_string(counter++));
   const std::string out_file = base.string() + ".out", err_file = base.string() + ".err";
-  std::vector<std::string> args = {STOSS_BINARY};
-  args.insert(args.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
+  std::vector<std::string> args = stoss_command(arguments);
+  const std::vector<char*> argv = argv_of(args);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
