@@ -14,6 +14,7 @@
 #include "core/scene/scene.hpp"
 #include "core/simulate.hpp"
 #include "recording_observer.hpp"
+#include "short_ball_on_plate.hpp"
 
 namespace stoss {
 namespace {
@@ -30,44 +31,12 @@ struct TempDir {
   static inline int counter = 0;
 };
 
-/// The seed's example shortened (a coarse hollow ball starting just above the plate, 24 steps): impact
-/// within the first steps. `enforcement` "lagrange" (frictionless: mixed energy–momentum, or with "hht" the
-/// α-weighted form that keeps λ_n N_s(x_n) between steps) or "penalty" with Coulomb friction μ = 0.2.
+/// The shortened seed's example (short_ball_on_plate.hpp), 24 steps: "lagrange" (frictionless: mixed
+/// energy–momentum, or with "hht" the α-weighted form that keeps λ_n N_s(x_n) between steps) or "penalty"
+/// with Coulomb friction μ = 0.2.
 nlohmann::json ball_on_plate(const std::string& enforcement, int checkpoint_every,
                              const std::string& scheme = "energy_momentum") {
-  nlohmann::json contact = {{"slave", "ball/outer"},
-                            {"master", "plate/top"},
-                            {"enforcement", enforcement},
-                            {"switch_hysteresis", 0.05}};
-  if (enforcement == "penalty") contact["friction"] = 0.2;
-  return {{"format", "stoss-scene/1"},
-          {"name", "ball on plate, shortened"},
-          {"bodies",
-           {{{"name", "ball"},
-             {"mesh",
-              {{"hollow_sphere",
-                {{"center", {0, 0, 1.03}},
-                 {"outer_radius", 1.0},
-                 {"inner_radius", 0.8},
-                 {"divisions", 4},
-                 {"layers", 1}}}}},
-             {"material",
-              {{"model", "saint_venant_kirchhoff"},
-               {"youngs_modulus", 1e4},
-               {"poisson_ratio", 0.4},
-               {"density", 1}}},
-             {"initial_velocity", {0, 1, -1}}},
-            {{"name", "plate"},
-             {"mesh", {{"box", {{"min", {-2, -1.5, -0.2}}, {"max", {2, 2.5, 0}}, {"divisions", {8, 8, 1}}}}}},
-             {"material",
-              {{"model", "saint_venant_kirchhoff"},
-               {"youngs_modulus", 1e4},
-               {"poisson_ratio", 0.4},
-               {"density", 1}}}}}},
-          {"contact", {contact}},
-          {"time", {{"scheme", scheme}, {"step", 0.01}, {"end", 0.24}}},
-          {"solver", {{"tolerance", 1e-10}, {"max_iterations", 25}}},
-          {"output", {{"every", 3}, {"checkpoint_every", checkpoint_every}}}};
+  return test::short_ball_on_plate({enforcement, scheme, false, 0.24, checkpoint_every});
 }
 
 struct Crash : std::runtime_error {

@@ -19,6 +19,7 @@
 #include "core/scene/scene.hpp"
 #include "server/jobs/inprocess_executor.hpp"
 #include "server/jobs/process_executor.hpp"
+#include "tests/core/short_ball_on_plate.hpp"
 #include "tests/server/live_server.hpp"
 #include "tests/server/pg_cluster.hpp"
 
@@ -28,38 +29,11 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-/// The seed's example (hollow ball onto a free plate) shortened: a coarse ball starting just above the plate,
-/// 30 steps; frictionless Lagrange contact, or penalty contact with Coulomb friction μ = 0.2.
+/// The shortened seed's example (tests/core/short_ball_on_plate.hpp), 30 steps with a checkpoint every 2:
+/// frictionless Lagrange contact (impact "persist"), or penalty contact with Coulomb friction μ = 0.2.
 nlohmann::json short_ball_on_plate(bool friction) {
-  nlohmann::json contact = {{"slave", "ball/outer"}, {"master", "plate/top"}, {"switch_hysteresis", 0.05}};
-  if (friction) {
-    contact.update(
-        {{"enforcement", "penalty"}, {"friction", 0.2}, {"normal_traction", "discrete_derivative"}});
-  } else {
-    contact.update({{"enforcement", "lagrange"}, {"impact", "persist"}});
-  }
-  const nlohmann::json material = {
-      {"model", "saint_venant_kirchhoff"}, {"youngs_modulus", 1e4}, {"poisson_ratio", 0.4}, {"density", 1}};
-  return {{"format", "stoss-scene/1"},
-          {"name", friction ? "ball on plate with friction, shortened" : "ball on plate, shortened"},
-          {"bodies",
-           {{{"name", "ball"},
-             {"mesh",
-              {{"hollow_sphere",
-                {{"center", {0, 0, 1.03}},
-                 {"outer_radius", 1.0},
-                 {"inner_radius", 0.8},
-                 {"divisions", 4},
-                 {"layers", 1}}}}},
-             {"material", material},
-             {"initial_velocity", {0, 1, -1}}},
-            {{"name", "plate"},
-             {"mesh", {{"box", {{"min", {-2, -1.5, -0.2}}, {"max", {2, 2.5, 0}}, {"divisions", {8, 8, 1}}}}}},
-             {"material", material}}}},
-          {"contact", {contact}},
-          {"time", {{"scheme", "energy_momentum"}, {"step", 0.01}, {"end", 0.3}}},
-          {"solver", {{"tolerance", 1e-10}, {"max_iterations", 25}}},
-          {"output", {{"every", 3}, {"checkpoint_every", 2}}}};
+  return test::short_ball_on_plate(friction ? ShortBallOnPlate{"penalty", "energy_momentum", false, 0.3, 2}
+                                      : ShortBallOnPlate{"lagrange", "energy_momentum", true, 0.3, 2});
 }
 
 std::string read_file(const fs::path& p) {
