@@ -314,8 +314,6 @@ solve::NewtonOptions newton_options(const Model& m) {
   return o;
 }
 
-bool frame_due(const Model& m, int step, int steps) { return m.output.frame_due(step, steps); }
-
 /// Positions, velocities and, with contact, the nodal contact pressure (lagrange_term.hpp).
 model::Frame frame_of(const time::State& s, const Problem& p) {
   model::Frame f{s.t, s.x, s.v, {}};
@@ -523,7 +521,7 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
     sum.max_own_face_penetration = std::max(sum.max_own_face_penetration, c.own_face_penetration);
     sum.max_faceted_penetration = std::max(sum.max_faceted_penetration, c.faceted_penetration);
     recorder.step(step_row(s, b, c, layout, &r, seconds_since(t0)));
-    if (frame_due(m, n, steps)) recorder.frame(n, frame_of(s, p));
+    if (m.output.frame_due(n, steps)) recorder.frame(n, frame_of(s, p));
     if (store && schedule.may_land(n, steps)) {
       if (schedule.due(n, steps)) {
         store->write(checkpoint_of(m, s, terms, sum, recorder));
