@@ -1,5 +1,6 @@
 #include "core/solve/linear_solver.hpp"
 
+#include <dlfcn.h>
 #include <malloc.h>
 
 #include <Eigen/IterativeLinearSolvers>
@@ -27,6 +28,30 @@ void keep_large_blocks_in_heap() {
   });
 }
 
+/// UMFPACK's dense kernels run on the BLAS behind libblas.so.3. OpenBLAS's serial build keeps unlocked
+/// global buffers: two runs factorising at once on two threads race, seen as last-bit differences between
+/// a run made alone and beside another (tests/physics/test_concurrent_runs.cpp). deploy/packages.txt
+/// installs the pthread build, whose buffers are locked; it is held to one thread per call, since runs
+/// and element loops are the parallelism and BLAS threads would only oversubscribe the cores. Should the
+/// serial build be the one selected, factorisations and solves take turns instead (blas_turn). Looked up
+/// at run time: a BLAS other than OpenBLAS has neither setting and is reentrant.
+namespace {
+bool configure_blas() {
+  using SetThreads = void (*)(int);
+  using GetParallel = int (*)();
+  if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set(1);
+  auto parallel = reinterpret_cast<GetParallel>(dlsym(RTLD_DEFAULT, "openblas_get_parallel"));
+  return parallel && parallel() == 0;  // 0: built single-threaded, not reentrant
+}
+
+/// A lock held around each BLAS-using call when the BLAS is not reentrant, none otherwise.
+std::unique_lock<std::mutex> blas_turn() {
+  static const bool needs_turns = configure_blas();
+  static std::mutex mutex;
+  return needs_turns ? std::unique_lock(mutex) : std::unique_lock<std::mutex>();
+}
+}  // namespace
+
 /// METIS orders the LU's unknowns (UMFPACK_ORDERING_METIS, below), and Debian's METIS draws its random
 /// numbers from the C library's rand(), one generator for the whole process, seeded at every call.
 /// Two runs ordering at once on two threads interleave their draws, get other orderings than alone and
@@ -41,6 +66,7 @@ std::mutex& ordering_mutex() {
 struct LinearSolver::Impl {
   Impl() {
     keep_large_blocks_in_heap();
+    blas_turn();  // configures the BLAS before its first use
     // No iterative refinement inside UMFPACK: Newton refines the solution itself, and refinement
     // made each solve four times dearer (5.9 ms instead of 1.4 ms on the 4563-dof ball-on-plate system).
     lu.umfpackControl()(UMFPACK_IRSTEP) = 0;
@@ -100,7 +126,10 @@ bool LinearSolver::factorize(const BlockPattern& A) {
     impl_->lu.analyzePattern(A.matrix());
     analyzed_generation_ = A.generation();
   }
-  impl_->lu.factorize(A.matrix());
+  {
+    const auto turn = blas_turn();
+    impl_->lu.factorize(A.matrix());
+  }
   seconds_ += seconds_since(t0);
   ++factorizations_;
   const bool ok = impl_->lu.info() == Eigen::Success;
@@ -120,7 +149,11 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) const {
     seconds_ += seconds_since(t0);
     return x;
   }
-  Eigen::VectorXd x = impl_->lu.solve(b);
+  Eigen::VectorXd x;
+  {
+    const auto turn = blas_turn();
+    x = impl_->lu.solve(b);
+  }
   seconds_ += seconds_since(t0);
   return x;
 }
@@ -157,9 +190,11 @@ Eigen::VectorXd LinearSolver::checked_krylov(Eigen::VectorXd x, int iterations, 
   ++krylov_fallbacks_;  // Newton gets a solution of this matrix either way
   if (!lu_ready) {
     std::lock_guard ordering(ordering_mutex());
+    const auto turn = blas_turn();
     impl_->lu.compute(matrix());
     lu_ready = true;
   }
+  const auto turn = blas_turn();
   return impl_->lu.solve(b);
 }
 
