@@ -478,7 +478,9 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
     sum.end_time = s.t;
     sum.newton_iterations_per_step = s.step > 0 ? double(sum.newton_iterations) / s.step : 0.0;
     sum.wall_seconds = seconds_since(wall0);
-    sum.linear_solver_seconds = integrator.linear_solver_seconds();
+    sum.linear_factorization_seconds = integrator.linear_factorization_seconds();
+    sum.linear_solve_seconds = integrator.linear_solve_seconds();
+    sum.linear_solver_seconds = sum.linear_factorization_seconds + sum.linear_solve_seconds;
     // Terms in the order given to the integrator: elasticity, gravity if any, then the contact pairs.
     sum.assembly_seconds = p.setup_seconds + integrator.inertia_seconds();
     sum.contact_seconds = p.setup_contact_seconds;

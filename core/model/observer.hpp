@@ -62,6 +62,8 @@ struct Summary {
   double assembly_seconds = 0;
   double contact_seconds = 0;
   double linear_solver_seconds = 0;
+  /// linear_solver_seconds split: analysis and factorisations (petsc_gamg: preconditioner setups), solves.
+  double linear_factorization_seconds = 0, linear_solve_seconds = 0;
   double output_seconds = 0;
   /// Peak resident set of the process running the job (getrusage), so far at the end of the run.
   double peak_memory_bytes = 0;

@@ -115,7 +115,7 @@ bool LinearSolver::factorize(const BlockPattern& A) {
     krylov_->bicgstab.setTolerance(krylov_tolerance);
     krylov_->bicgstab.setMaxIterations(max_krylov_iterations);
     krylov_->bicgstab.compute(krylov_->A);
-    seconds_ += seconds_since(t0);
+    factorization_seconds_ += seconds_since(t0);
     ++factorizations_;
     const bool ok = krylov_->bicgstab.info() == Eigen::Success;
     factorized_generation_ = ok ? A.generation() : -1;
@@ -130,7 +130,7 @@ bool LinearSolver::factorize(const BlockPattern& A) {
     const auto turn = blas_turn();
     impl_->lu.factorize(A.matrix());
   }
-  seconds_ += seconds_since(t0);
+  factorization_seconds_ += seconds_since(t0);
   ++factorizations_;
   const bool ok = impl_->lu.info() == Eigen::Success;
   factorized_generation_ = ok ? A.generation() : -1;
@@ -146,7 +146,7 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) const {
     Eigen::VectorXd x = krylov_->bicgstab.solve(b);  // before asking for its iterations and info
     x = checked_krylov(std::move(x), int(krylov_->bicgstab.iterations()), krylov_->bicgstab.info() == Eigen::Success,
                        [this] { return krylov_->A; }, krylov_->lu_ready, b);
-    seconds_ += seconds_since(t0);
+    solve_seconds_ += seconds_since(t0);
     return x;
   }
   Eigen::VectorXd x;
@@ -154,7 +154,7 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) const {
     const auto turn = blas_turn();
     x = impl_->lu.solve(b);
   }
-  seconds_ += seconds_since(t0);
+  solve_seconds_ += seconds_since(t0);
   return x;
 }
 
@@ -164,7 +164,7 @@ bool LinearSolver::factorize_amg(const BlockPattern& A) {
   if (amg_tolerance_ > 0) amg_->solver->set_tolerance(amg_tolerance_);
   amg_->lu_ready = false;
   const bool ok = amg_->solver->factorize(A.matrix(), A.generation(), coordinates_);
-  seconds_ += seconds_since(t0);
+  factorization_seconds_ += seconds_since(t0);
   ++factorizations_;
   factorized_generation_ = ok ? A.generation() : -1;
   return ok;
@@ -176,7 +176,7 @@ Eigen::VectorXd LinearSolver::solve_amg(const Eigen::VectorXd& b) const {
   const KrylovOutcome outcome = amg_->solver->solve(b, x);
   x = checked_krylov(std::move(x), outcome.iterations, outcome.converged, [this] { return amg_->solver->matrix(); },
                      amg_->lu_ready, b);
-  seconds_ += seconds_since(t0);
+  solve_seconds_ += seconds_since(t0);
   return x;
 }
 

@@ -41,8 +41,11 @@ void print_summary(const model::Model& m, const model::Summary& s) {
   std::printf("wall %.3f s (linear solver %.3f s)\n", s.wall_seconds, s.linear_solver_seconds);
   const double other = std::max(0.0, s.wall_seconds - s.assembly_seconds - s.contact_seconds -
                                          s.linear_solver_seconds - s.output_seconds);
-  std::printf("time: assembly %.3f s, contact %.3f s, linear solver %.3f s, output %.3f s, other %.3f s\n",
-              s.assembly_seconds, s.contact_seconds, s.linear_solver_seconds, s.output_seconds, other);
+  std::printf(
+      "time: assembly %.3f s, contact %.3f s, linear solver %.3f s (factorisation %.3f s, solves %.3f s), output "
+      "%.3f s, other %.3f s\n",
+      s.assembly_seconds, s.contact_seconds, s.linear_solver_seconds, s.linear_factorization_seconds,
+      s.linear_solve_seconds, s.output_seconds, other);
   std::printf("peak memory %.1f MB (resident)\n", s.peak_memory_bytes / 1e6);
   if (s.krylov_iterations_per_solve > 0)
     std::printf("krylov iterations %.1f per solve (%d fell back to LU)\n", s.krylov_iterations_per_solve,

@@ -73,6 +73,8 @@ nlohmann::json summary_json(const model::Summary& s, const model::Model& model) 
                       {"newton_iterations_per_step", s.newton_iterations_per_step},
                       {"wall_seconds", s.wall_seconds},
                       {"linear_solver_seconds", s.linear_solver_seconds},
+                      {"linear_factorization_seconds", s.linear_factorization_seconds},
+                      {"linear_solve_seconds", s.linear_solve_seconds},
                       {"assembly_seconds", s.assembly_seconds},
                       {"contact_seconds", s.contact_seconds},
                       {"output_seconds", s.output_seconds},

@@ -244,6 +244,10 @@ void expect_parts_within_wall(const model::Summary& s) {
             s.wall_seconds + 1e-3);
   EXPECT_GT(s.assembly_seconds, 0.0) << "elasticity is assembled at every Newton iteration";
   EXPECT_GT(s.linear_solver_seconds, 0.0);
+  // The linear solver's time is its factorisations and its solves, and both happened.
+  EXPECT_GT(s.linear_factorization_seconds, 0.0);
+  EXPECT_GT(s.linear_solve_seconds, 0.0);
+  EXPECT_DOUBLE_EQ(s.linear_factorization_seconds + s.linear_solve_seconds, s.linear_solver_seconds);
   EXPECT_GT(s.output_seconds, 0.0) << "every step writes a series row";
 }
 

@@ -77,6 +77,18 @@ TEST(SummaryJson, NamesTheCheckpointStepOfAResumedRun) {
   EXPECT_EQ(summary_json(s, model_of(10))["resumed_from_step"], 6);
 }
 
+// The wall time's parts, the linear solver's split into factorisations and solves among them (docs/api.md).
+TEST(SummaryJson, SplitsTheLinearSolverTimeIntoFactorisationsAndSolves) {
+  model::Summary s;
+  s.linear_factorization_seconds = 1.25;
+  s.linear_solve_seconds = 0.5;
+  s.linear_solver_seconds = 1.75;
+  const nlohmann::json j = summary_json(s, model_of(10));
+  EXPECT_EQ(j["linear_factorization_seconds"], 1.25);
+  EXPECT_EQ(j["linear_solve_seconds"], 0.5);
+  EXPECT_EQ(j["linear_solver_seconds"], 1.75);
+}
+
 // Krylov iterations per solve and LU fallbacks appear when a Krylov method ran (docs/api.md).
 TEST(SummaryJson, CarriesKrylovCountsOnlyWhenAKrylovMethodRan) {
   model::Summary s;
