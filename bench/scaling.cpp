@@ -113,7 +113,7 @@ Row measure(const fs::path& stoss, const Size& size, const fs::path& work, const
   r.wall = match(ran, R"(wall ([0-9.]+) s)");
   r.assembly = match(ran, R"(time: assembly ([0-9.]+) s)");
   r.contact = match(ran, R"(contact ([0-9.]+) s,)");
-  r.linear = match(ran, R"(, linear solver ([0-9.]+) s, output)");
+  r.linear = match(ran, R"(, linear solver ([0-9.]+) s \(factorisation)");
   r.output = match(ran, R"(output ([0-9.]+) s)");
   r.peak_mb = match(ran, R"(peak memory ([0-9.]+) MB)");
   if (o.linear != "direct") {
