@@ -5,6 +5,7 @@
 
 #include <iostream>
 
+#include "server/common/stop_signals.hpp"
 #include "server/http/options.hpp"
 #include "server/jobs/job_runner.hpp"
 
@@ -26,6 +27,7 @@ class Signals {
     signal(SIGPIPE, SIG_IGN);
   }
   int wait() {
+    const StopSignalRoute route;  // signals a library's own threads receive come here
     int received = 0;
     sigwait(&set_, &received);
     return received;

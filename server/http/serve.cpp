@@ -15,6 +15,7 @@
 #include <mutex>
 #include <thread>
 
+#include "server/common/stop_signals.hpp"
 #include "server/http/connection_limit.hpp"
 #include "server/http/options.hpp"
 #include "server/http/routes.hpp"
@@ -39,6 +40,7 @@ class SignalWaiter {
   }
   void start(httplib::Server& server) {
     thread_ = std::thread([this, &server] {
+      const StopSignalRoute route;  // signals a library's own threads receive come here
       int received = 0;
       sigwait(&signals_, &received);
       if (done_) return;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -102,9 +103,12 @@ void LiveServer::kill9() {
   pid_ = -1;
 }
 
-int LiveServer::terminate() {
+int LiveServer::terminate(pid_t thread) {
   if (pid_ <= 0) return exit_status_ == -1 ? -1 : WIFEXITED(exit_status_) ? WEXITSTATUS(exit_status_) : 128;
-  ::kill(pid_, SIGTERM);
+  if (thread > 0)
+    ::syscall(SYS_tgkill, pid_, thread, SIGTERM);
+  else
+    ::kill(pid_, SIGTERM);
   const int status = wait_exit(pid_, std::chrono::seconds(60));
   if (status == -1) {
     ADD_FAILURE() << "stoss serve did not stop on SIGTERM within 60 s";

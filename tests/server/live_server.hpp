@@ -41,8 +41,9 @@ class LiveServer {
   httplib::Client client(const std::string& token = "") const;
   /// SIGKILL, as a crash would; the process is reaped.
   void kill9();
-  /// SIGTERM and wait for the exit code.
-  int terminate();
+  /// SIGTERM and wait for the exit code; sent to the one thread of the server with that kernel id
+  /// (tgkill) when `thread` is given, as the kernel may hand a process-wide signal to any thread.
+  int terminate(pid_t thread = 0);
   /// True while the process runs.
   bool alive() const;
   /// What the server wrote to stdout and stderr.
