@@ -45,10 +45,9 @@ class LinearSolver {
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   /// Seconds since construction in analysis and factorisations (petsc_gamg: copying the matrix in and
   /// setting up the preconditioner), and in solves (Krylov iterations, and an LU a failed Krylov solve
-  /// falls back to); seconds() is both.
+  /// falls back to).
   double factorization_seconds() const { return factorization_seconds_; }
   double solve_seconds() const { return solve_seconds_; }
-  double seconds() const { return factorization_seconds_ + solve_seconds_; }
 
   /// Iterative method: relative residual ‖b − A x‖ / ‖b‖ a Krylov solve stops at.
   static constexpr double krylov_tolerance = 1e-10;
