@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/output/checkpoint.hpp"
+#include "core/output/durable_file.hpp"
 #include "core/output/result_writer.hpp"
 #include "core/scene/scene.hpp"
 #include "core/simulate.hpp"
@@ -95,7 +96,7 @@ void write_run_file(const fs::path& out_dir, const model::Model& model, const st
                               {"mesh_directory", fs::absolute(fs::path(scene_path)).parent_path().string()}};
   const fs::path temporary = path.string() + ".tmp";
   std::ofstream(temporary, std::ios::binary | std::ios::trunc) << run.dump();
-  fs::rename(temporary, path);
+  output::rename_durably(temporary, path);  // a crash right after the first checkpoint can still resume
 }
 
 /// The model of the run that wrote DIR's checkpoint. @throws std::invalid_argument when DIR has none.
