@@ -97,6 +97,8 @@ TEST(PetscGamg, TheSystemShallSolveASmallElasticSystemAsTheDirectSolverDoes) {
   EXPECT_GT(amg.krylov_iterations(), 1) << "a Krylov method, not a direct solve in disguise";
   EXPECT_NE(amg.preconditioner_description().find("GAMG"), std::string::npos) << amg.preconditioner_description();
   EXPECT_NE(amg.preconditioner_description().find("rigid-body"), std::string::npos);
+  EXPECT_NE(amg.preconditioner_description().find("SOR on the finest level"), std::string::npos)
+      << amg.preconditioner_description();
 }
 
 TEST(PetscGamg, TheSystemShallSolveContactMultiplierRowsWithASchurFieldSplit) {
@@ -107,6 +109,8 @@ TEST(PetscGamg, TheSystemShallSolveContactMultiplierRowsWithASchurFieldSplit) {
   const LinearSolver amg = expect_same_solution(elastic_system(l, 1e-3, bottom), l.positions);
   EXPECT_NE(amg.preconditioner_description().find("Schur"), std::string::npos) << amg.preconditioner_description();
   EXPECT_NE(amg.preconditioner_description().find("64 contact unknowns"), std::string::npos);
+  EXPECT_NE(amg.preconditioner_description().find("SOR on the finest level"), std::string::npos)
+      << amg.preconditioner_description();
 }
 
 TEST(PetscGamg, KrylovIterationsShallStayBelow50AtTwoSizesAFactor8Apart) {
