@@ -100,8 +100,9 @@ struct SolverSpec {
   double tolerance = 1e-10;            ///< relative residual and increment tolerance of Newton
   int max_iterations = 25;
   std::string linear = "auto";         ///< solver.linear: auto | direct | iterative | petsc_gamg (docs/scene.md)
-  /// auto picks petsc_gamg from this many elements on: UMFPACK wins at 7,680 elements (2.7 against 4.8
-  /// s/step), PETSc at 27,648 (14.6 against 22.3); their costs grow like n^1.9 and n^0.93.
+  /// auto picks petsc_gamg from this many elements on. Estimated from loaded-machine tables; measured
+  /// quietly the contact-free sphere's crossover is nearer 3,500 elements, with contact not yet measured
+  /// there (docs/measurements.md, "Growth with size").
   static constexpr int auto_iterative_elements = 14000;
 };
 
