@@ -74,13 +74,19 @@ Eigen::VectorXd rhs(int n) {
   return b;
 }
 
+/// A petsc_gamg solver with the rigid-body modes of `positions`, GMRES to a relative residual of 1e-10.
+LinearSolver tight_amg(const Eigen::VectorXd& positions) {
+  LinearSolver amg(LinearMethod::petsc_gamg);
+  amg.set_coordinates(positions);
+  amg.set_krylov_tolerance(1e-10);
+  return amg;
+}
+
 /// Solves with both methods, GMRES to a relative residual of 1e-10, and checks that they agree;
 /// returns the petsc solver for its counters.
 LinearSolver expect_same_solution(const BlockPattern& A, const Eigen::VectorXd& positions) {
   const Eigen::VectorXd b = rhs(A.matrix().rows());
-  LinearSolver direct, amg(LinearMethod::petsc_gamg);
-  amg.set_coordinates(positions);
-  amg.set_krylov_tolerance(1e-10);
+  LinearSolver direct, amg = tight_amg(positions);
   EXPECT_TRUE(direct.factorize(A));
   EXPECT_TRUE(amg.factorize(A));
   const Eigen::VectorXd x_direct = direct.solve(b), x_amg = amg.solve(b);
@@ -126,9 +132,7 @@ TEST(PetscGamg, KrylovIterationsShallStayBelow50AtTwoSizesAFactor8Apart) {
 TEST(PetscGamg, RefactorisingWithTheSamePatternUsesTheNewValues) {
   const Lattice l = lattice(6);
   BlockPattern A = elastic_system(l, 1e-3);
-  LinearSolver amg(LinearMethod::petsc_gamg);
-  amg.set_coordinates(l.positions);
-  amg.set_krylov_tolerance(1e-10);
+  LinearSolver amg = tight_amg(l.positions);
   ASSERT_TRUE(amg.factorize(A));
   for (int i = 0; i < A.matrix().rows(); ++i) A.add_diagonal(i, 1.0);  // same pattern, new values
   ASSERT_TRUE(amg.factorize(A));
@@ -142,9 +146,7 @@ TEST(PetscGamg, RefactorisingWithTheSamePatternUsesTheNewValues) {
 TEST(PetscGamg, NewValuesOfTheSamePatternReuseTheLastPreconditionerAndSolveTheNewSystem) {
   const Lattice l = lattice(6);
   BlockPattern A = elastic_system(l, 1e-3);
-  LinearSolver amg(LinearMethod::petsc_gamg);
-  amg.set_coordinates(l.positions);
-  amg.set_krylov_tolerance(1e-10);
+  LinearSolver amg = tight_amg(l.positions);
   const Eigen::VectorXd b = rhs(A.matrix().rows());
   ASSERT_TRUE(amg.factorize(A));
   amg.solve(b);
