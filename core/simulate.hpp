@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
-#include <string_view>
 
 #include "core/model/model.hpp"
 #include "core/model/observer.hpp"
@@ -27,10 +26,6 @@ class CheckpointError : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
 };
-
-/// How the log line of a run resumed from a checkpoint begins: "resumed from step N (t = …) …". Observers
-/// that measure a rate (progress, ETA) start counting from there.
-inline constexpr std::string_view resumed_log_prefix = "resumed from step ";
 
 /// Checkpoints of a run (core/output/checkpoint.hpp, docs/results.md "Checkpoints").
 struct Checkpoints {

@@ -85,6 +85,9 @@ class Observer {
   virtual void frame(const Frame& frame) {}
   /// A log line (solver events, warnings). Not for progress.
   virtual void log(const std::string& line) {}
+  /// The run goes on from a checkpoint at `step`: the rows and frames up to it came back at once, the
+  /// steps after it are computed now (a rate or an ETA counts from here).
+  virtual void resumed(int step) {}
   /// Called once at the end, whether the run completed, was canceled or failed.
   virtual void end(const Summary& summary) {}
 };
@@ -104,6 +107,9 @@ class ObserverList : public Observer {
   }
   void log(const std::string& s) override {
     for (auto* o : observers_) o->log(s);
+  }
+  void resumed(int step) override {
+    for (auto* o : observers_) o->resumed(step);
   }
   void end(const Summary& s) override {
     for (auto* o : observers_) o->end(s);

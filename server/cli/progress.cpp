@@ -1,7 +1,5 @@
 #include "server/cli/progress.hpp"
 
-#include "core/simulate.hpp"
-
 namespace stoss::cli {
 
 void ProgressObserver::begin(const model::Model& model, const model::SeriesLayout&) {
@@ -11,7 +9,6 @@ void ProgressObserver::begin(const model::Model& model, const model::SeriesLayou
 }
 
 void ProgressObserver::step(const model::StepRow& row) {
-  last_step_ = row.step;
   const auto now = Clock::now();
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   if (row.step <= first_step_ || elapsed < 1.0 || std::chrono::duration<double>(now - last_print_).count() < 0.5)
@@ -24,11 +21,12 @@ void ProgressObserver::step(const model::StepRow& row) {
   printed_ = true;
 }
 
+void ProgressObserver::resumed(int step) {
+  start_ = Clock::now();
+  first_step_ = step;
+}
+
 void ProgressObserver::log(const std::string& line) {
-  if (line.rfind(resumed_log_prefix, 0) == 0) {  // steps up to the checkpoint came back at once
-    start_ = Clock::now();
-    first_step_ = last_step_;
-  }
   std::fprintf(out_, "%s%s\n", printed_ ? "\n" : "", line.c_str());
   printed_ = false;
 }

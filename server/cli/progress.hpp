@@ -15,6 +15,7 @@ class ProgressObserver : public model::Observer {
   void begin(const model::Model& model, const model::SeriesLayout&) override;
   void step(const model::StepRow& row) override;
   void log(const std::string& line) override;
+  void resumed(int step) override;
   void end(const model::Summary& summary) override;
 
  private:
@@ -22,8 +23,7 @@ class ProgressObserver : public model::Observer {
   std::FILE* out_;
   Clock::time_point start_, last_print_;
   int steps_ = 0;
-  int last_step_ = 0;
-  int first_step_ = 0;  ///< the step the rate counts from: 0, or the checkpoint's after "resumed from step N"
+  int first_step_ = 0;  ///< the step the rate counts from: 0, or the checkpoint's
   double end_time_ = 0;
   bool printed_ = false;
 };

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 
-#include "core/simulate.hpp"
-
 namespace stoss::server::jobs {
 
 ProgressObserver::ProgressObserver(ProgressSink sink, const Clock& clock, Millis interval)
@@ -26,10 +24,9 @@ void ProgressObserver::step(const model::StepRow& row) {
   if (!last_report_ || now - *last_report_ >= interval_) report(now);
 }
 
-void ProgressObserver::log(const std::string& line) {
-  if (line.rfind(resumed_log_prefix, 0) != 0) return;
+void ProgressObserver::resumed(int step) {
   started_ = clock_.now();
-  first_step_ = current_.step;
+  first_step_ = step;
   current_.eta_seconds.reset();
 }
 

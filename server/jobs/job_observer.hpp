@@ -18,9 +18,9 @@ class ProgressObserver : public model::Observer {
 
   void begin(const model::Model& model, const model::SeriesLayout& layout) override;
   void step(const model::StepRow& row) override;
-  /// A run resumed from a checkpoint (simulate.hpp, resumed_log_prefix): the ETA counts from its step and
-  /// this moment, not from the rows given back at once.
-  void log(const std::string& line) override;
+  /// A run resumed from a checkpoint: the ETA counts from its step and this moment, not from the rows
+  /// given back at once.
+  void resumed(int step) override;
   void end(const model::Summary& summary) override;
 
   /// The latest progress, reported or not.

@@ -57,7 +57,9 @@ class CrashingObserver : public RecordingObserver {
     RecordingObserver::log(line);
     if (line.rfind("resumed from step", 0) == 0) events.push_back(line);
   }
+  void resumed(int step) override { resumed_at.push_back(step); }
   std::vector<std::string> events;  ///< rows and the resume line, in the order they came
+  std::vector<int> resumed_at;      ///< the steps Observer::resumed named
 
  private:
   int crash_at_;
@@ -127,6 +129,7 @@ TEST_P(CheckpointResume, AResumedRunComputesOnlyTheStepsAfterTheCheckpointAndEnd
     // Steps 0..N come back as they were (their wall times are the first attempt's), then the log line, then
     // steps N+1.. only.
     ASSERT_EQ(resumed.events.size(), size_t(reference.steps + 2));
+    EXPECT_EQ(resumed.resumed_at, std::vector<int>{checkpoint}) << "observers hear of the resume once, with its step";
     EXPECT_EQ(
         resumed.events[checkpoint + 1].rfind("resumed from step " + std::to_string(checkpoint) + " ", 0), 0u)
         << resumed.events[checkpoint + 1];

@@ -57,7 +57,7 @@ TEST(ProgressObserver, AResumedRunsEtaCountsFromTheCheckpointNotFromTheRowsGiven
   ProgressObserver observer([&](const Progress& p) { reports.push_back(p); }, clock, 500);
   observer.begin(model_of(1000), {});
   for (int step = 0; step <= 600; ++step) observer.step({step, 0.01 * step, {}});  // given back at once
-  observer.log("resumed from step 600 (t = 6.000000) of the checkpoint c/state.h5: computing steps 601 to 1000");
+  observer.resumed(600);
   for (int step = 601; step <= 700; ++step) {
     clock.advance(10);  // 100 steps per second
     observer.step({step, 0.01 * step, {}});
