@@ -262,10 +262,6 @@ std::string failure_message(int step, double t, double h, const time::ReducedSte
 /// Most halvings of a step whose Newton solve fails (time/step_reduction.hpp): substeps down to h/16.
 constexpr int max_step_halvings = 4;
 
-/// Newton from the scene's solver settings. Factorisations are kept while they contract the residual
-/// by 5 per iteration with Broyden's update (and reach the tolerance within the budget): on the contact
-/// scenes a refactorisation costs as much as ~20 reused solves (bench/contact_ball.cpp); NewtonOptions
-/// holds the reuse rule (docs/measurements.md, "Newton on hard impacts").
 /// The linear solver named by solver.linear (validated by the scene: auto, direct, iterative,
 /// petsc_gamg); auto picks petsc_gamg from model::SolverSpec::auto_iterative_elements elements on,
 /// where it overtakes the LU (docs/measurements.md, "Linear solvers"), direct below.
@@ -298,12 +294,17 @@ std::string krylov_line(const solve::LinearSolver& linear) {
   return line;
 }
 
+/// Newton from the scene's solver settings. Factorisations are kept while they contract the residual
+/// by 5 per iteration with Broyden's update (and reach the tolerance within the budget): on the contact
+/// scenes a refactorisation costs as much as ~20 reused solves (bench/contact_ball.cpp); NewtonOptions
+/// holds the reuse rule (docs/measurements.md, "Newton on hard impacts").
 solve::NewtonOptions newton_options(const Model& m) {
   solve::NewtonOptions o;
   o.linear = linear_method(m);
-  // A GAMG setup is cheap next to an LU but each GMRES solve costs ~20 multigrid cycles: a fresh
+  // A GAMG setup is cheap next to an LU but each GMRES solve costs 13–24 multigrid cycles: a fresh
   // Jacobian per iteration halved Newton's iterations (4 instead of 8.5 per step) and the wall time
-  // (21.8 s instead of 45.6 s, 2 steps of the 27,648-hex8 tumbling sphere).
+  // (21.8 s instead of 45.6 s, 2 steps of the 27,648-hex8 tumbling sphere). The AMG solver itself keeps
+  // its setup for the new matrix while GMRES converges about as fast (petsc_amg_solver.cpp).
   if (o.linear == solve::LinearMethod::petsc_gamg) o.reuse_factorization = false;
   o.tolerance = m.solver.tolerance;
   o.max_iterations = m.solver.max_iterations;
@@ -462,7 +463,8 @@ model::Summary simulate(const Model& m, model::Observer& observer, const CancelF
     for (size_t k = 0; k < terms.size(); ++k) terms[k]->restore_state(resumed->terms[k].second, s.x, s.v);
     sum = resumed->summary;
     sum.resumed_from_step = s.step;
-    observer.log(std::string(resumed_log_prefix) + std::to_string(s.step) + " (t = " + std::to_string(s.t) +
+    observer.resumed(s.step);
+    observer.log("resumed from step " + std::to_string(s.step) + " (t = " + std::to_string(s.t) +
                  ") of the checkpoint " + store->state_file().string() + ": computing steps " +
                  std::to_string(s.step + 1) + " to " + std::to_string(steps));
   } else {
