@@ -188,9 +188,11 @@ class PetscAmgSolver final : public AmgSolver {
   /// levels can carry zero diagonals (aggregates whose rotations hold no energy) that SOR cannot divide
   /// by. Kept by later setups of the same preconditioner.
   PetscErrorCode smooth_finest_level_with_sor() {
+    KSP positions = gamg_ksp();
     // The split sets up its blocks' solvers at its first use; GAMG's levels are needed now.
-    if (split() && gamg_ksp()) PetscCall(KSPSetUp(gamg_ksp()));
-    PC multigrid = gamg();
+    if (split() && positions) PetscCall(KSPSetUp(positions));
+    PC multigrid = nullptr;
+    if (positions) PetscCall(KSPGetPC(positions, &multigrid));
     PetscInt levels = 0;
     PetscBool user_set = PETSC_FALSE;
     const std::string levels_prefix = std::string("-") + prefix + (split() ? "fieldsplit_0_" : "") + "mg_levels_";
