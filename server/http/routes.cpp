@@ -762,6 +762,15 @@ void install_request_defaults(httplib::Server& server, const App& app, Connectio
     if (body_announced) close_after_answer(req);
     return httplib::Server::HandlerResponse::Handled;
   });
+  // A client that waits for "100 Continue" before sending its body (curl does above 1 MiB) gets the
+  // refusal instead, and sends no body at all.
+  server.set_expect_100_continue_handler([&app](const Request& req, Response& res) {
+    const auto refusal = refuse_before_reading(app, req, true);
+    if (!refusal) return 100;
+    refusal->write(res);
+    close_after_answer(req);
+    return refusal->status;
+  });
 }
 
 void install_error_handling(httplib::Server& server, Metrics& metrics, const Limits& limits) {

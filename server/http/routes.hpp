@@ -56,7 +56,8 @@ void install_routes(httplib::Server& server, App& app);
 /// the exact length), a chunked body on a route without a counting reader (411) and any other transfer
 /// coding (501); such a connection is closed after the answer. The routes that take a body get a content
 /// reader instead (install_routes), which counts the bytes as they arrive and stops at max_body_bytes
-/// (413) or --request-timeout after the head (408).
+/// (413) or --request-timeout after the head (408). A request with `Expect: 100-continue` gets the same
+/// refusals instead of the 100.
 void install_request_defaults(httplib::Server& server, const App& app, ConnectionLimit* limit = nullptr);
 
 /// The error handler (problem+json for statuses httplib sets itself: unknown route, oversize body, …),

@@ -339,6 +339,14 @@ TEST(ChunkedFlood, WithATokenFileAnUnauthorizedChunkedUploadIs401UnreadAndOtherB
     EXPECT_EQ(p["limits"][0]["value"].get<std::uint64_t>(), std::stoull(length)) << p.dump();
     EXPECT_NE(p["detail"].get<std::string>().find(length), std::string::npos) << p.dump();
   }
+  // A client that waits for 100 Continue is refused instead, and sends no body.
+  const int fd = connect_loopback(server.port());
+  ASSERT_TRUE(send_all(fd,
+                       "POST /v1/meshes HTTP/1.1\r\nHost: x\r\nContent-Length: 1073741824\r\n"
+                       "Expect: 100-continue\r\n\r\n"));
+  const std::string expecting = read_until_closed(fd);
+  close(fd);
+  EXPECT_TRUE(is_status(expecting, 401)) << "no token: " << expecting.substr(0, 300);
   EXPECT_TRUE(server.alive()) << server.output();
 }
 
