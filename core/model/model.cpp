@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace stoss::model {
 
@@ -31,10 +32,17 @@ std::optional<SchemeConflict> contact_scheme_conflict(Scheme scheme, Enforcement
   return std::nullopt;
 }
 
+long long step_count(double end, double step) {
+  if (!(step > 0) || !(end > 0) || !std::isfinite(end) || !std::isfinite(step)) return 0;
+  const double quotient = end / step;
+  if (!(quotient < static_cast<double>(max_step_count))) return max_step_count;
+  // Within round-off of an integer, that integer (end = 1, step = 0.01 → 100, not 101).
+  const double tolerance = std::max(1e-9, 1e-15 * quotient);
+  return std::max(1LL, static_cast<long long>(std::ceil(quotient - tolerance)));
+}
+
 int TimeSpec::steps() const {
-  if (step <= 0 || end <= 0) return 0;
-  // A step count within round-off of an integer is that integer (end = 1, step = 0.01 → 100).
-  return static_cast<int>(std::ceil(end / step - 1e-9));
+  return static_cast<int>(std::min<long long>(step_count(end, step), std::numeric_limits<int>::max()));
 }
 
 bool Model::has_effect(const std::string& e) const {

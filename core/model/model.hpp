@@ -87,13 +87,21 @@ struct SchemeConflict {
 /// has no α-weighted (hht, generalized_alpha) form.
 std::optional<SchemeConflict> contact_scheme_conflict(Scheme scheme, Enforcement enforcement, ImpactMode impact);
 
+/// Time steps from t = 0 to `end` with steps of `step` (docs/scene.md, "Time"): ceil(end / step), a
+/// quotient within round-off of an integer counting as that integer (a relative 1e-15 or an absolute
+/// 1e-9, whichever is larger); 0 when `end` or `step` is not positive or not finite, and at most
+/// max_step_count. The one count the model, the CLI and the server's early limit checks use.
+long long step_count(double end, double step);
+/// The largest count step_count returns (a quotient beyond it saturates here).
+inline constexpr long long max_step_count = 1'000'000'000'000'000'000;
+
 struct TimeSpec {
   Scheme scheme = Scheme::energy_momentum;
   double step = 0;
   double end = 0;
   double alpha = -0.05;                ///< HHT-α only
   double rho_infinity = 0.9;           ///< generalized-α only: spectral radius at infinite frequency
-  int steps() const;                   ///< number of steps to reach `end`
+  int steps() const;                   ///< step_count(end, step); a validated scene has at most 1e9
 };
 
 struct SolverSpec {
@@ -113,8 +121,8 @@ struct OutputSpec {
   /// Whether step `step` of `steps` writes a frame: step 0, every `every`-th step and the last.
   bool frame_due(int step, int steps) const { return step % std::max(every, 1) == 0 || step == steps; }
   /// Frames a run of `steps` steps writes (frame_due counted).
-  int frame_count(int steps) const {
-    const int e = std::max(every, 1);
+  long long frame_count(long long steps) const {
+    const long long e = std::max(every, 1);
     return steps / e + 1 + (steps % e != 0 ? 1 : 0);
   }
 };

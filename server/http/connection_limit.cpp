@@ -15,8 +15,8 @@ namespace {
 
 /// The client whose connection this pool thread serves, once its first request counted it.
 thread_local std::optional<std::string> counted_client;
-/// Whether this thread answered its connection's request with the too-many-connections 503.
-thread_local bool refused_here = false;
+/// Whether this thread's connection is to be shut down once the current answer is written.
+thread_local bool close_marked = false;
 
 class CountingThreadPool : public httplib::ThreadPool {
  public:
@@ -24,6 +24,7 @@ class CountingThreadPool : public httplib::ThreadPool {
   void enqueue(std::function<void()> fn) override {
     ThreadPool::enqueue([this, fn = std::move(fn)] {
       fn();  // serves one connection until it closes
+      close_marked = false;  // a mark left by a connection that ended unanswered is not the next one's
       limit_.release_this_thread();
     });
   }
@@ -49,6 +50,22 @@ bool socket_matches(int fd, const httplib::Request& req) {
   const auto here = numeric(local, local_length), there = numeric(peer, peer_length);
   return here && there && here->second == req.local_port && there->second == req.remote_port &&
          here->first == req.local_addr && there->first == req.remote_addr;
+}
+
+/// Ends an answered connection: FIN after the answer, then the bytes the client already sent are
+/// dropped (at most drain_bytes, without waiting), so that closing does not reset the connection
+/// before the client read the answer; then no more is read (cpp-httplib's next read sees the end).
+bool end_connection(int fd) {
+  constexpr std::size_t drain_bytes = 1 << 20;
+  const bool ended = ::shutdown(fd, SHUT_WR) == 0;
+  char buffer[16384];
+  for (std::size_t drained = 0; drained < drain_bytes;) {
+    const ssize_t n = ::recv(fd, buffer, sizeof buffer, MSG_DONTWAIT);
+    if (n <= 0) break;
+    drained += static_cast<std::size_t>(n);
+  }
+  ::shutdown(fd, SHUT_RD);
+  return ended;
 }
 
 }  // namespace
@@ -93,16 +110,20 @@ void refuse_connection(const ConnectionLimit& limit, const httplib::Request& req
               "this one is closed: reuse an open connection or retry after one closes",
           {{"limits", nlohmann::json::array({{{"name", "max_connections_per_client"}, {"limit", limit.per_client()}}})}}}
       .write(res);
+  close_after_answer(req);
+}
+
+void close_after_answer(const httplib::Request& req) {
   // cpp-httplib writes "Connection: close" when the request asked for it (req is the server's own).
   auto& request = const_cast<httplib::Request&>(req);
   request.headers.erase("Connection");
   request.headers.emplace("Connection", "close");
-  refused_here = true;
+  close_marked = true;
 }
 
-bool end_refused_connection(const httplib::Request& req) {
-  if (!refused_here) return false;
-  refused_here = false;
+bool end_marked_connection(const httplib::Request& req) {
+  if (!close_marked) return false;
+  close_marked = false;
   std::error_code error;
   for (const auto& entry : std::filesystem::directory_iterator("/proc/self/fd", error)) {
     const std::string name = entry.path().filename().string();
@@ -110,7 +131,7 @@ bool end_refused_connection(const httplib::Request& req) {
     const long fd = std::strtol(name.c_str(), &end, 10);
     if (end == name.c_str() || *end != '\0') continue;
     // Only this thread closes this connection's socket, so the descriptor that matches stays it.
-    if (socket_matches(int(fd), req)) return ::shutdown(int(fd), SHUT_RDWR) == 0;
+    if (socket_matches(int(fd), req)) return end_connection(int(fd));
   }
   return false;
 }

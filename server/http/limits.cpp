@@ -1,8 +1,15 @@
 #include "server/http/limits.hpp"
 
+#include <malloc.h>
+
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <string>
+#include <vector>
+
+#include "core/model/model.hpp"
+#include "server/http/scene_check.hpp"
 
 namespace stoss::server::http {
 
@@ -14,57 +21,116 @@ double number_at(const nlohmann::json& j, const char* key) {
   return it != j.end() && it->is_number() ? it->get<double>() : 0.0;
 }
 
+/// A JSON count as a 64-bit integer: truncated, negative as 0, beyond 64 bits as LLONG_MAX.
+long long count_of(double x) {
+  if (!(x > 0)) return 0;
+  return x < 9.2e18 ? static_cast<long long>(x) : LLONG_MAX;
+}
+
+long long saturating_multiply(long long a, long long b) {
+  long long product = 0;
+  return __builtin_mul_overflow(a, b, &product) ? LLONG_MAX : product;
+}
+
+long long saturating_add(long long a, long long b) {
+  long long sum = 0;
+  return __builtin_add_overflow(a, b, &sum) ? LLONG_MAX : sum;
+}
+
 /// Nodes a mesh description will produce, from its parameters (an upper estimate for generators).
-double estimated_nodes(const nlohmann::json& mesh) {
+long long estimated_nodes(const nlohmann::json& mesh) {
   if (!mesh.is_object()) return 0;
   if (auto box = mesh.find("box"); box != mesh.end() && box->is_object()) {
     auto d = box->find("divisions");
     if (d == box->end() || !d->is_array()) return 0;
-    double n = 1;
-    for (const auto& di : *d) n *= di.is_number() ? di.get<double>() + 1 : 1;
+    long long n = 1;
+    for (const auto& di : *d)
+      n = saturating_multiply(n, di.is_number() ? saturating_add(count_of(di.get<double>()), 1) : 1);
     return n;
   }
   if (auto sphere = mesh.find("hollow_sphere"); sphere != mesh.end()) {
-    const double d = number_at(*sphere, "divisions"), layers = number_at(*sphere, "layers");
-    return (6 * d * d + 2) * (layers + 1);
+    const long long d = count_of(number_at(*sphere, "divisions"));
+    const long long layers = count_of(number_at(*sphere, "layers"));
+    const long long per_layer = saturating_add(saturating_multiply(6, saturating_multiply(d, d)), 2);
+    return saturating_multiply(per_layer, saturating_add(layers, 1));  // (6 d² + 2)(layers + 1)
   }
   if (auto nodes = mesh.find("nodes"); nodes != mesh.end() && nodes->is_array())
-    return static_cast<double>(nodes->size());
+    return static_cast<long long>(nodes->size());
   return 0;
 }
 
-/// Scene-level numbers as the later model would report them, computed from the JSON alone.
-scene::Summary estimated_summary(const nlohmann::json& scene) {
-  double nodes = 0, steps = 0, every = 1;
-  if (!scene.is_object()) return {};
-  if (auto bodies = scene.find("bodies"); bodies != scene.end() && bodies->is_array())
-    for (const auto& body : *bodies)
-      if (body.is_object() && body.contains("mesh")) nodes += estimated_nodes(body["mesh"]);
-  if (auto time = scene.find("time"); time != scene.end()) {
-    const double step = number_at(*time, "step"), end = number_at(*time, "end");
-    if (step > 0 && end > 0) steps = end / step;
+/// A body as it arrives, in blocks of at most block_bytes: growing it never copies what it holds (a
+/// doubling buffer holds its old and its new copy at once, and glibc keeps the freed smaller copies: the
+/// peak was twice the limit). join() frees each block once it is copied: the peak is the body plus a block.
+class BodyBlocks {
+ public:
+  void append(const char* data, std::size_t length) {
+    while (length > 0) {
+      if (blocks_.empty() || blocks_.back().size() == block_bytes) {
+        blocks_.emplace_back();
+        if (blocks_.size() > 1) blocks_.back().reserve(block_bytes);  // the first grows with a small body
+      }
+      const std::size_t take = std::min(length, block_bytes - blocks_.back().size());
+      blocks_.back().append(data, take);
+      data += take, length -= take, size_ += take;
+    }
   }
-  if (auto output = scene.find("output"); output != scene.end() && number_at(*output, "every") >= 1)
-    every = number_at(*output, "every");
-  auto clamp = [](double x) { return static_cast<int>(std::min(x, 2e9)); };
-  scene::Summary s;
-  s.nodes = clamp(nodes);
-  s.steps = clamp(std::floor(steps));
-  s.frames = clamp(std::floor(steps / every));
-  return s;
-}
+  /// Frees the blocks of a body that is refused; when they were many, gives the memory back to the
+  /// system (glibc keeps freed blocks in the arena of the thread that read them: a flood on every HTTP
+  /// thread would otherwise keep the limit's worth in each).
+  void release() {
+    const bool large = blocks_.size() > 1;
+    std::vector<std::string>().swap(blocks_);
+    if (large) malloc_trim(0);
+  }
+  std::string join() && {
+    if (blocks_.size() == 1) return std::move(blocks_.front());
+    std::string body;
+    body.reserve(size_);
+    for (std::string& block : blocks_) {
+      body += block;
+      std::string().swap(block);
+    }
+    return body;
+  }
+
+ private:
+  static constexpr std::size_t block_bytes = 1 << 20;
+  std::vector<std::string> blocks_;
+  std::size_t size_ = 0;
+};
 
 }  // namespace
 
+SceneCounts estimate_scene_counts(const nlohmann::json& scene) {
+  SceneCounts s;
+  if (!scene.is_object()) return s;
+  if (auto bodies = scene.find("bodies"); bodies != scene.end() && bodies->is_array())
+    for (const auto& body : *bodies)
+      if (body.is_object() && body.contains("mesh"))
+        s.nodes = saturating_add(s.nodes, estimated_nodes(body["mesh"]));
+  if (auto time = scene.find("time"); time != scene.end())
+    s.steps = model::step_count(number_at(*time, "end"), number_at(*time, "step"));
+  model::OutputSpec output;
+  if (auto o = scene.find("output"); o != scene.end() && number_at(*o, "every") >= 1)
+    output.every = static_cast<int>(std::min(number_at(*o, "every"), double(INT_MAX)));
+  s.frames = s.steps > 0 ? output.frame_count(s.steps) : 0;
+  return s;
+}
+
 std::optional<Problem> check_scene_limits_early(const nlohmann::json& scene, const Limits& limits) {
-  scene::Summary estimate = estimated_summary(scene);
+  SceneCounts estimate = estimate_scene_counts(scene);
   // Generator node counts are estimates: refuse early only what is clearly beyond the limit,
   // the exact check after loading does the rest.
-  if (estimate.nodes <= 4.0 * limits.max_nodes) estimate.nodes = 0;
+  if (estimate.nodes <= 4LL * limits.max_nodes) estimate.nodes = 0;
   return check_scene_limits(estimate, limits);
 }
 
 std::optional<Problem> check_scene_limits(const scene::Summary& scene, const Limits& limits) {
+  return check_scene_limits(SceneCounts{scene.nodes, scene.steps, scene.frames}, limits);
+}
+
+std::optional<Problem> check_scene_limits(const SceneCounts& scene, const Limits& limits) {
   nlohmann::json exceeded = nlohmann::json::array();
   std::string detail;
   auto check = [&](const char* name, long long value, long long limit, const char* what) {
@@ -83,6 +149,49 @@ std::optional<Problem> check_scene_limits(const scene::Summary& scene, const Lim
                  "Scene exceeds a server limit",
                  detail,
                  {{"limits", exceeded}}};
+}
+
+Problem request_too_slow(std::chrono::milliseconds request_timeout, std::uint64_t received) {
+  const double seconds = static_cast<double>(request_timeout.count()) / 1000;
+  std::string limit = std::to_string(seconds);
+  limit.erase(limit.find_last_not_of('0') + 1);
+  if (limit.back() == '.') limit.pop_back();
+  return {408,
+          "urn:stoss:problem:request-timeout",
+          "Request Timeout",
+          "the body was still arriving " + limit + " s after the request's head (" +
+              std::to_string(received) +
+              " bytes by then), more than the server limit request_timeout (--request-timeout) allows; "
+              "the connection is closed",
+          {{"limits", nlohmann::json::array({{{"name", "request_timeout"}, {"limit", seconds}}})}}};
+}
+
+std::string read_body_within_limits(const httplib::ContentReader& reader, const Limits& limits,
+                                    std::chrono::steady_clock::time_point deadline,
+                                    const httplib::Response& res) {
+  BodyBlocks blocks;
+  std::uint64_t received = 0;
+  enum class Stop { no, too_large, too_slow } stop = Stop::no;
+  const bool complete = reader([&](const char* data, std::size_t length) {
+    received += length;
+    if (received > limits.max_body_bytes) return stop = Stop::too_large, false;
+    if (std::chrono::steady_clock::now() > deadline) return stop = Stop::too_slow, false;
+    blocks.append(data, length);
+    return true;
+  });
+  if (complete) return std::move(blocks).join();
+  blocks.release();
+  // Unread past the limit, the size is unknown (a Content-Length above it is refused before reading).
+  if (stop == Stop::too_large) throw ProblemError(body_too_large(limits.max_body_bytes, std::nullopt));
+  if (stop == Stop::too_slow) throw ProblemError(request_too_slow(limits.request_timeout, received));
+  if (res.status == 415)
+    throw ProblemError(Problem{415, "urn:stoss:problem:unsupported-content-encoding",
+                               "Unsupported Media Type",
+                               "the body's Content-Encoding cannot be decoded; send it unencoded"});
+  throw ProblemError(Problem{400, "urn:stoss:problem:unreadable-body", "Bad Request",
+                             "the body could not be read: it ended before its Content-Length or its chunked "
+                             "framing is broken (" +
+                                 std::to_string(received) + " bytes read)"});
 }
 
 }  // namespace stoss::server::http

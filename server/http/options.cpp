@@ -80,6 +80,10 @@ const std::map<std::string, Setter>& setters() {
       {"--max-connections-per-client",
        [](auto& f, auto& v, auto& o) { o.max_connections_per_client = int(parse_integer(f, v, 1, 1'000'000)); }},
       {"--read-timeout", [](auto& f, auto& v, auto& o) { o.read_timeout = parse_seconds(f, v); }},
+      {"--request-timeout",
+       [](auto& f, auto& v, auto& o) {
+         o.limits.request_timeout = std::chrono::milliseconds(parse_seconds(f, v));
+       }},
       {"--job-timeout",
        [](auto& f, auto& v, auto& o) {
          o.job_timeout = v == "0" ? 0 : parse_seconds(f, v);
@@ -163,6 +167,8 @@ Runs the job service (HTTP/JSON, see api/openapi.yaml) until SIGINT or SIGTERM.
                          connections one client address may hold at once; more are answered 503 and
                          closed (default 64)
   --read-timeout S       longest wait for the next bytes of a request's head or body (default 5)
+  --request-timeout S    longest time from a request's head to the last byte of its body; a slower
+                         upload is answered 408 and closed (default 60)
   --job-timeout S        wall-time limit of one job attempt; 0: none (default 0); a scene may set a
                          lower one in solver.max_wall_seconds
   --job-memory BYTES     address-space limit (RLIMIT_AS) of a job's process; 0: none (default 0)

@@ -48,8 +48,17 @@ void install_routes(httplib::Server& server, App& app);
 /// otherwise wait for the client to close the connection. The declared Content-Type moves to
 /// declared_type_header (cpp-httplib would parse and cap form bodies); a known path with a method it does
 /// not have is answered 405 with Allow. With a `limit`, a connection over the per-client cap is answered
-/// 503 before anything else (connection_limit.hpp).
-void install_request_defaults(httplib::Server& server, ConnectionLimit* limit = nullptr);
+/// 503 before anything else (connection_limit.hpp; /healthz excepted).
+///
+/// Limits before reading: cpp-httplib 0.11 reads a body after this hook and before the handler, whole
+/// into memory and with no cap for a chunked one. So this hook refuses, from the head alone, what must
+/// not be read: an unknown route, a missing token (401), a Content-Length above max_body_bytes (413 with
+/// the exact length), a chunked body on a route without a counting reader (411) and any other transfer
+/// coding (501); such a connection is closed after the answer. The routes that take a body get a content
+/// reader instead (install_routes), which counts the bytes as they arrive and stops at max_body_bytes
+/// (413) or --request-timeout after the head (408). A request with `Expect: 100-continue` gets the same
+/// refusals instead of the 100.
+void install_request_defaults(httplib::Server& server, const App& app, ConnectionLimit* limit = nullptr);
 
 /// The error handler (problem+json for statuses httplib sets itself: unknown route, oversize body, …),
 /// the exception handler (catches everything, answers 500, never lets a request take the server down),

@@ -123,7 +123,7 @@ int run(const ServeOptions& options) {
   server.set_write_timeout(std::max(timeout, std::chrono::milliseconds(5000)));
   server.set_keep_alive_max_count(10'000);
   server.set_keep_alive_timeout(std::max<time_t>(1, static_cast<time_t>(options.read_timeout / 1000)));
-  install_request_defaults(server, &connection_limit);
+  install_request_defaults(server, app, &connection_limit);
   install_error_handling(server, app.metrics, options.limits);
   install_routes(server, app);
   const int port = bind_server(server, options.host, options.port);

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <string>
 
+#include "core/model/model.hpp"
 #include "server/http/scene_check.hpp"
 #include "server/jobs/study_job.hpp"
 
@@ -138,9 +139,8 @@ void check_run_limit(const study::Options& options, double end, const Limits& li
   const double finest_swept = *std::min_element(options.steps.begin(), options.steps.end());
   const bool reference_finest = options.reference_step <= finest_swept;
   const double finest = reference_finest ? options.reference_step : finest_swept;
-  const double steps = std::min(std::ceil(end / finest - 1e-9), 9e18);
-  if (steps <= limits.max_steps) return;
-  const long long value = static_cast<long long>(steps);
+  const long long value = model::step_count(end, finest);
+  if (value <= limits.max_steps) return;
   const std::string run = reference_finest ? "the reference run" : "the run";
   throw ProblemError(Problem{
       413,
