@@ -1,6 +1,7 @@
 #include "core/scene/validate.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -39,8 +40,14 @@ void check_box(json& box, const std::string& p, Checker& c) {
   const auto high = vector3_field(box, "max", p, Presence::must(), c);
   if (low && high && !(high->array() > low->array()).all())
     c.fail(child(p, "max"), "must be > min componentwise, got " + shown(box["max"]));
-  if (json* divisions = member(box, "divisions", p, Presence::must(), c))
-    check_divisions(*divisions, child(p, "divisions"), c);
+  const size_t start = c.mark();
+  json* divisions = member(box, "divisions", p, Presence::must(), c);
+  if (divisions) check_divisions(*divisions, child(p, "divisions"), c);
+  if (!low || !high || !divisions || c.mark() != start) return;
+  // Every element of the grid has det J0 = hx hy hz / 8 (docs/theory.md (1.2), h the element's edges).
+  double det = 1.0 / 8;
+  for (int a = 0; a < 3; ++a) det *= ((*high)[a] - (*low)[a]) / (*divisions)[a].get<double>();
+  if (!std::isnormal(det) || det <= 0) c.fail(p, "its elements would have " + jacobian_problem(det));
 }
 
 void check_hollow_sphere(json& sphere, const std::string& p, Checker& c) {
@@ -97,9 +104,10 @@ void check_jacobians(const json& mesh, const std::string& p, Checker& c) {
     nodes.emplace_back(x[0].get<double>(), x[1].get<double>(), x[2].get<double>());
   const json& hex8 = mesh["hex8"];
   for (size_t e = 0; e < hex8.size(); ++e) {
-    const double det = min_jacobian_determinant(nodes, hex8[e].get<mesh::Hex>());
-    if (!(det > 0))
-      c.fail(child(child(p, "hex8"), e), "det J0 must be > 0 at every Gauss point, got " + rounded_text(det));
+    const auto det = unusable_jacobian_determinant(nodes, hex8[e].get<mesh::Hex>());
+    if (det)
+      c.fail(child(child(p, "hex8"), e), *det <= 0 ? "det J0 must be > 0 at every Gauss point, got " + rounded_text(*det)
+                                                   : jacobian_problem(*det));
   }
 }
 

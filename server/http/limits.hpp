@@ -15,6 +15,8 @@ struct Limits {
   int max_steps = 100'000;                 ///< --max-steps: time steps to reach time.end
   int max_frames = 2'000;                  ///< --max-frames: output frames
   int max_queued = 1'000;                  ///< --max-queue: queued jobs before submissions get 503
+  /// --max-mesh-store-bytes: bytes of all meshes stored by POST /v1/meshes; an upload beyond gets 413
+  std::size_t max_mesh_store_bytes = std::size_t(1) << 30;
 };
 
 /// A 413 problem naming every limit the scene exceeds (name, limit, value), or nullopt when within all.
