@@ -36,11 +36,11 @@ void check_divisions(json& divisions, const std::string& p, Checker& c) {
 
 void check_box(json& box, const std::string& p, Checker& c) {
   if (!object_with(box, p, {"min", "max", "divisions"}, c)) return;
+  const size_t start = c.mark();
   const auto low = vector3_field(box, "min", p, Presence::must(), c);
   const auto high = vector3_field(box, "max", p, Presence::must(), c);
   if (low && high && !(high->array() > low->array()).all())
     c.fail(child(p, "max"), "must be > min componentwise, got " + shown(box["max"]));
-  const size_t start = c.mark();
   json* divisions = member(box, "divisions", p, Presence::must(), c);
   if (divisions) check_divisions(*divisions, child(p, "divisions"), c);
   if (!low || !high || !divisions || c.mark() != start) return;
