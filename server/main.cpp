@@ -37,7 +37,8 @@ int main(int argc, char** argv) {
   if (command == "validate") return stoss::cli::validate_command(args);
   if (command == "serve") {
     // Freed request memory (a parsed mesh, a validated scene) stays in glibc's per-thread arenas, one per
-    // HTTP thread at most 8 × cores of them: two arenas give it back (docs/measurements.md, "Hardening numbers").
+    // HTTP thread at most 8 × cores of them: two arenas give it back (docs/measurements.md, "Hardening
+    // numbers").
     mallopt(M_ARENA_MAX, 2);
     return stoss::server::serve_command(args);
   }

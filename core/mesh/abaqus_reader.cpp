@@ -105,24 +105,29 @@ class LineReader {
   void push(std::string_view text, std::shared_ptr<const std::string> owned, std::string shown,
             std::filesystem::path directory) {
     files.push_back(std::move(shown));
-    stack_.push_back({text, std::move(owned), static_cast<int>(files.size()) - 1, 0, 0, std::move(directory)});
+    stack_.push_back(
+        {text, std::move(owned), static_cast<int>(files.size()) - 1, 0, 0, std::move(directory)});
   }
 
   static std::string input_of(const std::string& keyword_line) {
     std::string input;
     for (const std::string& f : fields(trimmed(keyword_line)))
-      if (upper(f).rfind("INPUT", 0) == 0 && f.find('=') != std::string::npos) input = trimmed(f.substr(f.find('=') + 1));
-    if (input.size() >= 2 && input.front() == '"' && input.back() == '"') input = input.substr(1, input.size() - 2);
+      if (upper(f).rfind("INPUT", 0) == 0 && f.find('=') != std::string::npos)
+        input = trimmed(f.substr(f.find('=') + 1));
+    if (input.size() >= 2 && input.front() == '"' && input.back() == '"')
+      input = input.substr(1, input.size() - 2);
     return input;
   }
 
   void include(const Line& line) {
     if (!limits_.includes || !root_)
-      fail(line.where,
-           "*INCLUDE is not accepted here: an uploaded mesh must be self-contained (its id is the hash of its "
-           "bytes); put the included lines in their place");
+      fail(
+          line.where,
+          "*INCLUDE is not accepted here: an uploaded mesh must be self-contained (its id is the hash of its "
+          "bytes); put the included lines in their place");
     if (stack_.size() > static_cast<size_t>(ReadLimits::max_include_depth))
-      fail(line.where, "*INCLUDE nested more than " + std::to_string(ReadLimits::max_include_depth) + " deep");
+      fail(line.where,
+           "*INCLUDE nested more than " + std::to_string(ReadLimits::max_include_depth) + " deep");
     if (++includes_ > ReadLimits::max_includes)
       fail(line.where, "more than " + std::to_string(ReadLimits::max_includes) + " *INCLUDE in all");
     const std::string input = input_of(line.text);
@@ -142,9 +147,12 @@ class LineReader {
   std::filesystem::path resolve(const Where& where, const std::string& input) const {
     const std::filesystem::path path(input);
     if (path.has_root_name() || path.has_root_directory())
-      fail(where, "*INCLUDE of an absolute path (" + input + ") is refused: only files below the deck's folder");
+      fail(where,
+           "*INCLUDE of an absolute path (" + input + ") is refused: only files below the deck's folder");
     for (const auto& part : path)
-      if (part == "..") fail(where, "*INCLUDE of a path with '..' (" + input + ") is refused: only files below the deck's folder");
+      if (part == "..")
+        fail(where,
+             "*INCLUDE of a path with '..' (" + input + ") is refused: only files below the deck's folder");
     std::error_code error;
     const std::filesystem::path real = std::filesystem::canonical(stack_.back().directory / path, error);
     if (error) fail(where, "cannot read included file " + input);
@@ -252,7 +260,8 @@ struct Deck {
 
   /// Counts `n` more set members (or surface rows) against the total, before they are stored.
   void count_members(const Where& where, long long n) {
-    if (n > limits.max_members() - members) fail(where, limits.exceeded("set members in all sets and surfaces", ReadLimits::members_per_node));
+    if (n > limits.max_members() - members)
+      fail(where, limits.exceeded("set members in all sets and surfaces", ReadLimits::members_per_node));
     members += n;
   }
 
@@ -268,11 +277,13 @@ struct Deck {
   }
 
   void add_node(const Where& where, const std::vector<std::string>& f, const std::string& nset) {
-    if (f.size() < 3) fail(where, "a *NODE line needs id, x, y[, z], got " + std::to_string(f.size()) + " fields");
+    if (f.size() < 3)
+      fail(where, "a *NODE line needs id, x, y[, z], got " + std::to_string(f.size()) + " fields");
     const long id = parse_id(where, f[0], "node id");
     Eigen::Vector3d x(parse_real(where, f[1], "x"), parse_real(where, f[2], "y"),
                       f.size() > 3 && !f[3].empty() ? parse_real(where, f[3], "z") : 0.0);
-    if (static_cast<long long>(mesh.nodes.size()) >= limits.max_nodes) fail(where, "the file has " + limits.exceeded("nodes"));
+    if (static_cast<long long>(mesh.nodes.size()) >= limits.max_nodes)
+      fail(where, "the file has " + limits.exceeded("nodes"));
     const auto [it, fresh] = node_index.try_emplace(id, static_cast<int>(mesh.nodes.size()));
     if (!fresh)
       fail(where, "duplicate node id " + std::to_string(id) + " (first defined on line " +
@@ -286,7 +297,8 @@ struct Deck {
   void add_element(const Where& where, const std::vector<std::string>& f, const std::string& elset) {
     const long id = parse_id(where, f[0], "element id");
     if (f.size() != 9)
-      fail(where, "element " + std::to_string(id) + " has " + std::to_string(f.size() - 1) + " nodes, C3D8 needs 8");
+      fail(where,
+           "element " + std::to_string(id) + " has " + std::to_string(f.size() - 1) + " nodes, C3D8 needs 8");
     if (static_cast<long long>(mesh.hex8.size()) >= limits.max_nodes)
       fail(where, "the file has " + limits.exceeded("elements"));
     const auto [it, fresh] = element_index.try_emplace(id, static_cast<int>(mesh.hex8.size()));
@@ -307,14 +319,15 @@ struct Deck {
     if (f.size() < 2 || f.size() > 3) fail(where, "GENERATE needs first, last[, increment]");
     const long first = parse_id(where, f[0], "first id"), last = parse_id(where, f[1], "last id");
     const long step = f.size() == 3 ? parse_id(where, f[2], "increment") : 1;
-    if (last < first) fail(where, "GENERATE: last id " + std::to_string(last) + " < first id " + std::to_string(first));
+    if (last < first)
+      fail(where, "GENERATE: last id " + std::to_string(last) + " < first id " + std::to_string(first));
     const long count = (last - first) / step + 1;  // no overflow: 0 <= last - first, step >= 1
     count_members(where, count);
     for (long i = 0; i < count; ++i) s.ids.push_back({first + i * step, where});
   }
 
-  void add_set_line(std::map<std::string, Set>& sets, const Keyword& k, const std::string& name, const Where& where,
-                    const std::vector<std::string>& f) {
+  void add_set_line(std::map<std::string, Set>& sets, const Keyword& k, const std::string& name,
+                    const Where& where, const std::vector<std::string>& f) {
     Set& s = set_named(sets, name);
     if (k.has("GENERATE")) return add_generated(s, where, f);
     for (const std::string& item : f) {
@@ -335,7 +348,8 @@ struct Deck {
   void add_surface_line(const Keyword& k, const Line& line, const std::vector<std::string>& f) {
     Surface& s = surfaces[upper(k.get("NAME"))];
     if (f.size() != 2)
-      fail(line.where, "an element-based *SURFACE line needs 'element or ELSET, Sn', got '" + trimmed(line.text).substr(0, 80) + "'");
+      fail(line.where, "an element-based *SURFACE line needs 'element or ELSET, Sn', got '" +
+                           trimmed(line.text).substr(0, 80) + "'");
     const std::string label = upper(f[1]);
     if (label.size() != 2 || label[0] != 'S' || label[1] < '1' || label[1] > '6')
       fail(line.where, "face label must be S1..S6 (C3D8 faces), got '" + f[1].substr(0, 40) + "'");
@@ -390,7 +404,8 @@ struct Deck {
         add_surface_line(k, line, f);
       }
     }
-    if (!pending.empty()) fail(pending_where, "element line ends with ',' but the file ends (truncated file?)");
+    if (!pending.empty())
+      fail(pending_where, "element line ends with ',' but the file ends (truncated file?)");
   }
 
   void start_keyword(const Keyword& k) {
@@ -398,7 +413,8 @@ struct Deck {
       const std::string type = upper(k.get("TYPE"));
       if (type.empty()) fail(k.where, "*ELEMENT needs TYPE=");
       if (type != "C3D8" && type != "C3D8R")
-        fail(k.where, "unsupported element type " + k.get("TYPE").substr(0, 40) + "; Stoss reads 8-node hexahedra (C3D8, C3D8R)");
+        fail(k.where, "unsupported element type " + k.get("TYPE").substr(0, 40) +
+                          "; Stoss reads 8-node hexahedra (C3D8, C3D8R)");
       if (k.has("ELSET") && k.get("ELSET").empty()) fail(k.where, "ELSET= needs a name");
       if (k.has("ELSET")) set_named(element_sets, k.get("ELSET"));
     } else if (k.name == "NSET" || k.name == "ELSET") {
@@ -421,7 +437,8 @@ struct Deck {
 
   int element(long id, const Where& where, const std::string& context) const {
     const auto it = element_index.find(id);
-    if (it == element_index.end()) fail(where, context + ": element " + std::to_string(id) + " is not defined");
+    if (it == element_index.end())
+      fail(where, context + ": element " + std::to_string(id) + " is not defined");
     return it->second;
   }
 
@@ -440,7 +457,8 @@ struct Deck {
   void resolve_sets() {
     for (const auto& [key, set] : node_sets)
       for (const auto& [id, where] : set.ids)
-        if (!node_index.contains(id)) fail(where, "NSET " + set.name + ": node " + std::to_string(id) + " is not defined");
+        if (!node_index.contains(id))
+          fail(where, "NSET " + set.name + ": node " + std::to_string(id) + " is not defined");
     for (auto& [key, set] : element_sets) {
       std::vector<int> members;
       members.reserve(set.ids.size());
@@ -466,7 +484,8 @@ struct Deck {
         } else {
           const auto set = element_sets.find(upper(row.ref));
           if (set == element_sets.end())
-            fail(row.where, "*SURFACE " + surface.name + ": '" + row.ref.substr(0, 40) + "' is neither an element nor an ELSET");
+            fail(row.where, "*SURFACE " + surface.name + ": '" + row.ref.substr(0, 40) +
+                                "' is neither an element nor an ELSET");
           elements = &mesh.element_sets[set->second.name];
         }
         faces_in_all += elements ? static_cast<long long>(elements->size()) : 1;
@@ -487,8 +506,8 @@ std::filesystem::path deck_folder(const std::filesystem::path& path) {
   return error ? std::filesystem::path() : real.parent_path();
 }
 
-ImportedMesh parse_deck(std::string_view text, const std::string& shown, std::optional<std::filesystem::path> root,
-                        const ReadLimits& limits) {
+ImportedMesh parse_deck(std::string_view text, const std::string& shown,
+                        std::optional<std::filesystem::path> root, const ReadLimits& limits) {
   LineReader reader(text, shown, std::move(root), limits);
   Deck deck(reader, limits);
   deck.mesh.file = shown;
@@ -501,7 +520,8 @@ ImportedMesh parse_deck(std::string_view text, const std::string& shown, std::op
 
 }  // namespace
 
-ImportedMesh read_abaqus(const std::filesystem::path& path, const std::string& shown_name, const ReadLimits& limits) {
+ImportedMesh read_abaqus(const std::filesystem::path& path, const std::string& shown_name,
+                         const ReadLimits& limits) {
   const std::string shown = shown_name.empty() ? path.string() : shown_name;
   const std::string text = read_regular_file(path, shown);
   std::optional<std::filesystem::path> root;

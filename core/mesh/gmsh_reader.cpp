@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
-#include <string_view>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "core/mesh/mesh_file.hpp"
 
@@ -253,14 +253,15 @@ struct Reader {
     if (n < 0) c.fail("negative number of " + what);
     if (n > limits.max_records() - records)
       c.fail("the file has " + limits.exceeded("records (entities, physical groups, elements of every type)",
-                                                ReadLimits::records_per_node));
+                                               ReadLimits::records_per_node));
     records += n;
   }
   /// Counts `n` more element set members or surface faces against ReadLimits::max_members.
   void count_members(long long n, long line) {
     if (n > limits.max_members() - members)
-      throw MeshFileError(mesh.file, line,
-                          limits.exceeded("element set members and surface faces in all", ReadLimits::members_per_node));
+      throw MeshFileError(
+          mesh.file, line,
+          limits.exceeded("element set members and surface faces in all", ReadLimits::members_per_node));
     members += n;
   }
 
@@ -506,7 +507,8 @@ ImportedMesh parse_gmsh(std::string_view bytes, const std::string& shown_name, c
   return std::move(r.mesh);
 }
 
-ImportedMesh read_gmsh(const std::filesystem::path& path, const std::string& shown_name, const ReadLimits& limits) {
+ImportedMesh read_gmsh(const std::filesystem::path& path, const std::string& shown_name,
+                       const ReadLimits& limits) {
   const std::string shown = shown_name.empty() ? path.string() : shown_name;
   return parse_gmsh(read_regular_file(path, shown), shown, limits);
 }

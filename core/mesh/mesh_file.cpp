@@ -62,7 +62,8 @@ std::string read_regular_file(const std::filesystem::path& path, const std::stri
   return text.str();
 }
 
-ImportedMesh read_mesh_file(const std::filesystem::path& path, const std::string& shown_name, const ReadLimits& limits) {
+ImportedMesh read_mesh_file(const std::filesystem::path& path, const std::string& shown_name,
+                            const ReadLimits& limits) {
   const std::string ext = lower_extension(path);
   if (ext == ".msh") return read_gmsh(path, shown_name, limits);
   if (ext == ".inp") return read_abaqus(path, shown_name, limits);
@@ -70,8 +71,8 @@ ImportedMesh read_mesh_file(const std::filesystem::path& path, const std::string
                       "unknown mesh file type '" + ext + "' (Stoss reads Gmsh .msh 4.1 and Abaqus/CalculiX .inp)");
 }
 
-ImportedMesh parse_mesh_bytes(std::string_view bytes, const std::string& format, const std::string& shown_name,
-                              const ReadLimits& limits) {
+ImportedMesh parse_mesh_bytes(std::string_view bytes, const std::string& format,
+                              const std::string& shown_name, const ReadLimits& limits) {
   if (format == "msh") return parse_gmsh(bytes, shown_name, limits);
   if (format == "inp") return parse_abaqus(bytes, shown_name, limits);
   throw MeshFileError(shown_name, 0, "unknown mesh format '" + format + "' (msh or inp)");

@@ -102,8 +102,8 @@ ImportedMesh read_mesh_file(const std::filesystem::path& path, const std::string
 
 /// Parses the bytes of a mesh file of `format` ("msh" | "inp") held in memory, named `shown_name` in
 /// messages; no other file is read (an *INCLUDE is refused whatever `limits` say).
-ImportedMesh parse_mesh_bytes(std::string_view bytes, const std::string& format, const std::string& shown_name,
-                              const ReadLimits& limits);
+ImportedMesh parse_mesh_bytes(std::string_view bytes, const std::string& format,
+                              const std::string& shown_name, const ReadLimits& limits);
 /// The same for each format.
 ImportedMesh parse_gmsh(std::string_view bytes, const std::string& shown_name, const ReadLimits& limits);
 ImportedMesh parse_abaqus(std::string_view bytes, const std::string& shown_name, const ReadLimits& limits);

@@ -104,8 +104,9 @@ std::string jacobian_problem(double det) {
   if (det <= 0) return "inverted or degenerate hexahedron, " + value + " (must be > 0; check the node order)";
   if (!std::isfinite(det))
     return value + ": the element's volume is not a finite number (coordinates too large? scale the mesh)";
-  return value + " is below the smallest normal double (2.2e-308): the element is too small to compute with "
-                 "(coordinates too small? scale the mesh)";
+  return value +
+         " is below the smallest normal double (2.2e-308): the element is too small to compute with "
+         "(coordinates too small? scale the mesh)";
 }
 
 /// A generated body with its whole boundary as the surface "boundary", like every other mesh.

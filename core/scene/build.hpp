@@ -13,9 +13,10 @@
 
 namespace stoss::scene::detail {
 
-/// The det J0 (docs/theory.md (1.1)–(1.2)) that makes an element unusable, nullopt when every one of its 2×2×2 Gauss points has a det J0
-/// that is > 0, finite and a normal double: the smallest when one is <= 0, else one that is infinite, NaN
-/// or subnormal (coordinates of 1e200 or 1e-105 give such volumes; the integrator would fail at step 1).
+/// The det J0 (docs/theory.md (1.1)–(1.2)) that makes an element unusable, nullopt when every one of its
+/// 2×2×2 Gauss points has a det J0 that is > 0, finite and a normal double: the smallest when one is <= 0,
+/// else one that is infinite, NaN or subnormal (coordinates of 1e200 or 1e-105 give such volumes; the
+/// integrator would fail at step 1).
 std::optional<double> unusable_jacobian_determinant(const std::vector<Eigen::Vector3d>& nodes,
                                                     const mesh::Hex& element);
 /// What is wrong with an element whose det J0 is `det` (a value unusable_jacobian_determinant returned).

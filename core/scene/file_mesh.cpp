@@ -116,13 +116,14 @@ std::string result_file_name(std::string name) {
 }
 
 /// Two surfaces of one body that the result file would write under the same name are an issue.
-void check_surface_names(const std::map<std::string, std::vector<mesh::Quad>>& surfaces, const std::string& file,
-                         const std::string& p, Checker& c) {
+void check_surface_names(const std::map<std::string, std::vector<mesh::Quad>>& surfaces,
+                         const std::string& file, const std::string& p, Checker& c) {
   std::map<std::string, std::string> written;
   for (const auto& [name, quads] : surfaces) {
     const auto [it, fresh] = written.try_emplace(result_file_name(name), name);
     if (!fresh)
-      c.fail(p, file + ": surfaces '" + it->second + "' and '" + name + "' would both be written as '" + it->first +
+      c.fail(p, file + ": surfaces '" + it->second + "' and '" + name + "' would both be written as '" +
+                    it->first +
                     "' in the result file (names there hold no '/' and start with no '.'); rename one");
   }
 }

@@ -106,8 +106,9 @@ void check_jacobians(const json& mesh, const std::string& p, Checker& c) {
   for (size_t e = 0; e < hex8.size(); ++e) {
     const auto det = unusable_jacobian_determinant(nodes, hex8[e].get<mesh::Hex>());
     if (det)
-      c.fail(child(child(p, "hex8"), e), *det <= 0 ? "det J0 must be > 0 at every Gauss point, got " + rounded_text(*det)
-                                                   : jacobian_problem(*det));
+      c.fail(child(child(p, "hex8"), e),
+             *det <= 0 ? "det J0 must be > 0 at every Gauss point, got " + rounded_text(*det)
+                       : jacobian_problem(*det));
   }
 }
 

@@ -30,7 +30,8 @@ std::size_t memory_of(const mesh::ImportedMesh& m) {
   std::size_t bytes = 1024 + m.nodes.size() * (sizeof(Eigen::Vector3d) + sizeof(long)) +
                       m.hex8.size() * (sizeof(mesh::Hex) + 2 * sizeof(long));
   for (const auto& [name, members] : m.element_sets) bytes += 64 + name.size() + members.size() * sizeof(int);
-  for (const auto& [name, faces] : m.surfaces) bytes += 64 + name.size() + faces.size() * sizeof(mesh::ElementFace);
+  for (const auto& [name, faces] : m.surfaces)
+    bytes += 64 + name.size() + faces.size() * sizeof(mesh::ElementFace);
   return bytes;
 }
 
@@ -47,7 +48,9 @@ ParsedMesh trimmed(mesh::ImportedMesh parsed, const std::string& id) {
 MeshStoreFull::MeshStoreFull(std::uintmax_t u, std::uintmax_t s, std::uintmax_t l)
     : std::runtime_error("the mesh store holds " + std::to_string(u) + " bytes; " + std::to_string(s) +
                          " more would exceed the server limit max_mesh_store_bytes = " + std::to_string(l)),
-      used(u), size(s), limit(l) {}
+      used(u),
+      size(s),
+      limit(l) {}
 
 std::string sniff_mesh_format(std::string_view bytes) {
   const std::size_t start = bytes.find_first_not_of(" \t\r\n");
@@ -58,8 +61,9 @@ std::string sniff_mesh_format(std::string_view bytes) {
 }
 
 bool is_mesh_id(const std::string& id) {
-  return id.size() == 64 &&
-         std::all_of(id.begin(), id.end(), [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
+  return id.size() == 64 && std::all_of(id.begin(), id.end(), [](char c) {
+           return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+         });
 }
 
 MeshStore& MeshStore::at(const std::filesystem::path& directory) {
@@ -129,7 +133,8 @@ void MeshStore::evict_locked() {
   while (cached_bytes_ > cache_bytes) {
     auto oldest = cache_.end();
     for (auto it = cache_.begin(); it != cache_.end(); ++it)
-      if (it->second.bytes > 0 && (oldest == cache_.end() || it->second.used < oldest->second.used)) oldest = it;
+      if (it->second.bytes > 0 && (oldest == cache_.end() || it->second.used < oldest->second.used))
+        oldest = it;
     if (oldest == cache_.end()) return;
     cached_bytes_ -= oldest->second.bytes;
     cache_.erase(oldest);

@@ -45,8 +45,9 @@ struct MeshInput {
   std::string name;  ///< what it is, for a failure message
 };
 
-const std::string cube = "*NODE, NSET=NALL\n1,0,0,0\n2,1,0,0\n3,1,1,0\n4,0,1,0\n5,0,0,1\n6,1,0,1\n7,1,1,1\n8,0,1,1\n"
-                         "*ELEMENT, TYPE=C3D8, ELSET=EALL\n1,1,2,3,4,5,6,7,8\n";
+const std::string cube =
+    "*NODE, NSET=NALL\n1,0,0,0\n2,1,0,0\n3,1,1,0\n4,0,1,0\n5,0,0,1\n6,1,0,1\n7,1,1,1\n8,0,1,1\n"
+    "*ELEMENT, TYPE=C3D8, ELSET=EALL\n1,1,2,3,4,5,6,7,8\n";
 
 /// The nine reproducers of issue 20, written anew, and their relatives.
 std::vector<MeshInput> reproducers() {
@@ -79,8 +80,10 @@ std::vector<MeshInput> reproducers() {
     for (int i = 0; i < 2000; ++i) deck += "EALL, S1\n";
     return deck;
   }());
-  add("nodes header of 2^40", "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 1099511627776 1 1099511627776\n", "msh");
-  add("entities header of 2^40", "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n1099511627776 0 0 0\n", "msh");
+  add("nodes header of 2^40",
+      "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 1099511627776 1 1099511627776\n", "msh");
+  add("entities header of 2^40", "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n1099511627776 0 0 0\n",
+      "msh");
   add("a line of 10 M commas", cube + "*NSET, NSET=C\n" + std::string(10'000'000, ',') + "\n");
   return out;
 }
@@ -93,7 +96,8 @@ class MeshCorpus {
     seeds_.push_back({bytes_of(fixtures / "two_blocks_ascii.msh"), "msh", "two_blocks_ascii.msh"});
     seeds_.push_back({bytes_of(fixtures / "two_blocks_binary.msh"), "msh", "two_blocks_binary.msh"});
     seeds_.push_back({bytes_of(fixtures / "cgx_block.inp"), "inp", "cgx_block.inp"});
-    seeds_.push_back({cube + "*SURFACE, NAME=TOP\nEALL, S2\n*NSET, NSET=G, GENERATE\n1, 8, 1\n", "inp", "cube"});
+    seeds_.push_back(
+        {cube + "*SURFACE, NAME=TOP\nEALL, S2\n*NSET, NSET=G, GENERATE\n1, 8, 1\n", "inp", "cube"});
   }
 
   MeshInput next() {
@@ -105,7 +109,9 @@ class MeshCorpus {
   }
 
  private:
-  std::size_t below(std::size_t n) { return n == 0 ? 0 : std::uniform_int_distribution<std::size_t>(0, n - 1)(rng_); }
+  std::size_t below(std::size_t n) {
+    return n == 0 ? 0 : std::uniform_int_distribution<std::size_t>(0, n - 1)(rng_);
+  }
 
   std::size_t line_start(const std::string& text) {
     const std::size_t at = below(text.size() + 1);
@@ -115,16 +121,26 @@ class MeshCorpus {
 
   void mutate(MeshInput& input) {
     std::string& t = input.bytes;
-    static const char* numbers[] = {"9223372036854775807", "-1", "0", "4294967296", "1e308", "1e-320", "nan",
-                                    "99999999999999999999", "2147483648", "1e200", "-9223372036854775808"};
-    static const char* inp_lines[] = {
-        "*INCLUDE, INPUT=/etc/passwd\n", "*INCLUDE, INPUT=../jobs.db\n", "*INCLUDE, INPUT=/dev/zero\n",
-        "*INCLUDE, INPUT=/dev/urandom\n", "*INCLUDE, INPUT=/proc/self/cmdline\n",
-        "*NSET, NSET=X, GENERATE\n1, 9223372036854775807\n", "*ELSET, ELSET=EALL\nEALL, EALL, EALL, EALL\n",
-        "*SURFACE, NAME=S\nEALL, S1\nEALL, S2\n", "*ELEMENT, TYPE=C3D8\n", "*NODE\n", ",,,,,,,,\n"};
-    static const char* msh_lines[] = {"$Nodes\n1 1099511627776 1 1099511627776\n", "$Entities\n1099511627776 0 0 0\n",
-                                      "$Elements\n1 2147483647 1 2147483647\n", "$PhysicalNames\n1000000000\n",
-                                      "$EndNodes\n", "3 1 5 1000000\n"};
+    static const char* numbers[] = {
+        "9223372036854775807",  "-1",         "0",     "4294967296",          "1e308", "1e-320", "nan",
+        "99999999999999999999", "2147483648", "1e200", "-9223372036854775808"};
+    static const char* inp_lines[] = {"*INCLUDE, INPUT=/etc/passwd\n",
+                                      "*INCLUDE, INPUT=../jobs.db\n",
+                                      "*INCLUDE, INPUT=/dev/zero\n",
+                                      "*INCLUDE, INPUT=/dev/urandom\n",
+                                      "*INCLUDE, INPUT=/proc/self/cmdline\n",
+                                      "*NSET, NSET=X, GENERATE\n1, 9223372036854775807\n",
+                                      "*ELSET, ELSET=EALL\nEALL, EALL, EALL, EALL\n",
+                                      "*SURFACE, NAME=S\nEALL, S1\nEALL, S2\n",
+                                      "*ELEMENT, TYPE=C3D8\n",
+                                      "*NODE\n",
+                                      ",,,,,,,,\n"};
+    static const char* msh_lines[] = {"$Nodes\n1 1099511627776 1 1099511627776\n",
+                                      "$Entities\n1099511627776 0 0 0\n",
+                                      "$Elements\n1 2147483647 1 2147483647\n",
+                                      "$PhysicalNames\n1000000000\n",
+                                      "$EndNodes\n",
+                                      "3 1 5 1000000\n"};
     if (t.empty()) return;
     switch (below(7)) {
       case 0:  // flip a byte
@@ -148,8 +164,8 @@ class MeshCorpus {
         std::size_t at = below(t.size());
         while (at < t.size() && !std::isdigit(static_cast<unsigned char>(t[at]))) ++at;
         std::size_t end = at;
-        while (end < t.size() && (std::isdigit(static_cast<unsigned char>(t[end])) || t[end] == '.' || t[end] == 'e' ||
-                                  t[end] == '-' || t[end] == '+'))
+        while (end < t.size() && (std::isdigit(static_cast<unsigned char>(t[end])) || t[end] == '.' ||
+                                  t[end] == 'e' || t[end] == '-' || t[end] == '+'))
           ++end;
         t.replace(at, end - at, numbers[below(std::size(numbers))]);
         break;
@@ -188,7 +204,7 @@ struct ChildReport {
 };
 
 constexpr std::size_t margin = std::size_t(128) << 20;  ///< RLIMIT_AS above the child's baseline
-constexpr long long fuzz_max_nodes = 200'000;             ///< the server's default --max-nodes
+constexpr long long fuzz_max_nodes = 200'000;           ///< the server's default --max-nodes
 
 /// Parses every input in this (forked) process under RLIMIT_AS = baseline + margin; fills `report`.
 void parse_all_under_limit(std::size_t inputs, ChildReport& report) {
@@ -206,7 +222,8 @@ void parse_all_under_limit(std::size_t inputs, ChildReport& report) {
       if (!m.hex8.empty()) (void)mesh::select_body(m, std::nullopt);
       ++report.parsed;
       if (i < fixed.size())
-        std::snprintf(report.failure, sizeof report.failure, "reproducer '%s' was accepted", input.name.c_str());
+        std::snprintf(report.failure, sizeof report.failure, "reproducer '%s' was accepted",
+                      input.name.c_str());
     } catch (const mesh::MeshFileError& e) {
       ++report.refused;
       if (std::string(e.what()).find("root:") != std::string::npos)
@@ -246,9 +263,10 @@ TEST(MeshFuzz, EveryCraftedUploadIsParsedOrRefusedWithinASmallAddressSpace) {
   EXPECT_EQ(report.parsed + report.refused, inputs);
   EXPECT_LE(report.peak, report.limit);
   EXPECT_GT(report.parsed, inputs / 20) << "the mutations should leave some files usable";
-  std::cout << "mesh fuzz (in process): " << inputs << " inputs, " << report.parsed << " parsed, " << report.refused
-            << " refused (422); address space " << report.baseline / (1 << 20) << " MiB at start, peak "
-            << report.peak / (1 << 20) << " MiB, limit " << report.limit / (1 << 20) << " MiB" << std::endl;
+  std::cout << "mesh fuzz (in process): " << inputs << " inputs, " << report.parsed << " parsed, "
+            << report.refused << " refused (422); address space " << report.baseline / (1 << 20)
+            << " MiB at start, peak " << report.peak / (1 << 20) << " MiB, limit " << report.limit / (1 << 20)
+            << " MiB" << std::endl;
 }
 
 TEST(MeshFuzz, TheLiveServerAnswersEveryCraftedUploadWithinItsAddressSpaceLimit) {
@@ -267,7 +285,8 @@ TEST(MeshFuzz, TheLiveServerAnswersEveryCraftedUploadWithinItsAddressSpaceLimit)
   ASSERT_EQ(prlimit(server.pid(), RLIMIT_AS, &cap, nullptr), 0);
 
   std::vector<MeshInput> fixed = reproducers();
-  fixed.push_back({"*NODE\n*INCLUDE, INPUT=passwd.inp\n", "inp", "*INCLUDE of a symbolic link in the upload folder"});
+  fixed.push_back(
+      {"*NODE\n*INCLUDE, INPUT=passwd.inp\n", "inp", "*INCLUDE of a symbolic link in the upload folder"});
   MeshCorpus corpus(7);
   std::map<int, std::size_t> statuses;
   for (std::size_t i = 0; i < inputs; ++i) {
@@ -276,10 +295,12 @@ TEST(MeshFuzz, TheLiveServerAnswersEveryCraftedUploadWithinItsAddressSpaceLimit)
     ASSERT_TRUE(r) << "no answer to input " << i << " (" << input.name << ")\n" << server.output();
     ++statuses[r->status];
     // 400: a mutation that emptied the body or left no format to tell.
-    ASSERT_TRUE(r->status == 200 || r->status == 201 || r->status == 400 || r->status == 413 || r->status == 422)
+    ASSERT_TRUE(r->status == 200 || r->status == 201 || r->status == 400 || r->status == 413 ||
+                r->status == 422)
         << "input " << i << " (" << input.name << "): " << r->status << " " << r->body.substr(0, 300);
     EXPECT_EQ(r->body.find("root:"), std::string::npos) << input.name << ": " << r->body.substr(0, 300);
-    if (i < fixed.size()) EXPECT_NE(r->status / 100, 2) << input.name << " was accepted: " << r->body.substr(0, 300);
+    if (i < fixed.size())
+      EXPECT_NE(r->status / 100, 2) << input.name << " was accepted: " << r->body.substr(0, 300);
   }
   ASSERT_TRUE(server.alive()) << server.output();
   const std::size_t peak = vm_bytes(pid, "VmPeak");

@@ -94,7 +94,8 @@ TEST_F(MeshUpload, ATruncatedFileIs422NamingTheLineAndIsNotStored) {
   EXPECT_NE(detail.find(":" + std::to_string(problem["line"].get<int>()) + ":"), std::string::npos) << detail;
   std::size_t files = 0;
   if (std::filesystem::exists(data.path() / "meshes"))  // parsed before anything is written
-    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(data.path() / "meshes")) ++files;
+    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(data.path() / "meshes"))
+      ++files;
   EXPECT_EQ(files, 0u) << "a bad upload left a file behind";
 }
 
@@ -177,11 +178,13 @@ TEST_F(MeshUpload, AnIncludeOfAServerFileIs422AndTheAnswerEchoesNothingOfIt) {
     ASSERT_TRUE(r);
     EXPECT_EQ(r->status, 422) << r->body;
     const std::string detail = body_json(r)["detail"];
-    EXPECT_NE(detail.find("*INCLUDE is not accepted here: an uploaded mesh must be self-contained"), std::string::npos)
+    EXPECT_NE(detail.find("*INCLUDE is not accepted here: an uploaded mesh must be self-contained"),
+              std::string::npos)
         << detail;
     EXPECT_EQ(detail.find("root:"), std::string::npos) << detail;
   }
-  EXPECT_FALSE(std::filesystem::exists(data.path() / "meshes") && !std::filesystem::is_empty(data.path() / "meshes"));
+  EXPECT_FALSE(std::filesystem::exists(data.path() / "meshes") &&
+               !std::filesystem::is_empty(data.path() / "meshes"));
 }
 
 TEST(MeshUploadLimits, TheCapsFollowMaxNodesAndNameTheLimit) {
@@ -203,7 +206,8 @@ TEST_F(MeshUpload, LaterRequestsUseTheParsedFormNotTheFile) {
   const std::string id = body_json(posted)["id"];
   // Were the stored file parsed again, this validation would fail: the parse of the upload is what is used.
   std::ofstream(data.path() / "meshes" / (id + ".msh"), std::ios::trunc) << "$MeshFormat\nnot a mesh\n";
-  const auto r = c.Post("/v1/validate", block_scene({{"id", id}, {"elements", "left"}}).dump(), "application/json");
+  const auto r =
+      c.Post("/v1/validate", block_scene({{"id", id}, {"elements", "left"}}).dump(), "application/json");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 200) << r->body;
   EXPECT_EQ(body_json(r)["nodes"], 27);
@@ -235,13 +239,15 @@ TEST(MeshDelete, IsRefusedWhileAQueuedJobNamesTheMeshAndThenRemovesIt) {
   EXPECT_EQ(c.Get(path.c_str())->status, 404);
   EXPECT_EQ(c.Delete(path.c_str())->status, 404);
   EXPECT_FALSE(std::filesystem::exists(data.path() / "meshes" / (id + ".msh")));
-  const auto stale = c.Post("/v1/validate", block_scene({{"id", id}, {"elements", "left"}}).dump(), "application/json");
+  const auto stale =
+      c.Post("/v1/validate", block_scene({{"id", id}, {"elements", "left"}}).dump(), "application/json");
   EXPECT_EQ(stale->status, 422) << stale->body;
 }
 
 TEST(MeshStoreQuota, AnUploadBeyondMaxMeshStoreBytesIs413NamingTheLimitUntilRoomIsMade) {
   TempDir data;
-  const std::string ascii = bytes_of(meshes / "two_blocks_ascii.msh"), binary = bytes_of(meshes / "two_blocks_binary.msh");
+  const std::string ascii = bytes_of(meshes / "two_blocks_ascii.msh"),
+                    binary = bytes_of(meshes / "two_blocks_binary.msh");
   const std::size_t limit = ascii.size() + binary.size() - 1;
   LiveServer server(data.path(), {"--max-mesh-store-bytes", std::to_string(limit)});
   auto c = server.client();
@@ -252,9 +258,10 @@ TEST(MeshStoreQuota, AnUploadBeyondMaxMeshStoreBytesIs413NamingTheLimitUntilRoom
   EXPECT_EQ(full->status, 413) << full->body;
   const auto problem = body_json(full);
   EXPECT_EQ(problem["type"], "urn:stoss:problem:mesh-store-full");
-  EXPECT_EQ(problem["limits"], nlohmann::json::parse("[{\"name\": \"max_mesh_store_bytes\", \"limit\": " +
-                                                     std::to_string(limit) + ", \"value\": " +
-                                                     std::to_string(ascii.size() + binary.size()) + "}]"));
+  EXPECT_EQ(
+      problem["limits"],
+      nlohmann::json::parse("[{\"name\": \"max_mesh_store_bytes\", \"limit\": " + std::to_string(limit) +
+                            ", \"value\": " + std::to_string(ascii.size() + binary.size()) + "}]"));
   EXPECT_NE(problem["detail"].get<std::string>().find("DELETE /v1/meshes/{id}"), std::string::npos);
   EXPECT_EQ(post_mesh(c, ascii)->status, 200);  // stored before: no room needed
   ASSERT_EQ(c.Delete(("/v1/meshes/" + body_json(first)["id"].get<std::string>()).c_str())->status, 204);

@@ -436,9 +436,10 @@ TEST(AbaqusReader, BadDecksNameFileAndLine) {
             "bad.inp:13: ELSET E: element 5 is not defined");
   EXPECT_EQ(error("*NODE\n1, 0, zero, 0\n"), "bad.inp:2: expected y (a number), got 'zero'");
   EXPECT_EQ(error("1, 0, 0, 0\n"), "bad.inp:1: data line before any keyword");
-  EXPECT_EQ(error(nodes + "*ELSET, ELSET=E, GENERATE\n1, 100000000\n"),
-            "bad.inp:11: more than 80000000 set members in all sets and surfaces (8 × the limit of 10000000 nodes "
-            "per mesh file)");
+  EXPECT_EQ(
+      error(nodes + "*ELSET, ELSET=E, GENERATE\n1, 100000000\n"),
+      "bad.inp:11: more than 80000000 set members in all sets and surfaces (8 × the limit of 10000000 nodes "
+      "per mesh file)");
   EXPECT_EQ(error_of([] { read_mesh_file("part.stl"); }),
             "part.stl: unknown mesh file type '.stl' (Stoss reads Gmsh .msh 4.1 and Abaqus/CalculiX .inp)");
 }

@@ -31,7 +31,8 @@ struct TempDir {
   }
 };
 
-const std::string cube_nodes = "*NODE\n1,0,0,0\n2,1,0,0\n3,1,1,0\n4,0,1,0\n5,0,0,1\n6,1,0,1\n7,1,1,1\n8,0,1,1\n";
+const std::string cube_nodes =
+    "*NODE\n1,0,0,0\n2,1,0,0\n3,1,1,0\n4,0,1,0\n5,0,0,1\n6,1,0,1\n7,1,1,1\n8,0,1,1\n";
 const std::string cube = cube_nodes + "*ELEMENT, TYPE=C3D8, ELSET=EALL\n1,1,2,3,4,5,6,7,8\n";
 
 template <class F>
@@ -49,17 +50,21 @@ std::string upload_error(const std::string& deck, long long max_nodes = 200'000)
 }
 
 TEST(UploadedDeck, AnIncludeIsRefusedWhateverItNamesAndNothingOfTheFileIsEchoed) {
-  for (const std::string target : {"/etc/passwd", "../jobs.db", "/proc/self/cmdline", "/dev/zero", "/dev/urandom",
-                                   "nodes.inp", "\"/etc/passwd\""}) {
+  for (const std::string target : {"/etc/passwd", "../jobs.db", "/proc/self/cmdline", "/dev/zero",
+                                   "/dev/urandom", "nodes.inp", "\"/etc/passwd\""}) {
     SCOPED_TRACE(target);
     const std::string message = upload_error("*NODE\n*INCLUDE, INPUT=" + target + "\n" + cube);
-    EXPECT_EQ(message.rfind("request body:2: *INCLUDE is not accepted here: an uploaded mesh must be self-contained", 0), 0u)
+    EXPECT_EQ(
+        message.rfind(
+            "request body:2: *INCLUDE is not accepted here: an uploaded mesh must be self-contained", 0),
+        0u)
         << message;
     EXPECT_EQ(message.find("root:"), std::string::npos) << message;
   }
   // Inside a *SURFACE (where the first report came from) too.
-  EXPECT_NE(upload_error(cube + "*SURFACE, NAME=S\n*INCLUDE, INPUT=/etc/passwd\n").find("*INCLUDE is not accepted"),
-            std::string::npos);
+  EXPECT_NE(
+      upload_error(cube + "*SURFACE, NAME=S\n*INCLUDE, INPUT=/etc/passwd\n").find("*INCLUDE is not accepted"),
+      std::string::npos);
 }
 
 TEST(DeckOnDisk, IncludesBelowTheDecksFolderAreRead) {
@@ -86,18 +91,22 @@ TEST(DeckOnDisk, AbsolutePathsDotDotAndLinksLeadingOutAreRefused) {
     return error_of([&] { read_abaqus(deck_dir / "main.inp", "main.inp"); });
   };
   EXPECT_EQ(error("/etc/passwd"),
-            "main.inp:2: *INCLUDE of an absolute path (/etc/passwd) is refused: only files below the deck's folder");
+            "main.inp:2: *INCLUDE of an absolute path (/etc/passwd) is refused: only files below the deck's "
+            "folder");
   EXPECT_EQ(error("/proc/self/cmdline").find("absolute path"), 27u);
   EXPECT_EQ(error("/dev/urandom").find("absolute path"), 27u);
   EXPECT_EQ(error("../outside/secret.inp"),
-            "main.inp:2: *INCLUDE of a path with '..' (../outside/secret.inp) is refused: only files below the deck's "
+            "main.inp:2: *INCLUDE of a path with '..' (../outside/secret.inp) is refused: only files below "
+            "the deck's "
             "folder");
   EXPECT_EQ(error("passwd.inp"),
             "main.inp:2: *INCLUDE of passwd.inp leads outside the deck's folder (a symbolic link?): refused");
-  EXPECT_EQ(error("zero.inp"), "main.inp:2: *INCLUDE of zero.inp leads outside the deck's folder (a symbolic link?): refused");
+  EXPECT_EQ(error("zero.inp"),
+            "main.inp:2: *INCLUDE of zero.inp leads outside the deck's folder (a symbolic link?): refused");
   EXPECT_EQ(error("out/secret.inp").find("leads outside the deck's folder"), 39u);
   EXPECT_EQ(error("sub/up.inp"),
-            "sub/up.inp:1: *INCLUDE of a path with '..' (../secret.inp) is refused: only files below the deck's folder");
+            "sub/up.inp:1: *INCLUDE of a path with '..' (../secret.inp) is refused: only files below the "
+            "deck's folder");
   EXPECT_EQ(error("missing.inp"), "main.inp:2: cannot read included file missing.inp");
   // A FIFO below the folder never ends: only regular files are read.
   ASSERT_EQ(::mkfifo((deck_dir / "fifo.inp").c_str(), 0600), 0);
@@ -115,18 +124,21 @@ TEST(DeckOnDisk, IncludesAreCappedInDepthAndInNumber) {
             "fan.inp:101: more than 100 *INCLUDE in all");
   // A chain of includes each naming the next twice: 2^8 copies would be read without the count cap.
   for (int level = 0; level < 8; ++level)
-    dir.write("chain" + std::to_string(level) + ".inp",
-              "*INCLUDE, INPUT=chain" + std::to_string(level + 1) + ".inp\n*INCLUDE, INPUT=chain" +
-                  std::to_string(level + 1) + ".inp\n");
+    dir.write("chain" + std::to_string(level) + ".inp", "*INCLUDE, INPUT=chain" + std::to_string(level + 1) +
+                                                            ".inp\n*INCLUDE, INPUT=chain" +
+                                                            std::to_string(level + 1) + ".inp\n");
   dir.write("chain8.inp", "** leaf\n");
-  EXPECT_NE(error_of([&] { read_abaqus(dir.path / "chain0.inp", "chain0.inp"); }).find("more than 100 *INCLUDE in all"),
+  EXPECT_NE(error_of([&] {
+              read_abaqus(dir.path / "chain0.inp", "chain0.inp");
+            }).find("more than 100 *INCLUDE in all"),
             std::string::npos);
 }
 
 TEST(UploadedDeck, GenerateRangesAreCappedOnTheTotalBeforeAnyIdIsStored) {
   // 2^63 - 1: the loop `id <= last` never ended, and id += step overflowed.
   EXPECT_EQ(upload_error(cube + "*NSET, NSET=N, GENERATE\n1, 9223372036854775807\n"),
-            "request body:13: more than 1600000 set members in all sets and surfaces (8 × the server limit max_nodes "
+            "request body:13: more than 1600000 set members in all sets and surfaces (8 × the server limit "
+            "max_nodes "
             "= 200000)");
   EXPECT_EQ(upload_error(cube + "*NSET, NSET=N, GENERATE\n9223372036854775806, 9223372036854775807, "
                                 "4611686018427387904\n"),
@@ -134,12 +146,14 @@ TEST(UploadedDeck, GenerateRangesAreCappedOnTheTotalBeforeAnyIdIsStored) {
   // 100 lines of 10 million ids each: every line alone passed the old per-line cap.
   std::string lines;
   for (int i = 0; i < 100; ++i) lines += "1, 10000000\n";
-  EXPECT_EQ(upload_error(cube + "*ELSET, ELSET=E, GENERATE\n" + lines).find("request body:13: more than 1600000 set "
-                                                                            "members"),
+  EXPECT_EQ(upload_error(cube + "*ELSET, ELSET=E, GENERATE\n" + lines)
+                .find("request body:13: more than 1600000 set "
+                      "members"),
             0u);
   // The cap follows max_nodes: 8 x 10.
   EXPECT_EQ(upload_error(cube + "*NSET, NSET=N, GENERATE\n1, 81\n", 10),
-            "request body:13: more than 80 set members in all sets and surfaces (8 × the server limit max_nodes = 10)");
+            "request body:13: more than 80 set members in all sets and surfaces (8 × the server limit "
+            "max_nodes = 10)");
   EXPECT_EQ(upload_error(cube + "*NSET, NSET=N, GENERATE\n1, 8\n", 10), "");
 }
 
@@ -147,13 +161,15 @@ TEST(UploadedDeck, ASetDoublingItselfIsCappedOnItsTotal) {
   std::string deck = cube + "*ELSET, ELSET=E\n1\n";
   for (int i = 0; i < 24; ++i) deck += "*ELSET, ELSET=E\nE, E\n";
   const std::string message = upload_error(deck);
-  EXPECT_NE(message.find("more than 1600000 set members in all sets and surfaces"), std::string::npos) << message;
+  EXPECT_NE(message.find("more than 1600000 set members in all sets and surfaces"), std::string::npos)
+      << message;
 }
 
 TEST(UploadedDeck, NodesElementsAndSurfaceFacesAreCapped) {
   std::string nodes = "*NODE\n";
   for (int i = 1; i <= 11; ++i) nodes += std::to_string(i) + ",0,0,0\n";
-  EXPECT_EQ(upload_error(nodes, 10), "request body:12: the file has more than 10 nodes (the server limit max_nodes = 10)");
+  EXPECT_EQ(upload_error(nodes, 10),
+            "request body:12: the file has more than 10 nodes (the server limit max_nodes = 10)");
   std::string elements = cube + "*ELEMENT, TYPE=C3D8\n";
   for (int i = 2; i <= 11; ++i) elements += std::to_string(i) + ",1,2,3,4,5,6,7,8\n";
   EXPECT_EQ(upload_error(elements, 10),
@@ -191,10 +207,12 @@ TEST(UploadedGmshFile, CountsInHeadersAreCheckedBeforeTheBlocksAreRead) {
   EXPECT_EQ(gmsh_error(format + "$Nodes\n1 2 1 2\n3 1 0 2000\n", 1000),
             "request body:6: the file has more than 1000 nodes (the server limit max_nodes = 1000)");
   EXPECT_EQ(gmsh_error(format + "$Entities\n0 0 0 1000000\n", 1000),
-            "request body:5: the file has more than 4000 records (entities, physical groups, elements of every type) "
+            "request body:5: the file has more than 4000 records (entities, physical groups, elements of "
+            "every type) "
             "(4 × the server limit max_nodes = 1000)");
   EXPECT_EQ(gmsh_error(format + "$Nodes\n0 0 0 0\n$EndNodes\n$Elements\n1 5000 1 5000\n", 1000),
-            "request body:8: the file has more than 4000 records (entities, physical groups, elements of every type) "
+            "request body:8: the file has more than 4000 records (entities, physical groups, elements of "
+            "every type) "
             "(4 × the server limit max_nodes = 1000)");
 }
 
