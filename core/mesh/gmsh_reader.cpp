@@ -295,8 +295,9 @@ struct Reader {
         count_records(nphys, "physical tags");
         std::vector<int>& phys = entity_physicals[{dim, tag}];
         for (long long k = 0; k < nphys; ++k) {
-          const long long physical = c.int_value("physical tag");
-          phys.push_back(static_cast<int>(std::min<long long>(std::abs(physical), INT32_MAX)));
+          const long long physical = c.int_value("physical tag");  // the sign is the orientation
+          const long long magnitude = physical < 0 ? -std::max<long long>(physical, -INT32_MAX) : physical;
+          phys.push_back(static_cast<int>(std::min<long long>(magnitude, INT32_MAX)));
         }
         if (dim > 0) {
           const long long nbound = c.size_value("number of bounding entities");
