@@ -346,14 +346,23 @@ TEST(FileMeshScene, ElementsWhoseVolumeIsInfiniteOrSubnormalAreRefusedNamingTheE
       issues_of(dir.write("scene.json", one_body_scene(cube).dump())),
       "/bodies/0/mesh/hex8/0: det J0 = inf at a Gauss point: the element's volume is not a finite number "
       "(coordinates too large? scale the mesh)");
+  for (const json& sphere : {json{{"outer_radius", 1e200}, {"inner_radius", 1e199}},
+                             json{{"outer_radius", 1e-105}, {"inner_radius", 1e-106}},
+                             json{{"center", {1e200, 0, 0}}, {"outer_radius", 1}, {"inner_radius", 0.5}}}) {
+    SCOPED_TRACE(sphere.dump());
+    EXPECT_EQ(issues_of(dir.write("scene.json", one_body_scene({{"hollow_sphere", sphere}}).dump()))
+                  .find("/bodies/0/mesh/hollow_sphere: its elements would be unusable: "),
+              0u);
+  }
+  const json wide = {{"outer_radius", 1e10}, {"inner_radius", 1e-10}, {"divisions", 40}};
+  EXPECT_EQ(issues_of(dir.write("scene.json", one_body_scene({{"hollow_sphere", wide}}).dump())), "");
   const json box = {
       {"box", {{"min", {0, 0, 0}}, {"max", {1e-105, 1e-105, 1e-105}}, {"divisions", {1, 1, 1}}}}};
-  EXPECT_NE(
-      issues_of(dir.write("scene.json", one_body_scene(box).dump()))
-          .find(
-              "/bodies/0/mesh/box: its elements would have det J0 = 1.25e-316 at a Gauss point is below the "
-              "smallest normal double"),
-      std::string::npos);
+  EXPECT_NE(issues_of(dir.write("scene.json", one_body_scene(box).dump()))
+                .find("/bodies/0/mesh/box: its elements would be unusable: det J0 = 1.25e-316 at a Gauss "
+                      "point is below the "
+                      "smallest normal double"),
+            std::string::npos);
 }
 
 TEST(FileMeshScene, AStoredMeshIsSelfContainedAndItsParsedFormIsUsedWhenGiven) {
