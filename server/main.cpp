@@ -1,4 +1,6 @@
 // stoss: run | validate | study | serve | worker (and run-job, the process of one job of `serve`).
+#include <malloc.h>
+
 #include <iostream>
 #include <string>
 #include <vector>
@@ -33,7 +35,13 @@ int main(int argc, char** argv) {
   if (command == "run") return stoss::cli::run_command(args);
   if (command == "study") return stoss::cli::study_command(args);
   if (command == "validate") return stoss::cli::validate_command(args);
-  if (command == "serve") return stoss::server::serve_command(args);
+  if (command == "serve") {
+    // Freed request memory (a parsed mesh, a validated scene) stays in glibc's per-thread arenas, one per
+    // HTTP thread at most 8 × cores of them: two arenas give it back (docs/measurements.md, "Hardening
+    // numbers").
+    mallopt(M_ARENA_MAX, 2);
+    return stoss::server::serve_command(args);
+  }
   if (command == "worker") return stoss::cli::worker_command(args);
   if (command == "run-job") return stoss::server::jobs::run_job_command(args);
   if (command == "--help" || command == "-h" || command == "help") {

@@ -4,9 +4,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <memory>
 #include <optional>
-#include <fstream>
-#include <set>
 
 #include "core/mesh/mesh_file.hpp"
 
@@ -40,50 +39,139 @@ std::vector<std::string> fields(const std::string& text) {
   return out;
 }
 
-struct Line {
-  std::string text;
-  std::string file;
-  long number = 0;
+/// Where a line is: the index of its file in LineReader::files, and its 1-based number there.
+struct Where {
+  int file = 0;
+  long line = 0;
 };
 
-[[noreturn]] void fail(const Line& line, const std::string& message) {
-  throw MeshFileError(line.file, line.number, message);
-}
-
-void load_lines(const std::filesystem::path& path, const std::string& shown, int depth, std::vector<Line>& out,
-                const Line* from) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    if (from) fail(*from, "cannot read included file " + path.string());
-    throw MeshFileError(shown, 0, "cannot read the file");
-  }
+struct Line {
   std::string text;
-  long number = 0;
-  while (std::getline(in, text)) {
-    ++number;
-    if (!text.empty() && text.back() == '\r') text.pop_back();
-    Line line{text, shown, number};
-    const std::string t = trimmed(text);
-    if (upper(t).rfind("*INCLUDE", 0) == 0) {
-      if (depth >= 8) fail(line, "*INCLUDE nested too deeply");
-      std::string input;
-      for (const std::string& f : fields(t))
-        if (upper(f).rfind("INPUT", 0) == 0 && f.find('=') != std::string::npos) input = trimmed(f.substr(f.find('=') + 1));
-      if (input.size() >= 2 && input.front() == '"' && input.back() == '"') input = input.substr(1, input.size() - 2);
-      if (input.empty()) fail(line, "*INCLUDE needs INPUT=<file>");
-      const std::filesystem::path included = path.parent_path() / input;
-      const std::filesystem::path shown_parent = std::filesystem::path(shown).parent_path();
-      load_lines(included, (shown_parent / input).string(), depth + 1, out, &line);
-      continue;
-    }
-    out.push_back(std::move(line));
+  Where where;
+};
+
+/// Reads the lines of a deck one at a time, following *INCLUDE as ReadLimits allow (docs/scene.md, "Meshes
+/// from files"): nothing but the deck itself when includes are off, else relative paths below the top deck's
+/// folder only. Only the files on the include stack are held in memory.
+class LineReader {
+ public:
+  /// `text` must outlive the reader (included files are owned by it).
+  LineReader(std::string_view text, std::string shown, std::optional<std::filesystem::path> root,
+             const ReadLimits& limits)
+      : limits_(limits), root_(std::move(root)) {
+    push(text, nullptr, std::move(shown), root_ ? *root_ : std::filesystem::path());
   }
-}
+
+  std::vector<std::string> files;  ///< shown names, by Where::file
+
+  [[noreturn]] void fail(const Where& where, const std::string& message) const {
+    throw MeshFileError(files.at(where.file), where.line, message);
+  }
+
+  /// The next line (an *INCLUDE replaced by the lines of its file); false at the end of the deck.
+  bool next(Line& out) {
+    while (!stack_.empty()) {
+      Frame& f = stack_.back();
+      if (f.pos >= f.text.size()) {
+        stack_.pop_back();
+        continue;
+      }
+      const size_t end = std::min(f.text.find('\n', f.pos), f.text.size());
+      out.where = {f.file, ++f.line};
+      if (end - f.pos > ReadLimits::max_line_bytes)
+        fail(out.where, "line longer than " + std::to_string(ReadLimits::max_line_bytes) + " bytes");
+      out.text.assign(f.text, f.pos, end - f.pos);
+      f.pos = end + 1;
+      if (!out.text.empty() && out.text.back() == '\r') out.text.pop_back();
+      if (upper(trimmed(out.text)).rfind("*INCLUDE", 0) == 0) {
+        include(out);
+        continue;
+      }
+      return true;
+    }
+    return false;
+  }
+
+ private:
+  struct Frame {
+    std::string_view text;
+    std::shared_ptr<const std::string> owned;  ///< an included file's bytes (text views them)
+    int file = 0;
+    long line = 0;
+    size_t pos = 0;
+    std::filesystem::path directory;  ///< where its includes are resolved (real path)
+  };
+
+  void push(std::string_view text, std::shared_ptr<const std::string> owned, std::string shown,
+            std::filesystem::path directory) {
+    files.push_back(std::move(shown));
+    stack_.push_back(
+        {text, std::move(owned), static_cast<int>(files.size()) - 1, 0, 0, std::move(directory)});
+  }
+
+  static std::string input_of(const std::string& keyword_line) {
+    std::string input;
+    for (const std::string& f : fields(trimmed(keyword_line)))
+      if (upper(f).rfind("INPUT", 0) == 0 && f.find('=') != std::string::npos)
+        input = trimmed(f.substr(f.find('=') + 1));
+    if (input.size() >= 2 && input.front() == '"' && input.back() == '"')
+      input = input.substr(1, input.size() - 2);
+    return input;
+  }
+
+  void include(const Line& line) {
+    if (!limits_.includes || !root_)
+      fail(
+          line.where,
+          "*INCLUDE is not accepted here: an uploaded mesh must be self-contained (its id is the hash of its "
+          "bytes); put the included lines in their place");
+    if (stack_.size() > static_cast<size_t>(ReadLimits::max_include_depth))
+      fail(line.where,
+           "*INCLUDE nested more than " + std::to_string(ReadLimits::max_include_depth) + " deep");
+    if (++includes_ > ReadLimits::max_includes)
+      fail(line.where, "more than " + std::to_string(ReadLimits::max_includes) + " *INCLUDE in all");
+    const std::string input = input_of(line.text);
+    if (input.empty()) fail(line.where, "*INCLUDE needs INPUT=<file>");
+    const std::filesystem::path real = resolve(line.where, input);
+    std::shared_ptr<const std::string> text;
+    try {
+      text = std::make_shared<const std::string>(read_regular_file(real, input));
+    } catch (const MeshFileError&) {
+      fail(line.where, "cannot read included file " + input);
+    }
+    const std::filesystem::path shown_parent = std::filesystem::path(files.at(line.where.file)).parent_path();
+    push(*text, text, (shown_parent / input).string(), real.parent_path());
+  }
+
+  /// The real path of an included file: relative, no "..", and (symbolic links followed) below the root.
+  std::filesystem::path resolve(const Where& where, const std::string& input) const {
+    const std::filesystem::path path(input);
+    if (path.has_root_name() || path.has_root_directory())
+      fail(where,
+           "*INCLUDE of an absolute path (" + input + ") is refused: only files below the deck's folder");
+    for (const auto& part : path)
+      if (part == "..")
+        fail(where,
+             "*INCLUDE of a path with '..' (" + input + ") is refused: only files below the deck's folder");
+    std::error_code error;
+    const std::filesystem::path real = std::filesystem::canonical(stack_.back().directory / path, error);
+    if (error) fail(where, "cannot read included file " + input);
+    const auto [root_end, ignored] = std::mismatch(root_->begin(), root_->end(), real.begin(), real.end());
+    if (root_end != root_->end())
+      fail(where, "*INCLUDE of " + input + " leads outside the deck's folder (a symbolic link?): refused");
+    return real;
+  }
+
+  const ReadLimits& limits_;
+  std::optional<std::filesystem::path> root_;  ///< real path of the top deck's folder; unset: no includes
+  std::vector<Frame> stack_;
+  int includes_ = 0;
+};
 
 struct Keyword {
   std::string name;  ///< upper case, without '*'
   std::map<std::string, std::string> params;  ///< upper-case key → value as written ("" for flags)
-  Line line;
+  Where where;
   bool has(const std::string& key) const { return params.contains(key); }
   std::string get(const std::string& key) const {
     const auto it = params.find(key);
@@ -91,10 +179,10 @@ struct Keyword {
   }
 };
 
-Keyword parse_keyword(const Line& line, const std::string& text) {
+Keyword parse_keyword(const Where& where, const std::string& text) {
   const auto parts = fields(text.substr(1));
   Keyword k;
-  k.line = line;
+  k.where = where;
   k.name = parts.empty() ? "" : upper(parts.front());
   for (size_t i = 1; i < parts.size(); ++i) {
     const size_t eq = parts[i].find('=');
@@ -106,29 +194,6 @@ Keyword parse_keyword(const Line& line, const std::string& text) {
   return k;
 }
 
-long parse_id(const Line& line, const std::string& text, const std::string& what) {
-  try {
-    size_t used = 0;
-    const long long v = std::stoll(text, &used);
-    if (used == text.size() && v > 0) return static_cast<long>(v);
-  } catch (const std::exception&) {
-  }
-  fail(line, "expected " + what + " (a positive integer), got '" + text.substr(0, 40) + "'");
-}
-
-double parse_real(const Line& line, const std::string& text, const std::string& what) {
-  try {
-    size_t used = 0;
-    std::string t = text;
-    std::replace(t.begin(), t.end(), 'D', 'E');  // Fortran exponents
-    std::replace(t.begin(), t.end(), 'd', 'e');
-    const double v = std::stod(t, &used);
-    if (used == t.size() && std::isfinite(v)) return v;
-  } catch (const std::exception&) {
-  }
-  fail(line, "expected " + what + " (a number), got '" + text.substr(0, 40) + "'");
-}
-
 bool is_integer_text(const std::string& s) {
   return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
 }
@@ -138,21 +203,29 @@ bool is_integer_text(const std::string& s) {
 constexpr int abaqus_face[6] = {0, 1, 2, 5, 3, 4};
 
 struct Deck {
+  Deck(LineReader& reader, const ReadLimits& limits) : in(reader), limits(limits) {}
+  LineReader& in;
+  const ReadLimits& limits;
   ImportedMesh mesh;
   std::map<long, int> node_index;
-  std::map<long, long> node_line;
+  std::vector<long> node_lines;  ///< line of each node's definition
   std::map<long, int> element_index;
   std::vector<std::array<long, 8>> element_nodes;  ///< node ids until resolved
-  /// Named sets, keyed by upper-case name: canonical name and members (ids) with the line naming them.
+  /// Named sets, keyed by upper-case name: canonical name and members (ids) with where they are named.
+  struct Member {
+    long id;
+    Where where;
+  };
   struct Set {
     std::string name;
-    std::vector<std::pair<long, const Line*>> ids;  ///< lines live as long as the Deck
+    std::vector<Member> ids;
   };
   std::map<std::string, Set> node_sets, element_sets;
+  long long members = 0;  ///< set members and surface rows so far, over all sets (ReadLimits::max_members)
   struct SurfaceRow {
     std::string ref;  ///< element id or ELSET name
     int face;         ///< local face of hex_faces()
-    Line line;
+    Where where;
   };
   struct Surface {
     std::string name;
@@ -160,133 +233,201 @@ struct Deck {
   };
   std::map<std::string, Surface> surfaces;
 
+  [[noreturn]] void fail(const Where& where, const std::string& message) const { in.fail(where, message); }
+
+  long parse_id(const Where& where, const std::string& text, const std::string& what) const {
+    try {
+      size_t used = 0;
+      const long long v = std::stoll(text, &used);
+      if (used == text.size() && v > 0) return static_cast<long>(v);
+    } catch (const std::exception&) {
+    }
+    fail(where, "expected " + what + " (a positive integer), got '" + text.substr(0, 40) + "'");
+  }
+
+  double parse_real(const Where& where, const std::string& text, const std::string& what) const {
+    try {
+      size_t used = 0;
+      std::string t = text;
+      std::replace(t.begin(), t.end(), 'D', 'E');  // Fortran exponents
+      std::replace(t.begin(), t.end(), 'd', 'e');
+      const double v = std::stod(t, &used);
+      if (used == t.size() && std::isfinite(v)) return v;
+    } catch (const std::exception&) {
+    }
+    fail(where, "expected " + what + " (a number), got '" + text.substr(0, 40) + "'");
+  }
+
+  /// Counts `n` more set members (or surface rows) against the total, before they are stored.
+  void count_members(const Where& where, long long n) {
+    if (n > limits.max_members() - members)
+      fail(where, limits.exceeded("set members in all sets and surfaces", ReadLimits::members_per_node));
+    members += n;
+  }
+
   Set& set_named(std::map<std::string, Set>& sets, const std::string& name) {
     Set& s = sets[upper(name)];
     if (s.name.empty()) s.name = name;
     return s;
   }
 
-  void add_node(const Line& line, const std::vector<std::string>& f, const std::string& nset) {
-    if (f.size() < 3) fail(line, "a *NODE line needs id, x, y[, z], got " + std::to_string(f.size()) + " fields");
-    const long id = parse_id(line, f[0], "node id");
-    Eigen::Vector3d x(parse_real(line, f[1], "x"), parse_real(line, f[2], "y"),
-                      f.size() > 3 && !f[3].empty() ? parse_real(line, f[3], "z") : 0.0);
-    const auto [it, fresh] = node_index.try_emplace(id, static_cast<int>(mesh.nodes.size()));
-    if (!fresh) fail(line, "duplicate node id " + std::to_string(id) + " (first defined on line " + std::to_string(node_line[id]) + ")");
-    node_line[id] = line.number;
-    mesh.nodes.push_back(x);
-    mesh.node_ids.push_back(id);
-    if (!nset.empty()) set_named(node_sets, nset).ids.push_back({id, &line});
+  void add_member(std::map<std::string, Set>& sets, const std::string& name, long id, const Where& where) {
+    count_members(where, 1);
+    set_named(sets, name).ids.push_back({id, where});
   }
 
-  void add_element(const Line& line, const std::vector<std::string>& f, const std::string& elset) {
-    const long id = parse_id(line, f[0], "element id");
+  void add_node(const Where& where, const std::vector<std::string>& f, const std::string& nset) {
+    if (f.size() < 3)
+      fail(where, "a *NODE line needs id, x, y[, z], got " + std::to_string(f.size()) + " fields");
+    const long id = parse_id(where, f[0], "node id");
+    Eigen::Vector3d x(parse_real(where, f[1], "x"), parse_real(where, f[2], "y"),
+                      f.size() > 3 && !f[3].empty() ? parse_real(where, f[3], "z") : 0.0);
+    if (static_cast<long long>(mesh.nodes.size()) >= limits.max_nodes)
+      fail(where, "the file has " + limits.exceeded("nodes"));
+    const auto [it, fresh] = node_index.try_emplace(id, static_cast<int>(mesh.nodes.size()));
+    if (!fresh)
+      fail(where, "duplicate node id " + std::to_string(id) + " (first defined on line " +
+                      std::to_string(node_lines[it->second]) + ")");
+    node_lines.push_back(where.line);
+    mesh.nodes.push_back(x);
+    mesh.node_ids.push_back(id);
+    if (!nset.empty()) add_member(node_sets, nset, id, where);
+  }
+
+  void add_element(const Where& where, const std::vector<std::string>& f, const std::string& elset) {
+    const long id = parse_id(where, f[0], "element id");
     if (f.size() != 9)
-      fail(line, "element " + std::to_string(id) + " has " + std::to_string(f.size() - 1) + " nodes, C3D8 needs 8");
+      fail(where,
+           "element " + std::to_string(id) + " has " + std::to_string(f.size() - 1) + " nodes, C3D8 needs 8");
+    if (static_cast<long long>(mesh.hex8.size()) >= limits.max_nodes)
+      fail(where, "the file has " + limits.exceeded("elements"));
     const auto [it, fresh] = element_index.try_emplace(id, static_cast<int>(mesh.hex8.size()));
     if (!fresh)
-      fail(line, "duplicate element id " + std::to_string(id) + " (first defined on line " +
-                     std::to_string(mesh.element_lines[it->second]) + ")");
+      fail(where, "duplicate element id " + std::to_string(id) + " (first defined on line " +
+                      std::to_string(mesh.element_lines[it->second]) + ")");
     std::array<long, 8> nodes;
-    for (int k = 0; k < 8; ++k) nodes[k] = parse_id(line, f[k + 1], "node id");
+    for (int k = 0; k < 8; ++k) nodes[k] = parse_id(where, f[k + 1], "node id");
     element_nodes.push_back(nodes);
     mesh.hex8.push_back({});
     mesh.element_ids.push_back(id);
-    mesh.element_lines.push_back(line.number);
-    if (!elset.empty()) set_named(element_sets, elset).ids.push_back({id, &line});
+    mesh.element_lines.push_back(where.line);
+    if (!elset.empty()) add_member(element_sets, elset, id, where);
   }
 
-  void add_set_line(std::map<std::string, Set>& sets, const Keyword& k, const std::string& name, const Line& line,
-                    const std::vector<std::string>& f) {
+  /// first, last[, increment]: last ≥ first, the ids counted against the total before one is stored.
+  void add_generated(Set& s, const Where& where, const std::vector<std::string>& f) {
+    if (f.size() < 2 || f.size() > 3) fail(where, "GENERATE needs first, last[, increment]");
+    const long first = parse_id(where, f[0], "first id"), last = parse_id(where, f[1], "last id");
+    const long step = f.size() == 3 ? parse_id(where, f[2], "increment") : 1;
+    if (last < first)
+      fail(where, "GENERATE: last id " + std::to_string(last) + " < first id " + std::to_string(first));
+    const long count = (last - first) / step + 1;  // no overflow: 0 <= last - first, step >= 1
+    count_members(where, count);
+    for (long i = 0; i < count; ++i) s.ids.push_back({first + i * step, where});
+  }
+
+  void add_set_line(std::map<std::string, Set>& sets, const Keyword& k, const std::string& name,
+                    const Where& where, const std::vector<std::string>& f) {
     Set& s = set_named(sets, name);
-    if (k.has("GENERATE")) {
-      if (f.size() < 2 || f.size() > 3) fail(line, "GENERATE needs first, last[, increment]");
-      const long first = parse_id(line, f[0], "first id"), last = parse_id(line, f[1], "last id");
-      const long step = f.size() == 3 ? parse_id(line, f[2], "increment") : 1;
-      if (last < first) fail(line, "GENERATE: last id " + std::to_string(last) + " < first id " + std::to_string(first));
-      if ((last - first) / step > 10'000'000) fail(line, "GENERATE range of more than 10000000 ids");
-      for (long id = first; id <= last; id += step) s.ids.push_back({id, &line});
-      return;
-    }
+    if (k.has("GENERATE")) return add_generated(s, where, f);
     for (const std::string& item : f) {
       if (is_integer_text(item)) {
-        s.ids.push_back({parse_id(line, item, "id"), &line});
+        const long id = parse_id(where, item, "id");
+        count_members(where, 1);
+        s.ids.push_back({id, where});
         continue;
       }
       const auto other = sets.find(upper(item));
-      if (other == sets.end()) fail(line, "'" + item + "' is neither an id nor a set defined above");
-      if (s.ids.size() + other->second.ids.size() > 50'000'000) fail(line, "set of more than 50000000 members");
-      const std::vector<std::pair<long, const Line*>> members = other->second.ids;  // copy: may be s itself
-      s.ids.insert(s.ids.end(), members.begin(), members.end());
+      if (other == sets.end()) fail(where, "'" + item + "' is neither an id nor a set defined above");
+      count_members(where, static_cast<long long>(other->second.ids.size()));
+      const std::vector<Member> copied = other->second.ids;  // copy: may be s itself
+      s.ids.insert(s.ids.end(), copied.begin(), copied.end());
     }
   }
 
   void add_surface_line(const Keyword& k, const Line& line, const std::vector<std::string>& f) {
     Surface& s = surfaces[upper(k.get("NAME"))];
-    if (f.size() != 2) fail(line, "an element-based *SURFACE line needs 'element or ELSET, Sn', got '" + trimmed(line.text) + "'");
+    if (f.size() != 2)
+      fail(line.where, "an element-based *SURFACE line needs 'element or ELSET, Sn', got '" +
+                           trimmed(line.text).substr(0, 80) + "'");
     const std::string label = upper(f[1]);
     if (label.size() != 2 || label[0] != 'S' || label[1] < '1' || label[1] > '6')
-      fail(line, "face label must be S1..S6 (C3D8 faces), got '" + f[1] + "'");
-    s.rows.push_back({f[0], abaqus_face[label[1] - '1'], line});
+      fail(line.where, "face label must be S1..S6 (C3D8 faces), got '" + f[1].substr(0, 40) + "'");
+    count_members(line.where, 1);
+    s.rows.push_back({f[0], abaqus_face[label[1] - '1'], line.where});
   }
 
-  void parse(const std::vector<Line>& lines) {
+  /// A keyword line with its continuation lines (a keyword line ending with ',' goes on on the next line).
+  std::string keyword_text(const Line& line, Line& next_line) {
+    std::string text = trimmed(line.text);
+    while (text.back() == ',' && in.next(next_line)) {
+      text += trimmed(next_line.text);
+      if (text.size() > ReadLimits::max_line_bytes)
+        fail(line.where, "keyword line (with its continuation lines) longer than " +
+                             std::to_string(ReadLimits::max_line_bytes) + " bytes");
+    }
+    return text;
+  }
+
+  void parse() {
     std::optional<Keyword> keyword;
     std::vector<std::string> pending;  // element fields continued over lines
-    const Line* pending_line = nullptr;
-    for (size_t i = 0; i < lines.size(); ++i) {
-      const Line& line = lines[i];
+    Where pending_where;
+    Line line, continued_line;
+    while (in.next(line)) {
       std::string text = trimmed(line.text);
       if (text.empty() || text.rfind("**", 0) == 0) continue;
       if (text[0] == '*') {
-        if (!pending.empty()) fail(*pending_line, "element line ends with ',' but no continuation follows");
-        while (text.back() == ',' && i + 1 < lines.size()) text += trimmed(lines[++i].text);
-        keyword = parse_keyword(line, text);
+        if (!pending.empty()) fail(pending_where, "element line ends with ',' but no continuation follows");
+        keyword = parse_keyword(line.where, keyword_text(line, continued_line));
         start_keyword(*keyword);
         continue;
       }
-      if (!keyword) fail(line, "data line before any keyword");
+      if (!keyword) fail(line.where, "data line before any keyword");
       const Keyword& k = *keyword;
       const auto f = fields(text);
       if (k.name == "NODE") {
-        add_node(line, f, k.get("NSET"));
+        add_node(line.where, f, k.get("NSET"));
       } else if (k.name == "ELEMENT") {
-        if (pending.empty()) pending_line = &line;
+        if (pending.empty()) pending_where = line.where;
         pending.insert(pending.end(), f.begin(), f.end());
         const bool continued = text.back() == ',' && pending.size() < 9;
         if (!continued) {
-          add_element(*pending_line, pending, k.get("ELSET"));
+          add_element(pending_where, pending, k.get("ELSET"));
           pending.clear();
         }
       } else if (k.name == "NSET") {
-        add_set_line(node_sets, k, k.get("NSET"), line, f);
+        add_set_line(node_sets, k, k.get("NSET"), line.where, f);
       } else if (k.name == "ELSET") {
-        add_set_line(element_sets, k, k.get("ELSET"), line, f);
+        add_set_line(element_sets, k, k.get("ELSET"), line.where, f);
       } else if (k.name == "SURFACE") {
         add_surface_line(k, line, f);
       }
     }
-    if (!pending.empty()) fail(*pending_line, "element line ends with ',' but the file ends (truncated file?)");
+    if (!pending.empty())
+      fail(pending_where, "element line ends with ',' but the file ends (truncated file?)");
   }
 
   void start_keyword(const Keyword& k) {
     if (k.name == "ELEMENT") {
       const std::string type = upper(k.get("TYPE"));
-      if (type.empty()) fail(k.line, "*ELEMENT needs TYPE=");
+      if (type.empty()) fail(k.where, "*ELEMENT needs TYPE=");
       if (type != "C3D8" && type != "C3D8R")
-        fail(k.line, "unsupported element type " + k.get("TYPE") + "; Stoss reads 8-node hexahedra (C3D8, C3D8R)");
-      if (k.has("ELSET") && k.get("ELSET").empty()) fail(k.line, "ELSET= needs a name");
+        fail(k.where, "unsupported element type " + k.get("TYPE").substr(0, 40) +
+                          "; Stoss reads 8-node hexahedra (C3D8, C3D8R)");
+      if (k.has("ELSET") && k.get("ELSET").empty()) fail(k.where, "ELSET= needs a name");
       if (k.has("ELSET")) set_named(element_sets, k.get("ELSET"));
     } else if (k.name == "NSET" || k.name == "ELSET") {
       const std::string name = k.get(k.name);
-      if (name.empty()) fail(k.line, "*" + k.name + " needs " + k.name + "=<name>");
+      if (name.empty()) fail(k.where, "*" + k.name + " needs " + k.name + "=<name>");
       set_named(k.name == "NSET" ? node_sets : element_sets, name);
     } else if (k.name == "SURFACE") {
       const std::string name = k.get("NAME");
-      if (name.empty()) fail(k.line, "*SURFACE needs NAME=<name>");
+      if (name.empty()) fail(k.where, "*SURFACE needs NAME=<name>");
       const std::string type = upper(k.get("TYPE"));
       if (!type.empty() && type != "ELEMENT")
-        fail(k.line, "*SURFACE TYPE=" + k.get("TYPE") + " is not supported; Stoss reads element-based surfaces (TYPE=ELEMENT)");
+        fail(k.where, "*SURFACE TYPE=" + k.get("TYPE").substr(0, 40) +
+                          " is not supported; Stoss reads element-based surfaces (TYPE=ELEMENT)");
       Surface& s = surfaces[upper(name)];
       if (s.name.empty()) s.name = name;
     } else if (k.name == "NODE") {
@@ -294,13 +435,14 @@ struct Deck {
     }
   }
 
-  int element(long id, const Line& line, const std::string& context) {
+  int element(long id, const Where& where, const std::string& context) const {
     const auto it = element_index.find(id);
-    if (it == element_index.end()) fail(line, context + ": element " + std::to_string(id) + " is not defined");
+    if (it == element_index.end())
+      fail(where, context + ": element " + std::to_string(id) + " is not defined");
     return it->second;
   }
 
-  void resolve() {
+  void resolve_elements() {
     for (size_t e = 0; e < element_nodes.size(); ++e)
       for (int k = 0; k < 8; ++k) {
         const auto it = node_index.find(element_nodes[e][k]);
@@ -310,41 +452,85 @@ struct Deck {
                                   std::to_string(element_nodes[e][k]) + ", which no *NODE defines");
         mesh.hex8[e][k] = it->second;
       }
+  }
+
+  void resolve_sets() {
     for (const auto& [key, set] : node_sets)
-      for (const auto& [id, line] : set.ids)
-        if (!node_index.contains(id)) fail(*line, "NSET " + set.name + ": node " + std::to_string(id) + " is not defined");
-    for (const auto& [key, set] : element_sets) {
-      std::set<int> members;
-      for (const auto& [id, line] : set.ids) members.insert(element(id, *line, "ELSET " + set.name));
-      mesh.element_sets[set.name].assign(members.begin(), members.end());
+      for (const auto& [id, where] : set.ids)
+        if (!node_index.contains(id))
+          fail(where, "NSET " + set.name + ": node " + std::to_string(id) + " is not defined");
+    for (auto& [key, set] : element_sets) {
+      std::vector<int> members;
+      members.reserve(set.ids.size());
+      for (const auto& [id, where] : set.ids) members.push_back(element(id, where, "ELSET " + set.name));
+      std::sort(members.begin(), members.end());
+      members.erase(std::unique(members.begin(), members.end()), members.end());
+      mesh.element_sets[set.name] = std::move(members);
+      set.ids = {};
     }
+  }
+
+  /// The faces of every *SURFACE, an ELSET row expanded to its elements; the faces of all surfaces are
+  /// counted against ReadLimits::max_members before they are stored.
+  void resolve_surfaces() {
+    long long faces_in_all = 0;
     for (const auto& [key, surface] : surfaces) {
       auto& faces = mesh.surfaces[surface.name];
       for (const SurfaceRow& row : surface.rows) {
+        const std::vector<int>* elements = nullptr;
+        int single = -1;
         if (is_integer_text(row.ref)) {
-          faces.push_back({element(parse_id(row.line, row.ref, "element id"), row.line, "*SURFACE " + surface.name), row.face});
-          continue;
+          single = element(parse_id(row.where, row.ref, "element id"), row.where, "*SURFACE " + surface.name);
+        } else {
+          const auto set = element_sets.find(upper(row.ref));
+          if (set == element_sets.end())
+            fail(row.where, "*SURFACE " + surface.name + ": '" + row.ref.substr(0, 40) +
+                                "' is neither an element nor an ELSET");
+          elements = &mesh.element_sets[set->second.name];
         }
-        const auto set = element_sets.find(upper(row.ref));
-        if (set == element_sets.end())
-          fail(row.line, "*SURFACE " + surface.name + ": '" + row.ref + "' is neither an element nor an ELSET");
-        for (int e : mesh.element_sets[set->second.name]) faces.push_back({e, row.face});
+        faces_in_all += elements ? static_cast<long long>(elements->size()) : 1;
+        if (faces_in_all > limits.max_members())
+          fail(row.where, limits.exceeded("surface faces in all surfaces", ReadLimits::members_per_node));
+        if (single >= 0) faces.push_back({single, row.face});
+        if (elements)
+          for (int e : *elements) faces.push_back({e, row.face});
       }
     }
   }
 };
 
+/// The real path of the folder holding `path` (the top deck): includes are read below it only.
+std::filesystem::path deck_folder(const std::filesystem::path& path) {
+  std::error_code error;
+  const auto real = std::filesystem::canonical(path, error);
+  return error ? std::filesystem::path() : real.parent_path();
+}
+
+ImportedMesh parse_deck(std::string_view text, const std::string& shown,
+                        std::optional<std::filesystem::path> root, const ReadLimits& limits) {
+  LineReader reader(text, shown, std::move(root), limits);
+  Deck deck(reader, limits);
+  deck.mesh.file = shown;
+  deck.parse();
+  deck.resolve_elements();
+  deck.resolve_sets();
+  deck.resolve_surfaces();
+  return std::move(deck.mesh);
+}
+
 }  // namespace
 
-ImportedMesh read_abaqus(const std::filesystem::path& path, const std::string& shown_name) {
+ImportedMesh read_abaqus(const std::filesystem::path& path, const std::string& shown_name,
+                         const ReadLimits& limits) {
   const std::string shown = shown_name.empty() ? path.string() : shown_name;
-  std::vector<Line> lines;
-  load_lines(path, shown, 0, lines, nullptr);
-  Deck deck;
-  deck.mesh.file = shown;
-  deck.parse(lines);
-  deck.resolve();
-  return std::move(deck.mesh);
+  const std::string text = read_regular_file(path, shown);
+  std::optional<std::filesystem::path> root;
+  if (limits.includes) root = deck_folder(path);
+  return parse_deck(text, shown, std::move(root), limits);
+}
+
+ImportedMesh parse_abaqus(std::string_view bytes, const std::string& shown_name, const ReadLimits& limits) {
+  return parse_deck(bytes, shown_name, std::nullopt, limits);
 }
 
 }  // namespace stoss::mesh

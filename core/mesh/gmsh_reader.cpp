@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "core/mesh/mesh_file.hpp"
 
@@ -57,7 +57,8 @@ std::string type_name(int type) {
 /// parts. Knows the current line for messages.
 class Cursor {
  public:
-  Cursor(std::string text, std::string file) : text_(std::move(text)), file_(std::move(file)) {}
+  /// `text` must outlive the cursor.
+  Cursor(std::string_view text, std::string file) : text_(text), file_(std::move(file)) {}
 
   bool binary = false;
 
@@ -83,14 +84,14 @@ class Cursor {
     skip_space();
     const size_t start = pos_;
     while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
-    return text_.substr(start, pos_ - start);
+    return std::string(text_.substr(start, pos_ - start));
   }
 
   /// The rest of the current line (without the newline), the newline consumed.
   std::string rest_of_line() {
     const size_t start = pos_;
     while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
-    std::string out = text_.substr(start, pos_ - start);
+    std::string out(text_.substr(start, pos_ - start));
     if (pos_ < text_.size()) {
       ++pos_;
       ++line_;
@@ -191,7 +192,7 @@ class Cursor {
   const std::string& section() const { return section_; }
 
  private:
-  std::string text_;
+  std::string_view text_;
   std::string file_;
   size_t pos_ = 0;
   long line_ = 1;
@@ -206,8 +207,11 @@ struct PhysicalKey {
 };
 
 struct Reader {
-  explicit Reader(Cursor cursor) : c(std::move(cursor)) {}
+  Reader(Cursor cursor, const ReadLimits& limits) : c(std::move(cursor)), limits(limits) {}
   Cursor c;
+  const ReadLimits& limits;
+  long long records = 0;  ///< entities, physical names and tags, element records (ReadLimits::max_records)
+  long long members = 0;  ///< element set members and surface faces (ReadLimits::max_members)
   ImportedMesh mesh;
   std::map<PhysicalKey, std::string> physical_names;
   std::map<PhysicalKey, std::vector<int>> entity_physicals;  ///< (dim, entity tag) → physical tags
@@ -244,8 +248,26 @@ struct Reader {
     c.leave();
   }
 
+  /// Counts `n` more records against ReadLimits::max_records before they are read.
+  void count_records(long long n, const std::string& what) {
+    if (n < 0) c.fail("negative number of " + what);
+    if (n > limits.max_records() - records)
+      c.fail("the file has " + limits.exceeded("records (entities, physical groups, elements of every type)",
+                                               ReadLimits::records_per_node));
+    records += n;
+  }
+  /// Counts `n` more element set members or surface faces against ReadLimits::max_members.
+  void count_members(long long n, long line) {
+    if (n > limits.max_members() - members)
+      throw MeshFileError(
+          mesh.file, line,
+          limits.exceeded("element set members and surface faces in all", ReadLimits::members_per_node));
+    members += n;
+  }
+
   void read_physical_names() {
     const long long n = c.integer("number of physical names");
+    count_records(n, "physical names");
     for (long long i = 0; i < n; ++i) {
       const int dim = static_cast<int>(c.integer("physical dimension"));
       const int tag = static_cast<int>(c.integer("physical tag"));
@@ -261,14 +283,22 @@ struct Reader {
   void read_entities() {
     c.enter("$Entities");
     long long count[4];
-    for (long long& n : count) n = c.size_value("number of entities");
+    for (long long& n : count) {
+      n = c.size_value("number of entities");
+      count_records(n, "entities");
+    }
     for (int dim = 0; dim < 4; ++dim)
       for (long long i = 0; i < count[dim]; ++i) {
         const int tag = static_cast<int>(c.int_value("entity tag"));
         for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) c.double_value("bounding box");
         const long long nphys = c.size_value("number of physical tags");
+        count_records(nphys, "physical tags");
         std::vector<int>& phys = entity_physicals[{dim, tag}];
-        for (long long k = 0; k < nphys; ++k) phys.push_back(std::abs(static_cast<int>(c.int_value("physical tag"))));
+        for (long long k = 0; k < nphys; ++k) {
+          const long long physical = c.int_value("physical tag");  // the sign is the orientation
+          const long long magnitude = physical < 0 ? -std::max<long long>(physical, -INT32_MAX) : physical;
+          phys.push_back(static_cast<int>(std::min<long long>(magnitude, INT32_MAX)));
+        }
         if (dim > 0) {
           const long long nbound = c.size_value("number of bounding entities");
           for (long long k = 0; k < nbound; ++k) c.int_value("bounding entity tag");
@@ -281,6 +311,7 @@ struct Reader {
     c.enter("$Nodes");
     const long long blocks = c.size_value("number of node blocks");
     const long long total = c.size_value("number of nodes");
+    if (total > limits.max_nodes) c.fail("the file has " + limits.exceeded("nodes"));
     c.size_value("min node tag");
     c.size_value("max node tag");
     long long seen = 0;
@@ -289,6 +320,7 @@ struct Reader {
       c.int_value("entity tag");
       const long long parametric = c.int_value("parametric flag");
       const long long n = c.size_value("number of nodes in block");
+      if (n < 0 || n > limits.max_nodes - seen) c.fail("the file has " + limits.exceeded("nodes"));
       std::vector<std::pair<long, long>> tags;  // tag, line
       for (long long i = 0; i < n; ++i) {
         const long tag = static_cast<long>(c.size_value("node tag"));
@@ -326,6 +358,8 @@ struct Reader {
     c.enter("$Elements");
     const long long blocks = c.size_value("number of element blocks");
     const long long total = c.size_value("number of elements");
+    count_records(total, "elements");
+    records -= total;  // counted again block by block
     c.size_value("min element tag");
     c.size_value("max element tag");
     long long seen = 0;
@@ -335,9 +369,12 @@ struct Reader {
       const int entity = static_cast<int>(c.int_value("entity tag"));
       const int type = static_cast<int>(c.int_value("element type"));
       const long long n = c.size_value("number of elements in block");
+      count_records(n, "elements");
       const int per = nodes_of_type(type);
       if (per == 0) c.fail("element block of entity " + std::to_string(entity) + ": unsupported element " + type_name(type));
-      const std::vector<int>& phys = entity_physicals[{dim, entity}];
+      static const std::vector<int> none;
+      const auto known = entity_physicals.find({dim, entity});
+      const std::vector<int>& phys = known == entity_physicals.end() ? none : known->second;
       if (dim == 3 && type != 5)
         c.fail("unsupported volume element " + type_name(type) +
                " in volume " + std::to_string(entity) + "; Stoss needs 8-node hexahedra (type 5): use Recombine and a "
@@ -365,6 +402,9 @@ struct Reader {
         if (!tags_seen.insert(tag).second)
           throw MeshFileError(mesh.file, line, "duplicate element tag " + std::to_string(tag));
         if (dim == 3) {
+          if (static_cast<long long>(mesh.hex8.size()) >= limits.max_nodes)
+            throw MeshFileError(mesh.file, line, "the file has " + limits.exceeded("hexahedra"));
+          count_members(static_cast<long long>(phys.size()), line);
           Hex h;
           for (int k = 0; k < 8; ++k) h[k] = node(node_tags[k], tag, line);
           const int index = static_cast<int>(mesh.hex8.size());
@@ -373,6 +413,7 @@ struct Reader {
           mesh.element_lines.push_back(line);
           for (int p : phys) mesh.element_sets[physical_name(3, p)].push_back(index);
         } else if (dim == 2 && type == 3 && !phys.empty()) {
+          count_members(static_cast<long long>(phys.size()), line);
           PendingQuad q{{}, tag, line, {}};
           for (int k = 0; k < 4; ++k) q.nodes[k] = node(node_tags[k], tag, line);
           for (int p : phys) q.surfaces.push_back(physical_name(2, p));
@@ -387,27 +428,37 @@ struct Reader {
     have_elements = true;
   }
 
-  /// Each physical-surface quadrangle becomes the faces of the hexahedra that have the same four nodes.
+  /// Each physical-surface quadrangle becomes the faces of the hexahedra that have the same four nodes
+  /// (only the quadrangles' keys are kept, so memory follows the surfaces, not the volume).
   void attach_quads() {
     std::map<std::array<int, 4>, std::vector<ElementFace>> faces;
-    for (size_t e = 0; e < mesh.hex8.size(); ++e) {
+    for (const PendingQuad& q : quads) {
+      std::array<int, 4> key = q.nodes;
+      std::sort(key.begin(), key.end());
+      faces.try_emplace(key);
+    }
+    for (size_t e = 0; e < mesh.hex8.size() && !faces.empty(); ++e) {
       const auto local = hex_faces(mesh.hex8[e]);
       for (int f = 0; f < 6; ++f) {
         std::array<int, 4> key = local[f];
         std::sort(key.begin(), key.end());
-        faces[key].push_back({static_cast<int>(e), f});
+        const auto it = faces.find(key);
+        if (it == faces.end()) continue;
+        count_members(1, mesh.element_lines[e]);
+        it->second.push_back({static_cast<int>(e), f});
       }
     }
     for (const PendingQuad& q : quads) {
       std::array<int, 4> key = q.nodes;
       std::sort(key.begin(), key.end());
-      const auto it = faces.find(key);
-      if (it == faces.end())
+      const auto& found = faces.at(key);
+      if (found.empty())
         throw MeshFileError(mesh.file, q.line,
                             "quadrangle " + std::to_string(q.tag) + " of physical surface '" + q.surfaces.front() +
                                 "' is not a face of any hexahedron");
+      count_members(static_cast<long long>(found.size() * q.surfaces.size()), q.line);
       for (const std::string& s : q.surfaces)
-        for (const ElementFace& f : it->second) mesh.surfaces[s].push_back(f);
+        for (const ElementFace& f : found) mesh.surfaces[s].push_back(f);
     }
     // Physical groups that ended up without elements are still named (so that a scene naming one gets
     // "empty", not "missing").
@@ -448,22 +499,19 @@ struct Reader {
   }
 };
 
-std::string slurp(const std::filesystem::path& path, const std::string& shown) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw MeshFileError(shown, 0, "cannot read the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 }  // namespace
 
-ImportedMesh read_gmsh(const std::filesystem::path& path, const std::string& shown_name) {
-  const std::string shown = shown_name.empty() ? path.string() : shown_name;
-  Reader r(Cursor(slurp(path, shown), shown));
-  r.mesh.file = shown;
+ImportedMesh parse_gmsh(std::string_view bytes, const std::string& shown_name, const ReadLimits& limits) {
+  Reader r(Cursor(bytes, shown_name), limits);
+  r.mesh.file = shown_name;
   r.read();
   return std::move(r.mesh);
+}
+
+ImportedMesh read_gmsh(const std::filesystem::path& path, const std::string& shown_name,
+                       const ReadLimits& limits) {
+  const std::string shown = shown_name.empty() ? path.string() : shown_name;
+  return parse_gmsh(read_regular_file(path, shown), shown, limits);
 }
 
 }  // namespace stoss::mesh

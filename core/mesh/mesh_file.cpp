@@ -3,7 +3,9 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cctype>
+#include <fstream>
 #include <numbers>
+#include <sstream>
 
 namespace stoss::mesh {
 
@@ -34,12 +36,46 @@ std::string ImportedMesh::where_element(int element) const {
   return located(file, line, "element " + std::to_string(element_ids.at(element)));
 }
 
-ImportedMesh read_mesh_file(const std::filesystem::path& path, const std::string& shown_name) {
+std::string ReadLimits::exceeded(const std::string& what, long long factor) const {
+  return "more than " + std::to_string(factor * max_nodes) + " " + what + " (" +
+         (factor == 1 ? "" : std::to_string(factor) + " × ") + limit_name + ")";
+}
+
+ReadLimits upload_limits(long long max_nodes) {
+  ReadLimits limits;
+  limits.max_nodes = max_nodes;
+  limits.limit_name = "the server limit max_nodes = " + std::to_string(max_nodes);
+  limits.includes = false;
+  return limits;
+}
+
+std::string read_regular_file(const std::filesystem::path& path, const std::string& shown) {
+  std::error_code error;
+  // A device (/dev/zero), a FIFO or /proc file never ends or lies about its size: only regular files.
+  if (!std::filesystem::exists(path, error)) throw MeshFileError(shown, 0, "cannot read the file");
+  if (!std::filesystem::is_regular_file(path, error))
+    throw MeshFileError(shown, 0, "cannot read the file (not a regular file)");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw MeshFileError(shown, 0, "cannot read the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+ImportedMesh read_mesh_file(const std::filesystem::path& path, const std::string& shown_name,
+                            const ReadLimits& limits) {
   const std::string ext = lower_extension(path);
-  if (ext == ".msh") return read_gmsh(path, shown_name);
-  if (ext == ".inp") return read_abaqus(path, shown_name);
+  if (ext == ".msh") return read_gmsh(path, shown_name, limits);
+  if (ext == ".inp") return read_abaqus(path, shown_name, limits);
   throw MeshFileError(shown_name.empty() ? path.string() : shown_name, 0,
                       "unknown mesh file type '" + ext + "' (Stoss reads Gmsh .msh 4.1 and Abaqus/CalculiX .inp)");
+}
+
+ImportedMesh parse_mesh_bytes(std::string_view bytes, const std::string& format,
+                              const std::string& shown_name, const ReadLimits& limits) {
+  if (format == "msh") return parse_gmsh(bytes, shown_name, limits);
+  if (format == "inp") return parse_abaqus(bytes, shown_name, limits);
+  throw MeshFileError(shown_name, 0, "unknown mesh format '" + format + "' (msh or inp)");
 }
 
 Eigen::Vector3d Transform::apply(const Eigen::Vector3d& x) const {

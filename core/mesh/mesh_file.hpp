@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/mesh/mesh.hpp"
@@ -46,6 +47,36 @@ struct ImportedMesh {
   std::string where_element(int element) const;
 };
 
+/// How much a mesh file may ask of the reader, and which other files it may pull in (docs/api.md "Meshes",
+/// docs/scene.md "Meshes from files"). Every count is checked against its total before it is used.
+struct ReadLimits {
+  /// Nodes, and hexahedra, of the whole file; set members summed over all sets (GENERATE ranges and sets
+  /// named in sets expanded) and surface faces summed over all surfaces at most members_per_node × this;
+  /// Gmsh element records of every type, entities and physical tags at most records_per_node × this.
+  long long max_nodes = 10'000'000;
+  /// How messages name max_nodes ("the server limit max_nodes = 200000", the server's --max-nodes).
+  std::string limit_name = "the limit of 10000000 nodes per mesh file";
+  /// *INCLUDE: refused when false (uploaded decks: a stored mesh is self-contained); when true, only
+  /// relative paths without "..", resolved (symbolic links followed) below the top deck's folder, to
+  /// regular files, nested at most max_include_depth deep and max_includes in all.
+  bool includes = true;
+  static constexpr int max_include_depth = 8;
+  static constexpr int max_includes = 100;
+  static constexpr long long members_per_node = 8;
+  static constexpr long long records_per_node = 4;
+  /// Longest line (with its keyword continuation lines) of a deck.
+  static constexpr std::size_t max_line_bytes = 64 * 1024;
+
+  long long max_members() const { return members_per_node * max_nodes; }
+  long long max_records() const { return records_per_node * max_nodes; }
+  /// "more than 200000 nodes (the server limit max_nodes = 200000)"; `factor` > 1 for the derived caps:
+  /// "more than 1600000 set members in all sets (8 × the server limit max_nodes = 200000)".
+  std::string exceeded(const std::string& what, long long factor = 1) const;
+};
+
+/// The limits of a mesh posted to the service: no *INCLUDE, the caps from --max-nodes.
+ReadLimits upload_limits(long long max_nodes);
+
 /// Reads a Gmsh MSH 4.1 file (ASCII or binary, 8-byte size_t).
 /// @note Hexahedra (type 5) become elements, each physical volume an element set; quadrangles (type 3)
 ///       of a physical surface become faces of that surface (the hexahedron face with the same nodes,
@@ -53,17 +84,32 @@ struct ImportedMesh {
 ///       name is named by its tag. Volume elements of another type, and surface elements other than
 ///       quadrangles in a physical surface, are errors.
 /// @throws MeshFileError naming the file and the line (or byte offset in binary sections).
-ImportedMesh read_gmsh(const std::filesystem::path& path, const std::string& shown_name = "");
+ImportedMesh read_gmsh(const std::filesystem::path& path, const std::string& shown_name = "",
+                       const ReadLimits& limits = {});
 
 /// Reads an Abaqus / CalculiX input deck: *NODE, *ELEMENT (TYPE=C3D8 or C3D8R, optional ELSET=),
 /// *NSET and *ELSET (ids, set names, GENERATE), *SURFACE (TYPE=ELEMENT: element or ELSET, S1..S6 with the
 /// C3D8 face numbering). Other keywords and their data lines are skipped. Names are matched without
-/// regard to case (as Abaqus does) and kept as first written.
+/// regard to case (as Abaqus does) and kept as first written. *INCLUDE as `limits` allow it.
 /// @throws MeshFileError naming the file and the line.
-ImportedMesh read_abaqus(const std::filesystem::path& path, const std::string& shown_name = "");
+ImportedMesh read_abaqus(const std::filesystem::path& path, const std::string& shown_name = "",
+                         const ReadLimits& limits = {});
 
-/// read_gmsh for ".msh", read_abaqus for ".inp"; anything else is a MeshFileError.
-ImportedMesh read_mesh_file(const std::filesystem::path& path, const std::string& shown_name = "");
+/// read_gmsh for ".msh", read_abaqus for ".inp"; anything else is a MeshFileError. The file must be a
+/// regular file (not a device, a FIFO or a directory).
+ImportedMesh read_mesh_file(const std::filesystem::path& path, const std::string& shown_name = "",
+                            const ReadLimits& limits = {});
+
+/// Parses the bytes of a mesh file of `format` ("msh" | "inp") held in memory, named `shown_name` in
+/// messages; no other file is read (an *INCLUDE is refused whatever `limits` say).
+ImportedMesh parse_mesh_bytes(std::string_view bytes, const std::string& format,
+                              const std::string& shown_name, const ReadLimits& limits);
+/// The same for each format.
+ImportedMesh parse_gmsh(std::string_view bytes, const std::string& shown_name, const ReadLimits& limits);
+ImportedMesh parse_abaqus(std::string_view bytes, const std::string& shown_name, const ReadLimits& limits);
+
+/// The bytes of a mesh file: a regular file, read whole. @throws MeshFileError ("cannot read the file").
+std::string read_regular_file(const std::filesystem::path& path, const std::string& shown_name);
 
 /// Similarity transform applied to the nodes of a body: x ↦ translate + R (scale ∘ x), R a rotation by
 /// `degrees` about `axis` through the origin.

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/mesh/generators.hpp"
+#include "core/scene/checks.hpp"
 #include "core/scene/file_mesh.hpp"
 
 namespace stoss::scene::detail {
@@ -86,11 +87,26 @@ model::TimeSpec time_spec(const json& t) {
 
 }  // namespace
 
-double min_jacobian_determinant(const std::vector<Eigen::Vector3d>& nodes, const mesh::Hex& element) {
+std::optional<double> unusable_jacobian_determinant(const std::vector<Eigen::Vector3d>& nodes,
+                                                    const mesh::Hex& element) {
   fem::Matrix83 X;
   for (int I = 0; I < 8; ++I) X.row(I) = nodes[element[I]].transpose();
   const std::array<double, 8> det = fem::jacobian_determinants(X);  // (1.2)
-  return *std::min_element(det.begin(), det.end());
+  const double smallest = *std::min_element(det.begin(), det.end());
+  if (smallest <= 0) return smallest;
+  for (double d : det)
+    if (!std::isnormal(d)) return d;  // inf, NaN or subnormal
+  return std::nullopt;
+}
+
+std::string jacobian_problem(double det) {
+  const std::string value = "det J0 = " + rounded_text(det) + " at a Gauss point";
+  if (det <= 0) return "inverted or degenerate hexahedron, " + value + " (must be > 0; check the node order)";
+  if (!std::isfinite(det))
+    return value + ": the element's volume is not a finite number (coordinates too large? scale the mesh)";
+  return value +
+         " is below the smallest normal double (2.2e-308): the element is too small to compute with "
+         "(coordinates too small? scale the mesh)";
 }
 
 /// A generated body with its whole boundary as the surface "boundary", like every other mesh.

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/mesh/mesh.hpp"
@@ -12,8 +13,14 @@
 
 namespace stoss::scene::detail {
 
-/// Smallest det J0 over the 2×2×2 Gauss points of one element (docs/theory.md (1.1)–(1.2)).
-double min_jacobian_determinant(const std::vector<Eigen::Vector3d>& nodes, const mesh::Hex& element);
+/// The det J0 (docs/theory.md (1.1)–(1.2)) that makes an element unusable, nullopt when every one of its
+/// 2×2×2 Gauss points has a det J0 that is > 0, finite and a normal double: the smallest when one is <= 0,
+/// else one that is infinite, NaN or subnormal (coordinates of 1e200 or 1e-105 give such volumes; the
+/// integrator would fail at step 1).
+std::optional<double> unusable_jacobian_determinant(const std::vector<Eigen::Vector3d>& nodes,
+                                                    const mesh::Hex& element);
+/// What is wrong with an element whose det J0 is `det` (a value unusable_jacobian_determinant returned).
+std::string jacobian_problem(double det);
 
 /// The body mesh a validated `mesh` member describes (box, hollow_sphere or inline). An inline mesh
 /// gets the surface "boundary" (all boundary faces) unless it names one itself.

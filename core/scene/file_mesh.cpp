@@ -76,22 +76,56 @@ Source source_of(const json& mesh) {
   return {key, mesh[key].get<std::string>()};
 }
 
-/// The path of a mesh file named by "file" (relative to the scene's directory) or "id" (a stored mesh);
-/// nullopt with the reason in `why` when it cannot be had.
-std::optional<fs::path> path_of(const Source& source, const MeshFiles& where, std::string& why) {
+/// The parsed mesh file named by "file" (relative to the scene's directory; *INCLUDE below its folder only)
+/// or "id" (a stored mesh: the store's parsed form, or its file, self-contained); nullptr with the reason in
+/// `why` when it cannot be had. @throws mesh::MeshFileError when the file is not a usable mesh.
+std::shared_ptr<const mesh::ImportedMesh> imported_of(const Source& source, const MeshFiles& where,
+                                                      const std::string& label, std::string& why) {
+  mesh::ReadLimits limits;
+  limits.max_nodes = max_generated_nodes;
   if (source.key == "file") {
-    if (where.directory) return resolved(source.text, *where.directory);
+    if (where.directory)
+      return std::make_shared<const mesh::ImportedMesh>(
+          mesh::read_mesh_file(resolved(source.text, *where.directory), label, limits));
     why = "mesh files are read only for a scene given as a file (stoss validate|run SCENE.json), relative to "
           "it; through the HTTP API, POST the file to /v1/meshes and name it by \"id\"";
-    return std::nullopt;
+    return nullptr;
   }
-  if (!where.stored) {
+  if (!where.stored && !where.parsed) {
     why = "mesh ids name meshes stored by the service (POST /v1/meshes); a scene file names its mesh by \"file\"";
-    return std::nullopt;
+    return nullptr;
   }
-  auto path = where.stored(source.text);
-  if (!path) why = "no mesh with this id; POST it to /v1/meshes first";
-  return path;
+  std::shared_ptr<const mesh::ImportedMesh> imported;
+  if (where.parsed) {
+    imported = where.parsed(source.text);
+  } else if (const auto path = where.stored(source.text)) {
+    limits.includes = false;  // a stored mesh is self-contained: its id fixes its content
+    imported = std::make_shared<const mesh::ImportedMesh>(mesh::read_mesh_file(*path, label, limits));
+  }
+  if (!imported) why = "no mesh with this id; POST it to /v1/meshes first";
+  return imported;
+}
+
+/// The name a surface gets in the result file: HDF5 link names hold no '/' and start with no '.' (the
+/// rule of link_name in core/output/result_writer.cpp).
+std::string result_file_name(std::string name) {
+  for (char& c : name)
+    if (c == '/') c = '_';
+  if (name.empty() || name[0] == '.') name = "_" + name;
+  return name;
+}
+
+/// Two surfaces of one body that the result file would write under the same name are an issue.
+void check_surface_names(const std::map<std::string, std::vector<mesh::Quad>>& surfaces,
+                         const std::string& file, const std::string& p, Checker& c) {
+  std::map<std::string, std::string> written;
+  for (const auto& [name, quads] : surfaces) {
+    const auto [it, fresh] = written.try_emplace(result_file_name(name), name);
+    if (!fresh)
+      c.fail(p, file + ": surfaces '" + it->second + "' and '" + name + "' would both be written as '" +
+                    it->first +
+                    "' in the result file (names there hold no '/' and start with no '.'); rename one");
+  }
 }
 
 /// The name a mesh file goes by in messages: the file as written, or "mesh <id>".
@@ -119,18 +153,17 @@ std::optional<std::set<std::string>> check_file_mesh(json& mesh, const std::stri
   if (json* t = member(mesh, "transform", p, Presence::may(), c)) check_transform(*t, child(p, "transform"), c);
   if (c.mark() != start) return std::nullopt;
   const Source source = source_of(mesh);
-  std::string why;
-  const auto path = path_of(source, c.mesh_files, why);
-  if (!path) {
-    c.fail(fp, why);
-    return std::nullopt;
-  }
   const std::string file = label_of(source);
-  mesh::ImportedMesh imported;
+  std::string why;
   mesh::Selection selection;
+  std::shared_ptr<const mesh::ImportedMesh> imported;
   try {
-    imported = mesh::read_mesh_file(*path, file);
-    selection = mesh::select_body(imported, elements_of(mesh), transform_of(mesh));
+    imported = imported_of(source, c.mesh_files, file, why);
+    if (!imported) {
+      c.fail(fp, why);
+      return std::nullopt;
+    }
+    selection = mesh::select_body(*imported, elements_of(mesh), transform_of(mesh));
   } catch (const mesh::MeshFileError& e) {
     c.fail(fp, e.what());
     return std::nullopt;
@@ -139,16 +172,15 @@ std::optional<std::set<std::string>> check_file_mesh(json& mesh, const std::stri
     c.fail(fp, file + ": more than " + std::to_string(max_generated_nodes) + " nodes");
   int bad = 0;
   for (size_t i = 0; i < selection.body.hex8.size(); ++i) {
-    const double det = min_jacobian_determinant(selection.body.nodes, selection.body.hex8[i]);
-    if (det > 0) continue;
+    const auto det = unusable_jacobian_determinant(selection.body.nodes, selection.body.hex8[i]);
+    if (!det) continue;
     if (++bad <= max_element_issues)
-      c.fail(fp, imported.where_element(selection.elements[i]) +
-                                   ": inverted or degenerate hexahedron, det J0 = " + rounded_text(det) +
-                                   " at a Gauss point (must be > 0; check the node order)");
+      c.fail(fp, imported->where_element(selection.elements[i]) + ": " + jacobian_problem(*det));
   }
   if (bad > max_element_issues)
     c.fail(fp, file + ": " + std::to_string(bad - max_element_issues) +
                                  " more inverted or degenerate hexahedra");
+  check_surface_names(selection.body.surfaces, file, fp, c);
   if (c.mark() != start) return std::nullopt;
   std::set<std::string> names;
   for (const auto& [name, quads] : selection.body.surfaces) names.insert(name);
@@ -163,11 +195,10 @@ std::optional<std::set<std::string>> check_file_mesh(json& mesh, const std::stri
 mesh::BodyMesh file_body_mesh(const json& mesh, const MeshFiles& mesh_files) {
   const Source source = source_of(mesh);
   std::string why;
-  const auto path = path_of(source, mesh_files, why);
-  if (!path) throw SceneError(std::vector<Issue>{{"", why}});
   try {
-    return mesh::select_body(mesh::read_mesh_file(*path, label_of(source)), elements_of(mesh), transform_of(mesh))
-        .body;
+    const auto imported = imported_of(source, mesh_files, label_of(source), why);
+    if (!imported) throw SceneError(std::vector<Issue>{{"", why}});
+    return mesh::select_body(*imported, elements_of(mesh), transform_of(mesh)).body;
   } catch (const mesh::MeshFileError& e) {
     throw SceneError(std::vector<Issue>{{"", e.what()}});
   }

@@ -37,7 +37,7 @@ SceneError::SceneError(std::vector<Issue> found)
     : std::runtime_error(issue_lines(found)), issues(std::move(found)) {}
 
 model::Model load(const nlohmann::json& scene, const std::optional<std::filesystem::path>& mesh_directory) {
-  return load(scene, MeshFiles{mesh_directory, {}});
+  return load(scene, MeshFiles{mesh_directory, {}, {}});
 }
 
 model::Model load(const nlohmann::json& scene, const MeshFiles& mesh_files) {

@@ -4,12 +4,14 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "core/mesh/mesh_file.hpp"
 #include "core/model/model.hpp"
 
 namespace stoss::scene {
@@ -42,6 +44,10 @@ struct MeshFiles {
   /// "mesh": {"id": ...}: the stored file of a mesh id (.msh or .inp), nullopt when no mesh has the id;
   /// unset, a scene naming a mesh id is invalid. The server's is its store of POST /v1/meshes.
   std::function<std::optional<std::filesystem::path>(const std::string& id)> stored;
+  /// "mesh": {"id": ...}, when set (the server's): the parsed content of the stored mesh, shared by every
+  /// request that names it (parsed once), nullptr when no mesh has the id; may throw mesh::MeshFileError.
+  /// Unset, the file `stored` names is read.
+  std::function<std::shared_ptr<const mesh::ImportedMesh>(const std::string& id)> parsed;
 };
 
 /// Validates a scene, fills in defaults, builds the mesh (bodies in order) and resolves effects.

@@ -1,6 +1,7 @@
 #include "core/scene/validate.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -35,17 +36,45 @@ void check_divisions(json& divisions, const std::string& p, Checker& c) {
 
 void check_box(json& box, const std::string& p, Checker& c) {
   if (!object_with(box, p, {"min", "max", "divisions"}, c)) return;
+  const size_t start = c.mark();
   const auto low = vector3_field(box, "min", p, Presence::must(), c);
   const auto high = vector3_field(box, "max", p, Presence::must(), c);
   if (low && high && !(high->array() > low->array()).all())
     c.fail(child(p, "max"), "must be > min componentwise, got " + shown(box["max"]));
-  if (json* divisions = member(box, "divisions", p, Presence::must(), c))
-    check_divisions(*divisions, child(p, "divisions"), c);
+  json* divisions = member(box, "divisions", p, Presence::must(), c);
+  if (divisions) check_divisions(*divisions, child(p, "divisions"), c);
+  if (!low || !high || !divisions || c.mark() != start) return;
+  // Every element of the grid has det J0 = hx hy hz / 8 (docs/theory.md (1.2), h the element's edges).
+  double det = 1.0 / 8;
+  for (int a = 0; a < 3; ++a) det *= ((*high)[a] - (*low)[a]) / (*divisions)[a].get<double>();
+  if (!std::isnormal(det) || det <= 0) c.fail(p, "its elements would be unusable: " + jacobian_problem(det));
+}
+
+/// The unusable det J0 of a corner cell of the sphere's first patch, in its inner or outer element layer, if
+/// one is: the cells of docs/theory.md §7 (p = normalize(e_x + tan(-π/4 + iΔ) e_y + tan(-π/4 + jΔ) e_z),
+/// Δ = π / (2 divisions)) show there the overflow, the underflow, or a centre so far out that the radii are
+/// lost in rounding, which every other cell shares within a factor of a few.
+std::optional<double> sphere_corner_jacobian(const Eigen::Vector3d& center, double inner, double outer,
+                                             long long d, long long layers) {
+  const double quarter = std::atan(1.0), step = 2 * quarter / static_cast<double>(d);
+  const auto node = [&](int i, int j, long long k) {
+    const Eigen::Vector3d p(1, std::tan(-quarter + i * step), std::tan(-quarter + j * step));
+    return Eigen::Vector3d(center +
+                           (inner + static_cast<double>(k) * (outer - inner) / layers) * p.normalized());
+  };
+  for (const long long k : {0LL, layers - 1}) {
+    const std::vector<Eigen::Vector3d> nodes = {node(0, 0, k),     node(1, 0, k),     node(1, 1, k),
+                                                node(0, 1, k),     node(0, 0, k + 1), node(1, 0, k + 1),
+                                                node(1, 1, k + 1), node(0, 1, k + 1)};
+    if (const auto det = unusable_jacobian_determinant(nodes, {0, 1, 2, 3, 4, 5, 6, 7})) return det;
+  }
+  return std::nullopt;
 }
 
 void check_hollow_sphere(json& sphere, const std::string& p, Checker& c) {
   if (!object_with(sphere, p, {"center", "outer_radius", "inner_radius", "divisions", "layers"}, c)) return;
-  vector3_field(sphere, "center", p, Presence::or_default(zero3), c);
+  const size_t start = c.mark();
+  const auto center = vector3_field(sphere, "center", p, Presence::or_default(zero3), c);
   const auto inner = number_field(sphere, "inner_radius", p, Presence::must(), above(0), c);
   const auto outer = number_field(sphere, "outer_radius", p, Presence::must(), above(0), c);
   if (inner && outer && !(*outer > *inner))
@@ -54,6 +83,9 @@ void check_hollow_sphere(json& sphere, const std::string& p, Checker& c) {
   const auto d = integer_field(sphere, "divisions", p, Presence::or_default(6), at_least(1), c);
   const auto layers = integer_field(sphere, "layers", p, Presence::or_default(2), at_least(1), c);
   if (d && layers) check_node_limit((6.0 * *d * *d + 2) * (*layers + 1), p, c);
+  if (c.mark() != start || !center || !inner || !outer || !d || !layers) return;
+  if (const auto det = sphere_corner_jacobian(*center, *inner, *outer, *d, *layers))
+    c.fail(p, "its elements would be unusable: " + jacobian_problem(*det));
 }
 
 /// Rows of `width` node indices, each in [0, node_count) when the node count is known.
@@ -97,9 +129,11 @@ void check_jacobians(const json& mesh, const std::string& p, Checker& c) {
     nodes.emplace_back(x[0].get<double>(), x[1].get<double>(), x[2].get<double>());
   const json& hex8 = mesh["hex8"];
   for (size_t e = 0; e < hex8.size(); ++e) {
-    const double det = min_jacobian_determinant(nodes, hex8[e].get<mesh::Hex>());
-    if (!(det > 0))
-      c.fail(child(child(p, "hex8"), e), "det J0 must be > 0 at every Gauss point, got " + rounded_text(det));
+    const auto det = unusable_jacobian_determinant(nodes, hex8[e].get<mesh::Hex>());
+    if (det)
+      c.fail(child(child(p, "hex8"), e),
+             *det <= 0 ? "det J0 must be > 0 at every Gauss point, got " + rounded_text(*det)
+                       : jacobian_problem(*det));
   }
 }
 

@@ -37,7 +37,9 @@ long long saturating_add(long long a, long long b) {
   return __builtin_add_overflow(a, b, &sum) ? LLONG_MAX : sum;
 }
 
-/// Nodes a mesh description will produce, from its parameters (an upper estimate for generators).
+/// Nodes a mesh description will produce, from its parameters: exact for generators (a box has
+/// Π (divisions + 1), a hollow sphere (6 d² + 2)(layers + 1): each node layer is the cube-sphere's surface
+/// grid of docs/theory.md §7) and inline meshes; 0 for mesh files, counted when read.
 long long estimated_nodes(const nlohmann::json& mesh) {
   if (!mesh.is_object()) return 0;
   if (auto box = mesh.find("box"); box != mesh.end() && box->is_object()) {
@@ -119,11 +121,9 @@ SceneCounts estimate_scene_counts(const nlohmann::json& scene) {
 }
 
 std::optional<Problem> check_scene_limits_early(const nlohmann::json& scene, const Limits& limits) {
-  SceneCounts estimate = estimate_scene_counts(scene);
-  // Generator node counts are estimates: refuse early only what is clearly beyond the limit,
-  // the exact check after loading does the rest.
-  if (estimate.nodes <= 4LL * limits.max_nodes) estimate.nodes = 0;
-  return check_scene_limits(estimate, limits);
+  // Generated and inline meshes are counted exactly before anything is built: a sphere over max_nodes is
+  // refused without generating it.
+  return check_scene_limits(estimate_scene_counts(scene), limits);
 }
 
 std::optional<Problem> check_scene_limits(const scene::Summary& scene, const Limits& limits) {

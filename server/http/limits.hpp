@@ -22,6 +22,8 @@ struct Limits {
   int max_queued = 1'000;                  ///< --max-queue: queued jobs before submissions get 503
   /// --request-timeout: longest time from a request's head to the last byte of its body.
   std::chrono::milliseconds request_timeout{60'000};
+  /// --max-mesh-store-bytes: bytes of all meshes stored by POST /v1/meshes; an upload beyond gets 413
+  std::size_t max_mesh_store_bytes = std::size_t(1) << 30;
 };
 
 /// Counts a scene asks for, 64-bit: what a 413 reports is the count itself, never a saturated int.

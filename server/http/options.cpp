@@ -92,6 +92,10 @@ const std::map<std::string, Setter>& setters() {
        [](auto& f, auto& v, auto& o) { o.job_memory = std::size_t(parse_integer(f, v, 0, 1ll << 50)); }},
       {"--max-queue",
        [](auto& f, auto& v, auto& o) { o.limits.max_queued = int(parse_integer(f, v, 0, 1'000'000'000)); }},
+      {"--max-mesh-store-bytes",
+       [](auto& f, auto& v, auto& o) {
+         o.limits.max_mesh_store_bytes = std::size_t(parse_integer(f, v, 0, 1ll << 50));
+       }},
   };
   return table;
 }
@@ -162,6 +166,9 @@ Runs the job service (HTTP/JSON, see api/openapi.yaml) until SIGINT or SIGTERM.
   --max-steps N          most time steps in a scene (default 100000)
   --max-frames N         most output frames in a scene (default 2000)
   --max-queue N          most queued jobs; more submissions get 503 (default 1000)
+  --max-mesh-store-bytes N
+                         bytes of all meshes POST /v1/meshes stores; an upload beyond is 413 (default
+                         1073741824; DELETE /v1/meshes/{id} frees room)
   --http-threads N       HTTP connections served at once, one thread each (default 128)
   --max-connections-per-client N
                          connections one client address may hold at once; more are answered 503 and

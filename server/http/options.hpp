@@ -22,7 +22,8 @@ struct ServeOptions {
   std::optional<std::filesystem::path> token_file;  ///< --token-file F
   jobs::WorkerPoolOptions pool;                     ///< --workers, --lease-seconds, --renew-seconds
   int max_attempts = 3;  ///< --max-attempts: runs before an expired lease fails a job
-  /// --max-body-bytes, --max-nodes, --max-steps, --max-frames, --max-queue, --request-timeout
+  /// --max-body-bytes, --max-nodes, --max-steps, --max-frames, --max-queue, --request-timeout,
+  /// --max-mesh-store-bytes
   Limits limits;
   /// --http-threads: connections served at once, one thread each (a stalled upload holds one for at most
   /// the read timeout per read; further connections wait in the accept queue).

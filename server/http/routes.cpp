@@ -1,5 +1,8 @@
 #include "server/http/routes.hpp"
 
+#include <malloc.h>
+
+#include <atomic>
 #include <cctype>
 #include <chrono>
 #include <fstream>
@@ -68,6 +71,28 @@ void require_result_file(const jobs::Job& job) {
   require_succeeded(job);
 }
 
+/// Gives freed memory back to the system (malloc_trim) when the last copy of a request's MeshFiles goes, if
+/// the request used a stored mesh: the model built to check a scene on a large mesh frees hundreds of MB
+/// that glibc would otherwise keep (docs/measurements.md, "Hardening numbers").
+struct TrimAfterUse {
+  std::atomic<bool> used{false};
+  ~TrimAfterUse() {
+    if (used) malloc_trim(0);
+  }
+};
+
+/// Mesh files for the scene checks: a stored mesh is parsed once and its parsed form shared (MeshStore).
+scene::MeshFiles mesh_files(App& app) {
+  scene::MeshFiles files = app.files.mesh_files();
+  files.parsed = [store = &jobs::MeshStore::at(app.files.meshes()),
+                  limits = mesh::upload_limits(app.limits.max_nodes),
+                  trim = std::make_shared<TrimAfterUse>()](const std::string& id) {
+    trim->used = true;
+    return store->parsed(id, limits);
+  };
+  return files;
+}
+
 std::optional<std::string> read_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return std::nullopt;
@@ -112,7 +137,7 @@ void submit_job(App& app, const Request& req, Response& res) {
   job.scene = parse_json_body(req, app.limits);
   job.body_hash = jobs::sha256_hex(job.scene.dump());  // of the scene as posted (idempotency)
   nlohmann::json resolved;
-  const scene::Summary summary = check_scene(job.scene, app.limits, app.files.mesh_files(), &resolved);
+  const scene::Summary summary = check_scene(job.scene, app.limits, mesh_files(app), &resolved);
   job.scene = std::move(resolved);  // validated and resolved once: the worker runs it as stored
   job.effects = summary.effects;
   job.progress.steps = summary.steps;
@@ -125,7 +150,7 @@ void submit_study(App& app, const Request& req, Response& res) {
   jobs::NewJob job;
   job.idempotency_key = idempotency_key(req);
   const nlohmann::json body = parse_json_body(req, app.limits);
-  const StudyRequest study = check_study(body, app.limits, app.files.mesh_files());
+  const StudyRequest study = check_study(body, app.limits, mesh_files(app));
   job.kind = jobs::Kind::study;
   job.body_hash = jobs::sha256_hex("study\n" + body.dump());  // never equal to a scene's hash
   job.scene = study.scene;
@@ -374,46 +399,88 @@ nlohmann::json sizes(const Map& named) {
   return out;
 }
 
-/// POST /v1/meshes: the raw bytes of a .msh or .inp file, parsed once, stored by content (201; 200 when
-/// the same bytes were stored before).
+/// 422 for a mesh file that is not usable, naming the line when there is one.
+[[noreturn]] void invalid_mesh(const mesh::MeshFileError& e, const std::string& format) {
+  Problem problem{422, "urn:stoss:problem:invalid-mesh", "Invalid mesh", e.what()};
+  if (e.line > 0) problem.extra["line"] = e.line;
+  problem.extra["format"] = format;
+  throw ProblemError(problem);
+}
+
+/// POST /v1/meshes: the raw bytes of a .msh or .inp file, parsed once under the limits of --max-nodes (no
+/// *INCLUDE), stored by content (201; 200 when the same bytes were stored before); 413 above
+/// --max-mesh-store-bytes.
 void post_mesh(App& app, const Request& req, Response& res) {
   if (req.body.size() > app.limits.max_body_bytes) throw ProblemError(body_too_large(app.limits.max_body_bytes, req.body.size()));
   const std::string format = mesh_format(req);
   if (req.body.empty()) fail(400, "empty-body", "Empty body", "the body is empty; send the bytes of a .msh or .inp file");
   jobs::StoredMesh stored;
   try {
-    stored = jobs::store_mesh(app.files.meshes(), req.body, format);
+    stored = jobs::MeshStore::at(app.files.meshes())
+                 .store(req.body, format, mesh::upload_limits(app.limits.max_nodes),
+                        app.limits.max_mesh_store_bytes);
   } catch (const mesh::MeshFileError& e) {
-    Problem problem{422, "urn:stoss:problem:invalid-mesh", "Invalid mesh", e.what()};
-    if (e.line > 0) problem.extra["line"] = e.line;
-    problem.extra["format"] = format;
-    throw ProblemError(problem);
+    invalid_mesh(e, format);
+  } catch (const jobs::MeshStoreFull& e) {
+    throw ProblemError(Problem{413,
+                               "urn:stoss:problem:mesh-store-full",
+                               "Mesh store full",
+                               std::string(e.what()) + "; DELETE /v1/meshes/{id} of meshes no longer needed",
+                               {{"limits", nlohmann::json::array({{{"name", "max_mesh_store_bytes"},
+                                                                   {"limit", e.limit},
+                                                                   {"value", e.used + e.size}}})}}});
   }
   if (stored.created) res.set_header("Location", "/v1/meshes/" + stored.id);
   send_json(res, stored.created ? 201 : 200,
             {{"id", stored.id},
              {"format", stored.format},
-             {"nodes", stored.mesh.nodes.size()},
-             {"elements", stored.mesh.hex8.size()},
-             {"element_sets", sizes(stored.mesh.element_sets)},
-             {"surfaces", sizes(stored.mesh.surfaces)}});
+             {"nodes", stored.mesh->nodes.size()},
+             {"elements", stored.mesh->hex8.size()},
+             {"element_sets", sizes(stored.mesh->element_sets)},
+             {"surfaces", sizes(stored.mesh->surfaces)}});
+}
+
+/// The stored file of the mesh id in the path's first capture; 404 when there is none.
+std::filesystem::path find_mesh(App& app, const Request& req) {
+  const std::string id = req.matches[1].str();
+  const auto path = jobs::MeshStore::at(app.files.meshes()).path_of(id);
+  if (!path)
+    fail(404, "unknown-mesh", "Unknown mesh",
+         "no mesh " + id.substr(0, 64) + " (mesh ids are 64 lowercase hex digits, as POST /v1/meshes answers)");
+  return *path;
 }
 
 /// GET /v1/meshes/{id}: the stored file, byte for byte.
 void get_mesh(App& app, const Request& req, Response& res) {
-  const std::string id = req.matches[1].str();
-  const auto path = app.files.stored_mesh(id);
-  if (!path)
-    fail(404, "unknown-mesh", "Unknown mesh",
-         "no mesh " + id.substr(0, 64) + " (mesh ids are 64 lowercase hex digits, as POST /v1/meshes answers)");
-  res.set_header("Content-Disposition", "attachment; filename=\"" + path->filename().string() + "\"");
+  const auto path = find_mesh(app, req);
+  res.set_header("Content-Disposition", "attachment; filename=\"" + path.filename().string() + "\"");
   res.set_header("Cache-Control", "public, max-age=31536000, immutable");
-  stream_file(req, res, *path, "application/octet-stream");
+  stream_file(req, res, path, "application/octet-stream");
+}
+
+/// DELETE /v1/meshes/{id}: 204, or 409 while a queued or running job names the mesh.
+void delete_mesh(App& app, const Request& req, Response& res) {
+  const std::string id = find_mesh(app, req).stem().string();
+  const std::vector<jobs::JobId> users = app.store.active_jobs_using_mesh(id);
+  if (!users.empty()) {
+    nlohmann::json ids = nlohmann::json::array();
+    for (const auto& job : users) ids.push_back(job.str());
+    throw ProblemError(Problem{409,
+                               "urn:stoss:problem:mesh-in-use",
+                               "Mesh in use",
+                               "mesh " + id + " is named by " + std::to_string(users.size()) +
+                                   " queued or running job(s), the first " + users.front().str() +
+                                   "; delete it once they ended (or cancel them)",
+                               {{"jobs", ids}}});
+  }
+  if (!jobs::MeshStore::at(app.files.meshes()).remove(id))
+    fail(404, "unknown-mesh", "Unknown mesh", "no mesh " + id);
+  res.status = 204;
 }
 
 void validate_scene(App& app, const Request& req, Response& res) {
   const nlohmann::json scene = parse_json_body(req, app.limits);
-  const scene::Summary s = check_scene(scene, app.limits, app.files.mesh_files());
+  const scene::Summary s = check_scene(scene, app.limits, mesh_files(app));
   send_json(res, 200,
             {{"valid", true},
              {"effects", s.effects},
@@ -441,7 +508,7 @@ void get_scene(App& app, const Request& req, Response& res) {
   if (!stored) fail(404, "unknown-job", "Unknown job", "no job " + job.id.str());
   if (resolved == "false") return send_json(res, 200, *stored);
   try {
-    send_json(res, 200, scene::load(*stored, app.files.mesh_files()).scene);
+    send_json(res, 200, scene::load(*stored, mesh_files(app)).scene);
   } catch (const std::exception& e) {
     fail(500, "internal", "Scene cannot be resolved", e.what());
   }
@@ -590,6 +657,7 @@ const std::vector<RouteEntry>& route_table() {
       {{"POST", "/v1/validate", true}, validate_scene},
       {{"POST", "/v1/meshes", true}, post_mesh},
       {{"GET", "/v1/meshes/{id}", true}, get_mesh},
+      {{"DELETE", "/v1/meshes/{id}", true}, delete_mesh},
       {{"GET", "/v1/schema/scene", true}, get_schema},
       {{"GET", "/v1/jobs/{id}/scene", true}, get_scene},
       {{"GET", "/v1/openapi.yaml", true}, get_openapi},

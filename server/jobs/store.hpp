@@ -141,6 +141,10 @@ class JobStore {
   /// Number of jobs in each status (every status present, possibly 0).
   virtual std::map<Status, std::int64_t> count_by_status() = 0;
 
+  /// The queued and running jobs whose scene names stored mesh `mesh_id` ("mesh": {"id": ...} of a body),
+  /// for DELETE /v1/meshes/{id}. This default pages through list() and reads each such job's scene.
+  virtual std::vector<JobId> active_jobs_using_mesh(const std::string& mesh_id);
+
   /// Calls `events` (from a thread of the store's) when another process may have queued a job (and after a
   /// lost connection came back) or asked to cancel a running one. Returns nullptr when the store has no
   /// such signal: then workers poll for jobs, and see a cancel at their next lease renewal.

@@ -293,5 +293,109 @@ TEST(FileMeshScene, ContactPairNamingAnEmptyOrMissingGroupIsAnIssue) {
             "/bodies/0/mesh/file: part.msh: has no element set 'nothing' (it has part, plate)");
 }
 
+// Issue 20: what passed validation and then failed in the run is refused at validation.
+
+TEST(FileMeshScene, SurfacesThatTheResultFileWouldWriteUnderOneNameAreRefusedWithBothNames) {
+  TempDir dir;
+  dir.write("names.inp", cube_nodes +
+                             "*ELEMENT, TYPE=C3D8, ELSET=E\n1,1,2,3,4,5,6,7,8\n*SURFACE, NAME=a/b\n1, S1\n"
+                             "*SURFACE, NAME=a_b\n1, S2\n");
+  EXPECT_EQ(
+      issues_of(dir.write("scene.json", one_body_scene({{"file", "names.inp"}}).dump())),
+      "/bodies/0/mesh/file: names.inp: surfaces 'a/b' and 'a_b' would both be written as 'a_b' in the result "
+      "file (names there hold no '/' and start with no '.'); rename one");
+  dir.write("dots.inp", cube_nodes +
+                            "*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7,8\n*SURFACE, NAME=.x\n1, S1\n"
+                            "*SURFACE, NAME=_.x\n1, S2\n");
+  EXPECT_NE(issues_of(dir.write("scene.json", one_body_scene({{"file", "dots.inp"}}).dump()))
+                .find("surfaces '.x' and '_.x' would both be written as '_.x'"),
+            std::string::npos);
+}
+
+TEST(FileMeshScene, ElementsWhoseVolumeIsInfiniteOrSubnormalAreRefusedNamingTheElement) {
+  TempDir dir;
+  const auto scaled_cube = [](const std::string& unit) {
+    return "*NODE\n1,0,0,0\n2," + unit + ",0,0\n3," + unit + "," + unit + ",0\n4,0," + unit + ",0\n5,0,0," +
+           unit + "\n6," + unit + ",0," + unit + "\n7," + unit + "," + unit + "," + unit + "\n8,0," + unit +
+           "," + unit + "\n*ELEMENT, TYPE=C3D8\n12,1,2,3,4,5,6,7,8\n";
+  };
+  dir.write("huge.inp", scaled_cube("1e200"));
+  EXPECT_EQ(issues_of(dir.write("scene.json", one_body_scene({{"file", "huge.inp"}}).dump())),
+            "/bodies/0/mesh/file: huge.inp:11: element 12: det J0 = inf at a Gauss point: the element's "
+            "volume is not "
+            "a finite number (coordinates too large? scale the mesh)");
+  dir.write("tiny.inp", scaled_cube("1e-105"));
+  EXPECT_EQ(
+      issues_of(dir.write("scene.json", one_body_scene({{"file", "tiny.inp"}}).dump())),
+      "/bodies/0/mesh/file: tiny.inp:11: element 12: det J0 = 1.25e-316 at a Gauss point is below the "
+      "smallest "
+      "normal double (2.2e-308): the element is too small to compute with (coordinates too small? scale the "
+      "mesh)");
+  // Inline meshes and boxes by the same rule.
+  json cube = {{"nodes",
+                {{0, 0, 0},
+                 {1e200, 0, 0},
+                 {1e200, 1e200, 0},
+                 {0, 1e200, 0},
+                 {0, 0, 1e200},
+                 {1e200, 0, 1e200},
+                 {1e200, 1e200, 1e200},
+                 {0, 1e200, 1e200}}},
+               {"hex8", {{0, 1, 2, 3, 4, 5, 6, 7}}}};
+  EXPECT_EQ(
+      issues_of(dir.write("scene.json", one_body_scene(cube).dump())),
+      "/bodies/0/mesh/hex8/0: det J0 = inf at a Gauss point: the element's volume is not a finite number "
+      "(coordinates too large? scale the mesh)");
+  for (const json& sphere : {json{{"outer_radius", 1e200}, {"inner_radius", 1e199}},
+                             json{{"outer_radius", 1e-105}, {"inner_radius", 1e-106}},
+                             json{{"center", {1e200, 0, 0}}, {"outer_radius", 1}, {"inner_radius", 0.5}}}) {
+    SCOPED_TRACE(sphere.dump());
+    EXPECT_EQ(issues_of(dir.write("scene.json", one_body_scene({{"hollow_sphere", sphere}}).dump()))
+                  .find("/bodies/0/mesh/hollow_sphere: its elements would be unusable: "),
+              0u);
+  }
+  const json wide = {{"outer_radius", 1e10}, {"inner_radius", 1e-10}, {"divisions", 40}};
+  EXPECT_EQ(issues_of(dir.write("scene.json", one_body_scene({{"hollow_sphere", wide}}).dump())), "");
+  const json box = {
+      {"box", {{"min", {0, 0, 0}}, {"max", {1e-105, 1e-105, 1e-105}}, {"divisions", {1, 1, 1}}}}};
+  EXPECT_NE(issues_of(dir.write("scene.json", one_body_scene(box).dump()))
+                .find("/bodies/0/mesh/box: its elements would be unusable: det J0 = 1.25e-316 at a Gauss "
+                      "point is below the "
+                      "smallest normal double"),
+            std::string::npos);
+}
+
+TEST(FileMeshScene, AStoredMeshIsSelfContainedAndItsParsedFormIsUsedWhenGiven) {
+  TempDir dir;
+  dir.write("store/nodes.inp", cube_nodes.substr(6));
+  const fs::path stored = dir.write("store/with_include.inp",
+                                    "*NODE\n*INCLUDE, INPUT=nodes.inp\n*ELEMENT, TYPE=C3D8\n"
+                                    "1,1,2,3,4,5,6,7,8\n");
+  const std::string id(64, 'c');
+  scene::MeshFiles files;
+  files.stored = [&](const std::string&) { return std::optional(stored); };
+  try {
+    scene::load(one_body_scene({{"id", id}}), files);
+    FAIL() << "a stored mesh with *INCLUDE loaded";
+  } catch (const scene::SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "/bodies/0/mesh/id: mesh " + id +
+                  ":2: *INCLUDE is not accepted here: an uploaded mesh must be "
+                  "self-contained (its id is the hash of its bytes); put the included lines in their place");
+  }
+  // With `parsed`, the store's parsed form is used: validation and the build ask for it, the file is not
+  // read.
+  int asked = 0;
+  files.stored = nullptr;
+  const auto parsed = std::make_shared<const mesh::ImportedMesh>(mesh::parse_abaqus(
+      cube_nodes + "*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7,8\n", "mesh " + id, mesh::upload_limits(100)));
+  files.parsed = [&](const std::string& asked_id) {
+    ++asked;
+    return asked_id == id ? parsed : nullptr;
+  };
+  EXPECT_EQ(scene::load(one_body_scene({{"id", id}}), files).mesh.node_count(), 8);
+  EXPECT_EQ(asked, 2);
+}
+
 }  // namespace
 }  // namespace stoss
