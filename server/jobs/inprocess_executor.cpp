@@ -42,7 +42,8 @@ Outcome InProcessExecutor::run(const Job& job, const std::atomic<bool>& cancel,
   }
   try {
     if (files) files->write_outcome(outcome);  // last: the attempt's files are final
-    if (files && outcome.status == Status::succeeded) files_.prune_before(job.id, job.attempt);
+    // Only now its checkpoint goes: an attempt started meanwhile finds the outcome, or else the checkpoint.
+    if (files && outcome.status == Status::succeeded) files_.prune_through(job.id, job.attempt);
   } catch (const std::exception& e) {
     log << "cannot record the outcome: " << e.what() << '\n' << std::flush;
   }
@@ -111,7 +112,6 @@ Outcome InProcessExecutor::simulate_job(const Job& job, const AttemptFiles& file
   if (summary->completed) {
     std::error_code ignored;
     std::filesystem::remove(files.dir() / partial_series_file, ignored);  // result.h5 has it all
-    std::filesystem::remove_all(files.checkpoint(), ignored);
     return {Status::succeeded, job_summary(*summary, model, series), std::nullopt};
   }
   files.discard_partial();

@@ -192,9 +192,9 @@ void JobFiles::seed_checkpoint(const JobId& id, int attempt_number, const Attemp
   }
 }
 
-void JobFiles::prune_before(const JobId& id, int attempt_number) const {
+void JobFiles::prune_through(const JobId& id, int attempt_number) const {
   for (int n : attempt_numbers(dir(id))) {
-    if (n >= attempt_number) break;
+    if (n > attempt_number) break;
     const AttemptFiles earlier = attempt(id, n);
     std::error_code ignored;
     fs::remove_all(earlier.checkpoint(), ignored);

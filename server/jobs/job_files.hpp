@@ -98,10 +98,10 @@ class JobFiles {
   /// attempt number (released at a shutdown) left behind, but not its log or checkpoint; when it has no
   /// checkpoint, copies the newest earlier attempt's last checkpoint into it (seed_checkpoint).
   AttemptFiles prepare_attempt(const JobId& id, int attempt) const;
-  /// Once attempt `attempt` recorded a succeeded outcome, removes the checkpoints and partial files of the
-  /// attempts before it: any later attempt adopts that outcome instead of resuming, and none of them is
-  /// ever served. Their logs, outcomes and complete results stay (a rescuer may be adopting one).
-  void prune_before(const JobId& id, int attempt) const;
+  /// Once attempt `attempt` recorded a succeeded outcome, removes the checkpoints and partial files of it
+  /// and of the attempts before it: any later attempt adopts that outcome instead of resuming, and none of
+  /// them is ever served. Logs, outcomes and complete results stay (a rescuer may be adopting one).
+  void prune_through(const JobId& id, int attempt) const;
   /// Removes the job's directory and everything in it.
   void remove(const JobId& id) const;
 

@@ -103,6 +103,7 @@ void check_round(httplib::Client& c, const std::string& id, const fs::path& data
   else if (log.find("its result is adopted") != std::string::npos) ++tally.adopted;
   else if (log.find("resumed from step") != std::string::npos) ++tally.resumed;
   else ++tally.rerun;
+
 }
 
 /// The pid in the log's first attempt line, "attempt 1 started … by host:pid:suffix/index".
@@ -135,11 +136,11 @@ TEST(LeaseRace, PostgresqlStoppedPastTheLeaseWhileASecondWorkerIdlesLosesNoJob) 
     const std::string id = body_json(submit(c, race_scene()))["id"];
     ASSERT_TRUE(eventually([&] { return computing(c, id); }, 30s));
     cluster.stop();
-    std::this_thread::sleep_for(2s);  // the lease (0.8 s) lapses; the run completes or nearly
+    std::this_thread::sleep_for(1500ms);  // the lease (0.8 s) lapses; the run completes, or nearly
     cluster.start();
     check_round(c, id, data, tmp.path(), reference, tally);
   }
-  std::printf("lease race, PostgreSQL stopped 2 s past a 0.8 s lease, 10 rounds: %s\n", tally.text().c_str());
+  std::printf("lease race, PostgreSQL stopped for 1.5 s (a 0.8 s lease), 10 rounds: %s\n", tally.text().c_str());
   EXPECT_EQ(tally.succeeded, rounds);
 }
 
@@ -153,6 +154,7 @@ TEST(LeaseRace, AServeStoppedPastItsLeaseBesideASecondServeOnTheSameDataLosesNoJ
   const auto reference = series_of(download_result(ca, uncrashed, tmp.path()));
 
   Tally tally;
+  int stopped_holding_the_lock = 0;
   for (int round = 0; round < rounds; ++round) {
     SCOPED_TRACE("round " + std::to_string(round));
     const std::string id = body_json(submit(ca, race_scene()))["id"];
@@ -161,17 +163,34 @@ TEST(LeaseRace, AServeStoppedPastItsLeaseBesideASecondServeOnTheSameDataLosesNoJ
     ASSERT_TRUE(holder == a.pid() || holder == b.pid()) << holder;
     LiveServer& stopped = holder == a.pid() ? a : b;
     auto other = (holder == a.pid() ? b : a).client();
-    ASSERT_EQ(::kill(stopped.pid(), SIGSTOP), 0);
-    // The other serve rescues the job; its attempt 2 adopts attempt 1's run or resumes from its checkpoint.
-    const bool rescued = eventually([&] { return job(other, id).value("attempt", 0) >= 2; }, 20s);
+    // The other serve rescues the job: its rescuer publishes attempt 1's run if it had completed, else its
+    // attempt 2 adopts that run or resumes from attempt 1's checkpoint. A stop that lands inside one of the
+    // stopped serve's store transactions keeps SQLite's write lock with it, and nobody can write until it
+    // goes on: then it goes on for 50 ms (it commits, and may renew its lease once) and is stopped again.
+    const auto rescue = [&] {
+      const auto j = job(other, id);
+      return j.value("attempt", 0) >= 2 || j.value("status", "") == "succeeded";
+    };
+    bool rescued = false;
+    for (int stop = 0; stop < 5 && !rescued; ++stop) {
+      if (stop > 0) {
+        ++stopped_holding_the_lock;
+        ASSERT_EQ(::kill(stopped.pid(), SIGCONT), 0);
+        std::this_thread::sleep_for(50ms);
+      }
+      ASSERT_EQ(::kill(stopped.pid(), SIGSTOP), 0);
+      rescued = eventually(rescue, 4s);
+    }
     std::this_thread::sleep_for(1s);  // attempt 2 runs beside the stopped serve's attempt 1
     ASSERT_EQ(::kill(stopped.pid(), SIGCONT), 0);
     ASSERT_TRUE(rescued) << job(other, id).dump();
     check_round(other, id, data, tmp.path(), reference, tally);
     EXPECT_TRUE(a.alive() && b.alive());
   }
-  std::printf("lease race, a serve SIGSTOPped 1 s past its rescue (0.8 s lease), SQLite, 10 rounds: %s\n",
-              tally.text().c_str());
+  std::printf(
+      "lease race, a serve SIGSTOPped 1 s past its rescue (0.8 s lease), SQLite, 10 rounds: %s (stops that landed "
+      "inside a store transaction and were repeated: %d)\n",
+      tally.text().c_str(), stopped_holding_the_lock);
   EXPECT_EQ(tally.succeeded, rounds);
 }
 
