@@ -27,8 +27,8 @@ class InProcessExecutor : public Executor {
   Outcome adopt_or_run(const Job& job, const AttemptFiles& files, std::ofstream& log,
                        const std::atomic<bool>& cancel, const ProgressSink& progress);
   /// One simulation of the scene, its result written to result.h5 and result.xdmf.
-  Outcome simulate_job(const Job& job, const AttemptFiles& files, const model::Model& model, std::ofstream& log,
-                       const std::atomic<bool>& cancel, const ProgressSink& progress);
+  Outcome simulate_job(const Job& job, const AttemptFiles& files, const model::Model& model,
+                       std::ofstream& log, const std::atomic<bool>& cancel, const ProgressSink& progress);
 
   JobFiles files_;
   const Clock& clock_;

@@ -33,7 +33,9 @@ std::vector<int> attempt_numbers(const fs::path& job_dir) {
     const std::string name = entry.path().filename().string();
     if (name.rfind(attempt_prefix, 0) != 0) continue;
     const std::string digits = name.substr(std::string(attempt_prefix).size());
-    if (digits.empty() || digits.size() > 9 || !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) continue;
+    if (digits.empty() || digits.size() > 9 ||
+        !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      continue;
     numbers.push_back(std::stoi(digits));
   }
   std::sort(numbers.begin(), numbers.end());
@@ -63,7 +65,8 @@ nlohmann::json outcome_json(const Outcome& outcome) {
   return {{"status", to_string(outcome.status)},
           {"summary", outcome.summary ? *outcome.summary : nlohmann::json(nullptr)},
           {"error", outcome.error ? nlohmann::json(*outcome.error) : nlohmann::json(nullptr)},
-          {"result_attempt", outcome.result_attempt ? nlohmann::json(*outcome.result_attempt) : nlohmann::json(nullptr)}};
+          {"result_attempt",
+           outcome.result_attempt ? nlohmann::json(*outcome.result_attempt) : nlohmann::json(nullptr)}};
 }
 
 Outcome outcome_from_json(const nlohmann::json& j) {
@@ -157,7 +160,8 @@ AttemptFiles JobFiles::prepare_attempt(const JobId& id, int attempt_number) cons
   fs::create_directories(files.dir());
   files.discard_partial();
   std::error_code ignored;
-  for (const fs::path& left : {files.result(), files.xdmf(), files.xdmf_mesh(), files.study(), files.outcome_file()})
+  for (const fs::path& left :
+       {files.result(), files.xdmf(), files.xdmf_mesh(), files.study(), files.outcome_file()})
     fs::remove(left, ignored);
   fs::remove(files.dir() / partial_series_file, ignored);
   if (!output::CheckpointStore(files.checkpoint()).exists()) seed_checkpoint(id, attempt_number, files);

@@ -372,43 +372,46 @@ std::optional<Job> PgStore::claim(const std::string& worker, Millis lease) {
 
 Lease PgStore::renew(const Claim& claim, Millis lease) {
   auto c = impl_->borrow();
-  Result r = c->exec("UPDATE stoss_jobs SET lease_expires_ms = $4::bigint" + held_by_claim +
-                         " RETURNING cancel_requested",
-                     claim_params(claim, {integer(impl_->clock.now() + lease)}));
+  Result r = c->exec(
+      "UPDATE stoss_jobs SET lease_expires_ms = $4::bigint" + held_by_claim + " RETURNING cancel_requested",
+      claim_params(claim, {integer(impl_->clock.now() + lease)}));
   if (r.rows() == 0) return Lease::lost;
   return r.boolean(0, 0) ? Lease::cancel_requested : Lease::held;
 }
 
 bool PgStore::progress(const Claim& claim, const Progress& p) {
   auto c = impl_->borrow();
-  return c->exec("UPDATE stoss_jobs SET progress_step = $4::int, progress_steps = $5::int,"
-                 " progress_time = $6::double precision, progress_end = $7::double precision,"
-                 " progress_eta = $8::double precision" +
-                     held_by_claim,
-                 claim_params(claim, {integer(p.step), integer(p.steps), pg::number(p.time), pg::number(p.end),
-                                      p.eta_seconds ? Param(pg::number(*p.eta_seconds)) : std::nullopt}))
+  return c->exec(
+              "UPDATE stoss_jobs SET progress_step = $4::int, progress_steps = $5::int,"
+              " progress_time = $6::double precision, progress_end = $7::double precision,"
+              " progress_eta = $8::double precision" +
+                  held_by_claim,
+              claim_params(claim, {integer(p.step), integer(p.steps), pg::number(p.time), pg::number(p.end),
+                                   p.eta_seconds ? Param(pg::number(*p.eta_seconds)) : std::nullopt}))
              .changed() == 1;
 }
 
 bool PgStore::finish(const Claim& claim, const Outcome& outcome) {
   auto c = impl_->borrow();
-  return c->exec("UPDATE stoss_jobs SET status = $4, summary = $5, error = $6, finished_ms = $7::bigint,"
-                 " lease_expires_ms = NULL, progress_eta = NULL, result_attempt = $8::int" +
-                     held_by_claim,
-                 claim_params(claim, {to_string(outcome.status), optional_json(outcome.summary), outcome.error,
-                                      integer(impl_->clock.now()),
-                                      integer(outcome.result_attempt.value_or(claim.attempt))}))
+  return c->exec(
+              "UPDATE stoss_jobs SET status = $4, summary = $5, error = $6, finished_ms = $7::bigint,"
+              " lease_expires_ms = NULL, progress_eta = NULL, result_attempt = $8::int" +
+                  held_by_claim,
+              claim_params(claim, {to_string(outcome.status), optional_json(outcome.summary), outcome.error,
+                                   integer(impl_->clock.now()),
+                                   integer(outcome.result_attempt.value_or(claim.attempt))}))
              .changed() == 1;
 }
 
 bool PgStore::release(const Claim& claim) {
   auto c = impl_->borrow();
   Transaction tx(*c);
-  const bool held = c->exec("UPDATE stoss_jobs SET status = 'queued', worker = NULL, lease_expires_ms = NULL,"
-                            " started_ms = NULL, attempt = attempt - 1, progress_step = 0, progress_time = 0,"
-                            " progress_eta = NULL" +
-                                held_by_claim,
-                            claim_params(claim))
+  const bool held = c->exec(
+                         "UPDATE stoss_jobs SET status = 'queued', worker = NULL, lease_expires_ms = NULL,"
+                         " started_ms = NULL, attempt = attempt - 1, progress_step = 0, progress_time = 0,"
+                         " progress_eta = NULL" +
+                             held_by_claim,
+                         claim_params(claim))
                         .changed() == 1;
   if (held) c->exec("SELECT pg_notify($1, '')", {text(channel)});
   tx.commit();

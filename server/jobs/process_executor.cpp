@@ -169,8 +169,8 @@ Outcome ProcessExecutor::supervise(const Job& job, const std::atomic<bool>& canc
   }
   const int read_end = pipe_fds[0];
 
-  std::vector<std::string> args = {binary_.string(), "run-job", data_dir_.string(), job.id.str(),
-                                   "--attempt", std::to_string(job.attempt), "--parent", std::to_string(getpid())};
+  std::vector<std::string> args = {binary_.string(), "run-job", data_dir_.string(), job.id.str()};
+  args.insert(args.end(), {"--attempt", std::to_string(job.attempt), "--parent", std::to_string(getpid())});
   if (limits_.memory > 0) args.insert(args.end(), {"--memory", std::to_string(limits_.memory)});
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
@@ -287,8 +287,9 @@ int run_job_command(const std::vector<std::string>& args) {
   }
   const auto id = JobId::parse(id_text);
   if (data_dir.empty() || !id || attempt < 1) {
-    std::fprintf(stderr,
-                 "usage: stoss run-job DATA_DIR JOB_ID --attempt N [--memory BYTES] [--parent PID] (internal)\n");
+    std::fprintf(
+        stderr,
+        "usage: stoss run-job DATA_DIR JOB_ID --attempt N [--memory BYTES] [--parent PID] (internal)\n");
     return 2;
   }
   // Die with the server: a job whose server is gone is rerun by another one after its lease expires.
@@ -316,7 +317,8 @@ int run_job_command(const std::vector<std::string>& args) {
   Outcome outcome;
   bool recorded = false;  // the executor wrote outcome.json itself
   try {
-    const Job job = job_from_request(nlohmann::json::parse(read_text(attempt_files.dir() / job_request_file)));
+    const Job job =
+        job_from_request(nlohmann::json::parse(read_text(attempt_files.dir() / job_request_file)));
     SystemClock clock;
     InProcessExecutor executor(files, clock);
     ProgressSink report = [](const Progress& p) {

@@ -1,10 +1,11 @@
 #pragma once
 /// @file ProcessExecutor: every job in its own process. The worker thread spawns `stoss run-job DATA ID
 /// --attempt N` (the same binary), which runs the attempt with an InProcessExecutor and writes what a job
-/// writes (log, result, study table) into the attempt's folder, DIR/jobs/<id>/attempt-<n>/; the parent relays its progress (JSON lines on
-/// fd 3) to the store, stops it on cancel (SIGTERM: it stops within a step and reports canceled), kills it
-/// past the wall-time limit, and reads its outcome (outcome.json). A job process that dies (a signal, a
-/// limit) fails that job alone, with the reason: the server, and every other job, go on.
+/// writes (log, result, study table) into the attempt's folder, DIR/jobs/<id>/attempt-<n>/; the parent relays
+/// its progress (JSON lines on fd 3) to the store, stops it on cancel (SIGTERM: it stops within a step and
+/// reports canceled), kills it past the wall-time limit, and reads its outcome (outcome.json). A job process
+/// that dies (a signal, a limit) fails that job alone, with the reason: the server, and every other job, go
+/// on.
 
 #include <cstddef>
 #include <filesystem>

@@ -332,11 +332,18 @@ bool SqliteStore::progress(const Claim& claim, const Progress& p) {
   std::lock_guard write(impl_->write_mutex);
   auto c = impl_->borrow();
   Transaction tx(*c);
-  Statement s(*c,
-              "UPDATE jobs SET progress_step = ?4, progress_steps = ?5, progress_time = ?6, progress_end = ?7,"
-              " progress_eta = ?8" +
-                  held_by_claim);
-  bind_claim(s, claim).bind(4, p.step).bind(5, p.steps).bind(6, p.time).bind(7, p.end).bind(8, p.eta_seconds).run();
+  Statement s(
+      *c,
+      "UPDATE jobs SET progress_step = ?4, progress_steps = ?5, progress_time = ?6, progress_end = ?7,"
+      " progress_eta = ?8" +
+          held_by_claim);
+  bind_claim(s, claim)
+      .bind(4, p.step)
+      .bind(5, p.steps)
+      .bind(6, p.time)
+      .bind(7, p.end)
+      .bind(8, p.eta_seconds)
+      .run();
   const bool held = c->changes() == 1;
   tx.commit();
   return held;
@@ -346,10 +353,11 @@ bool SqliteStore::finish(const Claim& claim, const Outcome& outcome) {
   std::lock_guard write(impl_->write_mutex);
   auto c = impl_->borrow();
   Transaction tx(*c);
-  Statement s(*c,
-              "UPDATE jobs SET status = ?4, summary = ?5, error = ?6, finished_ms = ?7, lease_expires_ms = NULL,"
-              " progress_eta = NULL, result_attempt = ?8" +
-                  held_by_claim);
+  Statement s(
+      *c,
+      "UPDATE jobs SET status = ?4, summary = ?5, error = ?6, finished_ms = ?7, lease_expires_ms = NULL,"
+      " progress_eta = NULL, result_attempt = ?8" +
+          held_by_claim);
   bind_claim(s, claim)
       .bind(4, to_string(outcome.status))
       .bind(5, outcome.summary ? std::optional(outcome.summary->dump()) : std::nullopt)

@@ -151,7 +151,8 @@ class JobStore {
 
   /// Cancels a queued job at once; flags a running one for its worker.
   virtual CancelResult request_cancel(const JobId& id) = 0;
-  /// The claims of running jobs whose lease ended before `now` (the rescuer adopts those whose run completed).
+  /// The claims of running jobs whose lease ended before `now` (the rescuer adopts those whose run
+  /// completed).
   virtual std::vector<Claim> expired(Millis now) = 0;
   /// Running jobs whose lease ended before `now`: requeued while attempt < max_attempts,
   /// otherwise failed with the reason; canceled if cancel had been requested.

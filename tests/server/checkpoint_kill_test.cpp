@@ -204,7 +204,8 @@ TEST(KillNine, RunsKilledAtRandomStepsResumeFromTheirCheckpointsAndEndAsUncrashe
     std::vector<pid_t> job_processes;
     for (const auto& id : unfinished()) {
       const int attempt = job(c, id)["attempt"];
-      std::ifstream in(data / "jobs" / id / ("attempt-" + std::to_string(attempt)) / server::jobs::job_pid_file);
+      std::ifstream in(data / "jobs" / id / ("attempt-" + std::to_string(attempt)) /
+                       server::jobs::job_pid_file);
       pid_t pid = -1;
       if (in >> pid && pid > 0 && ::kill(pid, 0) == 0) job_processes.push_back(pid);
     }

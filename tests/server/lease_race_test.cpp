@@ -5,7 +5,8 @@
 // a store transaction fenced by its attempt number. The system shall, in ten rounds of each reproducer,
 // run every accepted job to success exactly once, with the series of a run that never lost its lease; a run
 // that completed but could not be reported shall be adopted rather than run again. How each round's
-// result came to be published is printed (docs/measurements.md, "Hardening numbers").
+// result came to be published is printed (docs/measurements.md, "Hardening numbers"). The attempt folders
+// themselves (checkpoint seeding, what is served, what a succeeded attempt prunes) are checked in process.
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -14,6 +15,7 @@
 #include <thread>
 
 #include "core/output/result_reader.hpp"
+#include "server/jobs/job_files.hpp"
 #include "tests/server/live_server.hpp"
 #include "tests/server/pg_cluster.hpp"
 
@@ -25,7 +27,8 @@ using namespace std::chrono_literals;
 
 constexpr int rounds = 10;
 /// A lease of 0.8 s renewed every 0.2 s: the outage and the stop below outlast it several times over.
-const std::vector<std::string> short_lease = {"--workers", "1", "--lease-seconds", "0.8", "--renew-seconds", "0.2"};
+const std::vector<std::string> short_lease = {"--workers",       "1",  "--lease-seconds", "0.8",
+                                              "--renew-seconds", "0.2"};
 
 /// About a second of steps on a quiet machine, a checkpoint every 100 steps: a lease that lapses mid-run
 /// leaves one for the next attempt to resume from.
@@ -73,10 +76,10 @@ struct Tally {
   int resumed = 0;        ///< attempt 2 ran, from attempt 1's last checkpoint
   int rerun = 0;          ///< attempt 2 ran from step 0
   std::string text() const {
-    return std::to_string(succeeded) + " of " + std::to_string(rounds) + " succeeded once; published: attempt 1's run " +
-           std::to_string(first_attempt) + ", adopted by attempt 2 " + std::to_string(adopted) +
-           ", attempt 2 resumed from a checkpoint " + std::to_string(resumed) + ", attempt 2 from step 0 " +
-           std::to_string(rerun);
+    return std::to_string(succeeded) + " of " + std::to_string(rounds) +
+           " succeeded once; published: attempt 1's run " + std::to_string(first_attempt) +
+           ", adopted by attempt 2 " + std::to_string(adopted) + ", attempt 2 resumed from a checkpoint " +
+           std::to_string(resumed) + ", attempt 2 from step 0 " + std::to_string(rerun);
   }
 };
 
@@ -98,12 +101,16 @@ void check_round(httplib::Client& c, const std::string& id, const fs::path& data
     EXPECT_EQ(first.rfind("attempt " + std::to_string(k) + " started ", 0), 0u) << first;
   }
   EXPECT_EQ(first_difference(series_of(download_result(c, id, tmp)), reference), "")
-      << "job " << id << ", attempt " << attempts << "\n" << log;
-  if (attempts == 1) ++tally.first_attempt;
-  else if (log.find("its result is adopted") != std::string::npos) ++tally.adopted;
-  else if (log.find("resumed from step") != std::string::npos) ++tally.resumed;
-  else ++tally.rerun;
-
+      << "job " << id << ", attempt " << attempts << "\n"
+      << log;
+  if (attempts == 1)
+    ++tally.first_attempt;
+  else if (log.find("its result is adopted") != std::string::npos)
+    ++tally.adopted;
+  else if (log.find("resumed from step") != std::string::npos)
+    ++tally.resumed;
+  else
+    ++tally.rerun;
 }
 
 /// The pid in the log's first attempt line, "attempt 1 started … by host:pid:suffix/index".
@@ -118,12 +125,89 @@ bool computing(httplib::Client& c, const std::string& id) {
   return j.value("status", "") == "running" && j["progress"].value("step", 0) >= 1;
 }
 
+std::string text_of(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  std::ofstream(path) << text;
+}
+
+// A new attempt starts from a copy of the newest earlier checkpoint, in its own folder: what the old attempt
+// does to its files afterwards does not reach the copy.
+TEST(AttemptFolders, ANewAttemptStartsFromACopyOfTheNewestEarlierCheckpoint) {
+  TempDir tmp;
+  const server::jobs::JobFiles files(tmp.path());
+  const auto id = server::jobs::JobId::random();
+  write_text(files.attempt(id, 1).checkpoint() / "state.h5", "state of attempt 1");
+  write_text(files.attempt(id, 1).checkpoint() / "frame_0.h5", "frame 0 of attempt 1");
+  const auto second = files.prepare_attempt(id, 2);
+  EXPECT_EQ(text_of(second.checkpoint() / "state.h5"), "state of attempt 1");
+  EXPECT_EQ(text_of(second.checkpoint() / "frame_0.h5"), "frame 0 of attempt 1");
+  write_text(files.attempt(id, 1).checkpoint() / "frame_0.h5", "rewritten by attempt 1, its lease lost");
+  EXPECT_EQ(text_of(second.checkpoint() / "frame_0.h5"), "frame 0 of attempt 1");
+  write_text(second.checkpoint() / "state.h5", "state of attempt 2");
+  fs::remove(second.checkpoint() / "frame_0.h5");
+  const auto third = files.prepare_attempt(id, 3);
+  EXPECT_EQ(text_of(third.checkpoint() / "state.h5"), "state of attempt 2") << "the newest one";
+  EXPECT_FALSE(fs::exists(third.checkpoint() / "frame_0.h5"));
+  EXPECT_FALSE(fs::exists(third.checkpoint().string() + ".seed"));
+}
+
+// The routes serve the published attempt's folder, the latest attempt's while none is published, the job's
+// folder for a job from before attempts had folders; the log is every attempt's, in attempt order.
+TEST(AttemptFolders, TheServedFolderIsThePublishedAttemptsAndTheLogIsEveryAttemptsInOrder) {
+  TempDir tmp;
+  const server::jobs::JobFiles files(tmp.path());
+  server::jobs::Job job;
+  job.attempt = 10;
+  for (int k : {1, 2, 9, 10})
+    write_text(files.attempt(job.id, k).log(), "attempt " + std::to_string(k) + "\n");
+  EXPECT_EQ(files.read_log(job.id), "attempt 1\nattempt 2\nattempt 9\nattempt 10\n");
+  EXPECT_EQ(files.served(job).dir(), files.attempt(job.id, 10).dir());
+  job.result_attempt = 9;
+  EXPECT_EQ(files.served(job).result(), files.dir(job.id) / "attempt-9" / "result.h5");
+  server::jobs::Job legacy;
+  legacy.attempt = 1;
+  legacy.status = server::jobs::Status::succeeded;
+  write_text(files.dir(legacy.id) / "log.txt", "from before\n");
+  EXPECT_EQ(files.served(legacy).result(), files.dir(legacy.id) / "result.h5");
+  EXPECT_EQ(files.read_log(legacy.id), "from before\n");
+}
+
+// Once an attempt succeeded, the checkpoints and partial files of it and the attempts before it go; logs,
+// outcomes and complete results stay, and later attempts' files are not touched.
+TEST(AttemptFolders, ASucceededAttemptPrunesOnlyCheckpointsAndPartialFilesUpToItself) {
+  TempDir tmp;
+  const server::jobs::JobFiles files(tmp.path());
+  const auto id = server::jobs::JobId::random();
+  for (int k : {1, 2, 3}) {
+    const auto attempt = files.attempt(id, k);
+    write_text(attempt.checkpoint() / "state.h5", "checkpoint");
+    write_text(attempt.dir() / output::partial_file_name, "partial");
+    write_text(attempt.log(), "log");
+  }
+  write_text(files.attempt(id, 1).result(), "complete");
+  files.prune_through(id, 2);
+  for (int k : {1, 2}) {
+    EXPECT_FALSE(fs::exists(files.attempt(id, k).checkpoint())) << k;
+    EXPECT_FALSE(fs::exists(files.attempt(id, k).dir() / output::partial_file_name)) << k;
+    EXPECT_TRUE(fs::exists(files.attempt(id, k).log())) << k;
+  }
+  EXPECT_TRUE(fs::exists(files.attempt(id, 1).result()));
+  EXPECT_TRUE(fs::exists(files.attempt(id, 3).checkpoint() / "state.h5"));
+  EXPECT_TRUE(fs::exists(files.attempt(id, 3).dir() / output::partial_file_name));
+}
+
 TEST(LeaseRace, PostgresqlStoppedPastTheLeaseWhileASecondWorkerIdlesLosesNoJob) {
   PgCluster cluster;
   const std::string url = cluster.url(cluster.create_database());
   TempDir tmp;
   const fs::path data = tmp.path() / "data";
-  LiveServer api(data, {"--store", url, "--workers", "0", "--lease-seconds", "0.8", "--renew-seconds", "0.2"});
+  LiveServer api(data,
+                 {"--store", url, "--workers", "0", "--lease-seconds", "0.8", "--renew-seconds", "0.2"});
   LiveWorker first(url, data, short_lease), second(url, data, short_lease);
   auto c = api.client();
   const std::string uncrashed = body_json(submit(c, race_scene()))["id"];
@@ -140,7 +224,8 @@ TEST(LeaseRace, PostgresqlStoppedPastTheLeaseWhileASecondWorkerIdlesLosesNoJob) 
     cluster.start();
     check_round(c, id, data, tmp.path(), reference, tally);
   }
-  std::printf("lease race, PostgreSQL stopped for 1.5 s (a 0.8 s lease), 10 rounds: %s\n", tally.text().c_str());
+  std::printf("lease race, PostgreSQL stopped for 1.5 s (a 0.8 s lease), 10 rounds: %s\n",
+              tally.text().c_str());
   EXPECT_EQ(tally.succeeded, rounds);
 }
 
@@ -188,7 +273,8 @@ TEST(LeaseRace, AServeStoppedPastItsLeaseBesideASecondServeOnTheSameDataLosesNoJ
     EXPECT_TRUE(a.alive() && b.alive());
   }
   std::printf(
-      "lease race, a serve SIGSTOPped 1 s past its rescue (0.8 s lease), SQLite, 10 rounds: %s (stops that landed "
+      "lease race, a serve SIGSTOPped 1 s past its rescue (0.8 s lease), SQLite, 10 rounds: %s (stops that "
+      "landed "
       "inside a store transaction and were repeated: %d)\n",
       tally.text().c_str(), stopped_holding_the_lock);
   EXPECT_EQ(tally.succeeded, rounds);
