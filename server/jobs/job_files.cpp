@@ -188,6 +188,7 @@ void JobFiles::seed_checkpoint(const JobId& id, int attempt_number, const Attemp
         if (name.extension() == ".h5" && name != from.state_file().filename())
           copy_durably(entry.path(), seed / name);
       }
+      fs::remove_all(into.checkpoint());  // frames without a state.h5 (a released attempt's): none resumable
       rename_durably(seed, into.checkpoint());
       return;
     } catch (const std::exception&) {  // the source went away meanwhile: try an older one, else start over
