@@ -277,7 +277,7 @@ void stream_file(const Request& req, Response& res, const std::filesystem::path&
 void get_result(App& app, const Request& req, Response& res) {
   const jobs::Job job = find_job(app, req);
   require_result_file(job);
-  const auto path = app.files.result(job.id);
+  const auto path = app.files.served(job).result();
   std::error_code error;
   const auto size = std::filesystem::file_size(path, error);
   if (error)
@@ -296,10 +296,10 @@ void get_result(App& app, const Request& req, Response& res) {
 
 /// One of a succeeded job's XDMF sidecars, `path` of its directory, as an attachment named by the file.
 void send_xdmf(App& app, const Request& req, Response& res,
-               std::filesystem::path (jobs::JobFiles::*path)(const jobs::JobId&) const) {
+               std::filesystem::path (jobs::AttemptFiles::*path)() const) {
   const jobs::Job job = find_job(app, req);
   require_result_file(job);
-  const std::filesystem::path file = (app.files.*path)(job.id);
+  const std::filesystem::path file = (app.files.served(job).*path)();
   auto text = read_file(file);
   if (!text)
     fail(500, "missing-result", "Result missing",
@@ -309,11 +309,11 @@ void send_xdmf(App& app, const Request& req, Response& res,
 }
 
 void get_result_xdmf(App& app, const Request& req, Response& res) {
-  send_xdmf(app, req, res, &jobs::JobFiles::xdmf);
+  send_xdmf(app, req, res, &jobs::AttemptFiles::xdmf);
 }
 
 void get_result_mesh_xdmf(App& app, const Request& req, Response& res) {
-  send_xdmf(app, req, res, &jobs::JobFiles::xdmf_mesh);
+  send_xdmf(app, req, res, &jobs::AttemptFiles::xdmf_mesh);
 }
 
 /// The `format` query parameter: `allowed[0]` when absent, 400 when not one of `allowed`.
@@ -340,7 +340,7 @@ void get_series(App& app, const Request& req, Response& res) {
   const jobs::Job job = find_job(app, req);
   if (job.kind == jobs::Kind::simulation && job.status != jobs::Status::succeeded) {
     // Running, failed or canceled: the series up to the last completed step, marked completed: false.
-    const auto partial = app.files.dir(job.id) / jobs::partial_series_file;
+    const auto partial = app.files.served(job).dir() / jobs::partial_series_file;
     if (format == "csv") {
       if (auto csv = jobs::partial_series_csv(partial, since)) {
         res.set_header("Stoss-Completed", "false");
@@ -351,7 +351,7 @@ void get_series(App& app, const Request& req, Response& res) {
     }
   }
   require_result_file(job);
-  const auto path = app.files.result(job.id);
+  const auto path = app.files.served(job).result();
   if (format == "csv") return res.set_content(jobs::csv_rows_after(output::series_csv(path), since), "text/csv");
   send_json(res, 200, jobs::series_after(output::series_json(path), since));
 }
@@ -365,7 +365,7 @@ void get_study(App& app, const Request& req, Response& res) {
          "job " + job.id.str() +
              " is a simulation job; only a study job (POST /v1/studies) has a study table");
   require_succeeded(job, "study table");
-  const auto text = read_file(app.files.study(job.id));
+  const auto text = read_file(app.files.served(job).study());
   if (!text)
     fail(500, "missing-result", "Result missing",
          "job " + job.id.str() + " succeeded but its study table is gone");
@@ -377,7 +377,7 @@ void get_study(App& app, const Request& req, Response& res) {
 
 void get_log(App& app, const Request& req, Response& res) {
   const jobs::Job job = find_job(app, req);
-  res.set_content(read_file(app.files.log(job.id)).value_or(""), "text/plain; charset=utf-8");
+  res.set_content(app.files.read_log(job.id), "text/plain; charset=utf-8");
 }
 
 /// The format of a posted mesh: the `format` parameter, else what the bytes look like.

@@ -1,7 +1,9 @@
 #pragma once
-/// @file InProcessExecutor: runs a job in the calling thread (a worker of the pool), writing its log to
-/// log.txt: a simulation (stoss::simulate, the result into the job's directory) or a study (the sweep of
-/// study_job.hpp, the table into study.json).
+/// @file InProcessExecutor: runs one attempt of a job in the calling thread, writing only in the attempt's
+/// folder (JobFiles::prepare_attempt): its log, a simulation's result (stoss::simulate, resumed from the
+/// checkpoint seeded from the attempt before) or a study's table (study_job.hpp), and last outcome.json.
+/// When an earlier attempt had completed its run but lost its lease before reporting it, that run's
+/// outcome is adopted instead of running again.
 
 #include <fstream>
 
@@ -21,9 +23,12 @@ class InProcessExecutor : public Executor {
   Outcome run(const Job& job, const std::atomic<bool>& cancel, const ProgressSink& progress) override;
 
  private:
-  /// One simulation of the scene, its result written to result.h5 and result.xdmf.
-  Outcome simulate_job(const Job& job, const model::Model& model, std::ofstream& log,
+  /// An earlier attempt's completed run (result_attempt set), else a run of this attempt.
+  Outcome adopt_or_run(const Job& job, const AttemptFiles& files, std::ofstream& log,
                        const std::atomic<bool>& cancel, const ProgressSink& progress);
+  /// One simulation of the scene, its result written to result.h5 and result.xdmf.
+  Outcome simulate_job(const Job& job, const AttemptFiles& files, const model::Model& model,
+                       std::ofstream& log, const std::atomic<bool>& cancel, const ProgressSink& progress);
 
   JobFiles files_;
   const Clock& clock_;

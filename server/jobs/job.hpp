@@ -67,6 +67,9 @@ struct Job {
   Progress progress;
   std::optional<nlohmann::json> summary;  ///< set when the run ended (also for canceled runs)
   std::optional<std::string> error;       ///< set when failed
+  /// Set when the run ended: the attempt whose folder (DIR/jobs/<id>/attempt-<n>/) holds the job's files,
+  /// the result GET /v1/jobs/{id}/result serves. Unset for jobs that ended before attempts had folders.
+  std::optional<int> result_attempt;
   /// A study's parameters as accepted (steps, schemes, reference_step, defaults filled in); unset for a
   /// simulation.
   std::optional<nlohmann::json> study;

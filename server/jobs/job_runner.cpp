@@ -38,7 +38,7 @@ JobRunner::JobRunner(const JobRunnerOptions& options, const Clock& clock)
       pool_(*store_, executor_, pool_options_for(options.store, options.pool)),
       subscription_(store_->subscribe(
           {[this] { pool_.notify(); }, [this](const JobId& id) { pool_.cancel(id); }})),
-      rescuer_(*store_, clock, options.max_attempts),
+      rescuer_(*store_, clock, options.max_attempts, files_),
       rescue_every_(options.pool.renew_every) {}
 
 void JobRunner::start() {

@@ -55,6 +55,10 @@ const std::vector<std::string> migrations = {
     CREATE INDEX stoss_jobs_queued ON stoss_jobs (seq) WHERE status = 'queued';
     CREATE INDEX stoss_jobs_by_lease ON stoss_jobs (lease_expires_ms) WHERE status = 'running';
     )sql",
+    // 2: each attempt writes in a folder of its own; a finished job names the one it published.
+    R"sql(
+    ALTER TABLE stoss_jobs ADD COLUMN result_attempt INTEGER;
+    )sql",
 };
 
 /// Advisory lock keys (pg_advisory_xact_lock): one migration at a time; one submission at a time, so that
@@ -66,7 +70,7 @@ constexpr const char* create_lock = "SELECT pg_advisory_xact_lock(7461636800002)
 const std::string job_columns =
     "seq, id, status, created_ms, started_ms, finished_ms, attempt, worker, lease_expires_ms, "
     "cancel_requested, idempotency_key, body_hash, effects, progress_step, progress_steps, progress_time, "
-    "progress_end, progress_eta, summary, error, kind, study, name";
+    "progress_end, progress_eta, summary, error, kind, study, name, result_attempt";
 
 Param text(const std::string& s) {
   return s;
@@ -113,8 +117,20 @@ Job read_job(const Result& r, int row, bool with_scene = false) {
   job.kind = *kind;
   job.study = json_column(r, row, 21);
   job.name = r.optional_text(row, 22);
-  if (with_scene) job.scene = nlohmann::json::parse(r.text(row, 23));
+  if (auto attempt = r.optional_int64(row, 23)) job.result_attempt = static_cast<int>(*attempt);
+  if (with_scene) job.scene = nlohmann::json::parse(r.text(row, 24));
   return job;
+}
+
+/// The WHERE clause of a call naming a claim, its parameters $1 (id), $2 (worker) and $3 (attempt).
+const std::string held_by_claim =
+    " WHERE id = $1 AND worker = $2 AND attempt = $3::int AND status = 'running'";
+
+/// The parameters of held_by_claim, then `more` as $4, $5, ...
+std::vector<Param> claim_params(const Claim& claim, std::vector<Param> more = {}) {
+  std::vector<Param> params = {claim.id.str(), claim.worker, integer(claim.attempt)};
+  params.insert(params.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
+  return params;
 }
 
 std::optional<Job> select_job(Connection& c, const JobId& id, const std::string& lock = "") {
@@ -354,46 +370,48 @@ std::optional<Job> PgStore::claim(const std::string& worker, Millis lease) {
   return read_job(r, 0, true);
 }
 
-Lease PgStore::renew(const JobId& id, const std::string& worker, Millis lease) {
+Lease PgStore::renew(const Claim& claim, Millis lease) {
   auto c = impl_->borrow();
   Result r = c->exec(
-      "UPDATE stoss_jobs SET lease_expires_ms = $1 WHERE id = $2 AND worker = $3 AND status = 'running'"
-      " RETURNING cancel_requested",
-      {integer(impl_->clock.now() + lease), id.str(), worker});
+      "UPDATE stoss_jobs SET lease_expires_ms = $4::bigint" + held_by_claim + " RETURNING cancel_requested",
+      claim_params(claim, {integer(impl_->clock.now() + lease)}));
   if (r.rows() == 0) return Lease::lost;
   return r.boolean(0, 0) ? Lease::cancel_requested : Lease::held;
 }
 
-bool PgStore::progress(const JobId& id, const std::string& worker, const Progress& p) {
+bool PgStore::progress(const Claim& claim, const Progress& p) {
   auto c = impl_->borrow();
   return c->exec(
-              "UPDATE stoss_jobs SET progress_step = $1, progress_steps = $2, progress_time = $3,"
-              " progress_end = $4, progress_eta = $5 WHERE id = $6 AND worker = $7 AND status = 'running'",
-              {integer(p.step), integer(p.steps), pg::number(p.time), pg::number(p.end),
-               p.eta_seconds ? Param(pg::number(*p.eta_seconds)) : std::nullopt, id.str(), worker})
+              "UPDATE stoss_jobs SET progress_step = $4::int, progress_steps = $5::int,"
+              " progress_time = $6::double precision, progress_end = $7::double precision,"
+              " progress_eta = $8::double precision" +
+                  held_by_claim,
+              claim_params(claim, {integer(p.step), integer(p.steps), pg::number(p.time), pg::number(p.end),
+                                   p.eta_seconds ? Param(pg::number(*p.eta_seconds)) : std::nullopt}))
              .changed() == 1;
 }
 
-bool PgStore::finish(const JobId& id, const std::string& worker, const Outcome& outcome) {
+bool PgStore::finish(const Claim& claim, const Outcome& outcome) {
   auto c = impl_->borrow();
   return c->exec(
-              "UPDATE stoss_jobs SET status = $1, summary = $2, error = $3, finished_ms = $4,"
-              " lease_expires_ms = NULL, progress_eta = NULL WHERE id = $5 AND worker = $6 AND status = "
-              "'running'",
-              {to_string(outcome.status), optional_json(outcome.summary), outcome.error,
-               integer(impl_->clock.now()), id.str(), worker})
+              "UPDATE stoss_jobs SET status = $4, summary = $5, error = $6, finished_ms = $7::bigint,"
+              " lease_expires_ms = NULL, progress_eta = NULL, result_attempt = $8::int" +
+                  held_by_claim,
+              claim_params(claim, {to_string(outcome.status), optional_json(outcome.summary), outcome.error,
+                                   integer(impl_->clock.now()),
+                                   integer(outcome.result_attempt.value_or(claim.attempt))}))
              .changed() == 1;
 }
 
-bool PgStore::release(const JobId& id, const std::string& worker) {
+bool PgStore::release(const Claim& claim) {
   auto c = impl_->borrow();
   Transaction tx(*c);
   const bool held = c->exec(
-                         "UPDATE stoss_jobs SET status = 'queued', worker = NULL, lease_expires_ms = NULL, "
-                         "started_ms = NULL,"
-                         " attempt = attempt - 1, progress_step = 0, progress_time = 0, progress_eta = NULL"
-                         " WHERE id = $1 AND worker = $2 AND status = 'running'",
-                         {id.str(), worker})
+                         "UPDATE stoss_jobs SET status = 'queued', worker = NULL, lease_expires_ms = NULL,"
+                         " started_ms = NULL, attempt = attempt - 1, progress_step = 0, progress_time = 0,"
+                         " progress_eta = NULL" +
+                             held_by_claim,
+                         claim_params(claim))
                         .changed() == 1;
   if (held) c->exec("SELECT pg_notify($1, '')", {text(channel)});
   tx.commit();
@@ -421,6 +439,19 @@ CancelResult PgStore::request_cancel(const JobId& id) {
   job = select_job(*c, id);
   tx.commit();
   return {outcome, job};
+}
+
+std::vector<Claim> PgStore::expired(Millis now) {
+  auto c = impl_->borrow();
+  Result r = c->exec(
+      "SELECT id, coalesce(worker, ''), attempt FROM stoss_jobs WHERE status = 'running'"
+      " AND lease_expires_ms < $1::bigint",
+      {integer(now)});
+  std::vector<Claim> claims;
+  for (int row = 0; row < r.rows(); ++row)
+    if (auto id = JobId::parse(r.text(row, 0)))
+      claims.push_back({*id, r.text(row, 1), static_cast<int>(r.int64(row, 2))});
+  return claims;
 }
 
 Rescued PgStore::requeue_expired(Millis now, int max_attempts) {

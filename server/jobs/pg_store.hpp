@@ -35,11 +35,12 @@ class PgStore : public JobStore {
   std::optional<nlohmann::json> scene(const JobId& id) override;
   Page list(std::optional<Status> status, int limit, std::optional<std::int64_t> cursor) override;
   std::optional<Job> claim(const std::string& worker, Millis lease) override;
-  Lease renew(const JobId& id, const std::string& worker, Millis lease) override;
-  bool progress(const JobId& id, const std::string& worker, const Progress& p) override;
-  bool finish(const JobId& id, const std::string& worker, const Outcome& outcome) override;
-  bool release(const JobId& id, const std::string& worker) override;
+  Lease renew(const Claim& claim, Millis lease) override;
+  bool progress(const Claim& claim, const Progress& p) override;
+  bool finish(const Claim& claim, const Outcome& outcome) override;
+  bool release(const Claim& claim) override;
   CancelResult request_cancel(const JobId& id) override;
+  std::vector<Claim> expired(Millis now) override;
   Rescued requeue_expired(Millis now, int max_attempts) override;
   RemoveOutcome remove(const JobId& id) override;
   std::map<Status, std::int64_t> count_by_status() override;

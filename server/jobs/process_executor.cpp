@@ -108,22 +108,6 @@ Job job_from_request(const nlohmann::json& request) {
   return job;
 }
 
-nlohmann::json outcome_json(const Outcome& outcome) {
-  return {{"status", to_string(outcome.status)},
-          {"summary", outcome.summary ? *outcome.summary : nlohmann::json(nullptr)},
-          {"error", outcome.error ? nlohmann::json(*outcome.error) : nlohmann::json(nullptr)}};
-}
-
-Outcome outcome_from_json(const nlohmann::json& j) {
-  Outcome outcome;
-  auto status = parse_status(j.at("status").get<std::string>());
-  if (!status || !is_terminal(*status)) throw std::invalid_argument("outcome: bad status");
-  outcome.status = *status;
-  if (j.contains("summary") && !j["summary"].is_null()) outcome.summary = j["summary"];
-  if (j.contains("error") && j["error"].is_string()) outcome.error = j["error"].get<std::string>();
-  return outcome;
-}
-
 std::string signal_reason(int signal) {
   const char* abbreviation = sigabbrev_np(signal);
   return "killed by signal " + (abbreviation ? "SIG" + std::string(abbreviation) : std::to_string(signal));
@@ -151,10 +135,11 @@ Millis ProcessExecutor::wall_limit(const Job& job, Millis server_limit) {
 Outcome ProcessExecutor::failed(const Job& job, const std::string& reason) const {
   std::optional<nlohmann::json> summary;
   try {
-    files_.discard_partial(job.id);
-    append_log(files_.log(job.id), "failed: " + reason);
+    const AttemptFiles files = files_.attempt(job.id, job.attempt);  // this attempt's files only
+    files.discard_partial();
+    append_log(files.log(), "failed: " + reason);
     // The summary up to the last step the process recorded before it died.
-    if (auto series = read_partial_series(files_.dir(job.id) / partial_series_file)) summary = (*series)["summary"];
+    if (auto series = read_partial_series(files.dir() / partial_series_file)) summary = (*series)["summary"];
   } catch (...) {
   }
   return {Status::failed, summary, reason};
@@ -169,10 +154,10 @@ Outcome ProcessExecutor::run(const Job& job, const std::atomic<bool>& cancel, co
 }
 
 Outcome ProcessExecutor::supervise(const Job& job, const std::atomic<bool>& cancel, const ProgressSink& progress) {
-  const auto dir = files_.dir(job.id);
+  const auto dir = files_.attempt(job.id, job.attempt).dir();
   std::filesystem::create_directories(dir);
   std::error_code ignored;
-  std::filesystem::remove(dir / job_outcome_file, ignored);
+  std::filesystem::remove(dir / outcome_file_name, ignored);
   write_atomically(dir / job_request_file, safe_dump(job_request_json(job)));
 
   int pipe_fds[2];
@@ -184,8 +169,8 @@ Outcome ProcessExecutor::supervise(const Job& job, const std::atomic<bool>& canc
   }
   const int read_end = pipe_fds[0];
 
-  std::vector<std::string> args = {binary_.string(), "run-job", data_dir_.string(), job.id.str(),
-                                   "--parent", std::to_string(getpid())};
+  std::vector<std::string> args = {binary_.string(), "run-job", data_dir_.string(), job.id.str()};
+  args.insert(args.end(), {"--attempt", std::to_string(job.attempt), "--parent", std::to_string(getpid())});
   if (limits_.memory > 0) args.insert(args.end(), {"--memory", std::to_string(limits_.memory)});
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
@@ -280,7 +265,7 @@ Outcome ProcessExecutor::supervise(const Job& job, const std::atomic<bool>& canc
   if (WIFEXITED(status) && WEXITSTATUS(status) != 0)
     return failed(job, "the job process exited with status " + std::to_string(WEXITSTATUS(status)));
   try {
-    return outcome_from_json(nlohmann::json::parse(read_text(dir / job_outcome_file)));
+    return outcome_from_json(nlohmann::json::parse(read_text(dir / outcome_file_name)));
   } catch (const std::exception& e) {
     return failed(job, std::string("the job process left no outcome: ") + e.what());
   }
@@ -290,17 +275,21 @@ int run_job_command(const std::vector<std::string>& args) {
   std::string data_dir, id_text;
   std::size_t memory = 0;
   long parent = 0;
+  int attempt = 0;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const bool has_value = i + 1 < args.size();
     if (args[i] == "--memory" && has_value) memory = std::stoull(args[++i]);
+    else if (args[i] == "--attempt" && has_value) attempt = std::stoi(args[++i]);
     else if (args[i] == "--parent" && has_value) parent = std::stol(args[++i]);
     else if (data_dir.empty()) data_dir = args[i];
     else if (id_text.empty()) id_text = args[i];
     else return 2;
   }
   const auto id = JobId::parse(id_text);
-  if (data_dir.empty() || !id) {
-    std::fprintf(stderr, "usage: stoss run-job DATA_DIR JOB_ID [--memory BYTES] [--parent PID] (internal)\n");
+  if (data_dir.empty() || !id || attempt < 1) {
+    std::fprintf(
+        stderr,
+        "usage: stoss run-job DATA_DIR JOB_ID --attempt N [--memory BYTES] [--parent PID] (internal)\n");
     return 2;
   }
   // Die with the server: a job whose server is gone is rerun by another one after its lease expires.
@@ -324,19 +313,24 @@ int run_job_command(const std::vector<std::string>& args) {
   signal(SIGPIPE, SIG_IGN);
 
   const JobFiles files{std::filesystem::path(data_dir)};
+  const AttemptFiles attempt_files = files.attempt(*id, attempt);
   Outcome outcome;
+  bool recorded = false;  // the executor wrote outcome.json itself
   try {
-    const Job job = job_from_request(nlohmann::json::parse(read_text(files.dir(*id) / job_request_file)));
+    const Job job =
+        job_from_request(nlohmann::json::parse(read_text(attempt_files.dir() / job_request_file)));
     SystemClock clock;
     InProcessExecutor executor(files, clock);
     ProgressSink report = [](const Progress& p) {
       write_all(progress_fd, safe_dump({{"progress", to_json(p)}}) + "\n");
     };
     outcome = executor.run(job, child_cancel, report);
+    recorded = true;
     if (outcome.status == Status::failed && memory > 0 && outcome.error &&
         outcome.error->find("bad_alloc") != std::string::npos) {
       outcome.error = "exceeded memory limit " + std::to_string(memory) + " bytes (--job-memory)";
-      append_log(files.log(*id), "failed: " + *outcome.error);
+      append_log(attempt_files.log(), "failed: " + *outcome.error);
+      recorded = false;
     }
   } catch (const std::bad_alloc&) {
     outcome = {Status::failed, std::nullopt,
@@ -345,7 +339,7 @@ int run_job_command(const std::vector<std::string>& args) {
     outcome = {Status::failed, std::nullopt, std::string("cannot run the job: ") + e.what()};
   }
   try {
-    write_atomically(files.dir(*id) / job_outcome_file, safe_dump(outcome_json(outcome)));
+    if (!recorded) attempt_files.write_outcome(outcome);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "stoss run-job: %s\n", e.what());
     return 3;

@@ -1,10 +1,11 @@
 #pragma once
-/// @file ProcessExecutor: every job in its own process. The worker thread spawns `stoss run-job DATA ID`
-/// (the same binary), which runs the job with an InProcessExecutor and writes what a job writes (log,
-/// result, study table) into the job's directory as before; the parent relays its progress (JSON lines on
-/// fd 3) to the store, stops it on cancel (SIGTERM: it stops within a step and reports canceled), kills it
-/// past the wall-time limit, and reads its outcome (outcome.json). A job process that dies (a signal, a
-/// limit) fails that job alone, with the reason: the server, and every other job, go on.
+/// @file ProcessExecutor: every job in its own process. The worker thread spawns `stoss run-job DATA ID
+/// --attempt N` (the same binary), which runs the attempt with an InProcessExecutor and writes what a job
+/// writes (log, result, study table) into the attempt's folder, DIR/jobs/<id>/attempt-<n>/; the parent relays
+/// its progress (JSON lines on fd 3) to the store, stops it on cancel (SIGTERM: it stops within a step and
+/// reports canceled), kills it past the wall-time limit, and reads its outcome (outcome.json). A job process
+/// that dies (a signal, a limit) fails that job alone, with the reason: the server, and every other job, go
+/// on.
 
 #include <cstddef>
 #include <filesystem>
@@ -47,10 +48,10 @@ class ProcessExecutor : public Executor {
   ProcessLimits limits_;
 };
 
-/// Files of the protocol between the two processes, in the job's directory.
-inline constexpr const char* job_request_file = "job.json";    ///< what the child runs
-inline constexpr const char* job_outcome_file = "outcome.json";  ///< how it ended (written by the child)
-inline constexpr const char* job_pid_file = "process.pid";     ///< the child's pid while it runs
+/// Files of the protocol between the two processes, in the attempt's folder (and outcome.json,
+/// outcome_file_name, how it ended, written by the child).
+inline constexpr const char* job_request_file = "job.json";  ///< what the child runs
+inline constexpr const char* job_pid_file = "process.pid";   ///< the child's pid while it runs
 /// The child writes one JSON line per progress report to this descriptor.
 inline constexpr int progress_fd = 3;
 
@@ -58,14 +59,11 @@ inline constexpr int progress_fd = 3;
 nlohmann::json job_request_json(const Job& job);
 Job job_from_request(const nlohmann::json& request);
 
-/// An outcome as outcome.json holds it, and back.
-nlohmann::json outcome_json(const Outcome& outcome);
-Outcome outcome_from_json(const nlohmann::json& j);
-
 /// "killed by signal SIGSEGV".
 std::string signal_reason(int signal);
 
-/// `stoss run-job DATA_DIR JOB_ID [--memory BYTES] [--parent PID]`: the child side (hidden subcommand).
+/// `stoss run-job DATA_DIR JOB_ID --attempt N [--memory BYTES] [--parent PID]`: the child side (hidden
+/// subcommand).
 /// Exit 0 when it wrote an outcome (whatever the job's fate), 2 on a bad command line, 3 when it cannot.
 int run_job_command(const std::vector<std::string>& args);
 

@@ -60,13 +60,17 @@ const std::vector<std::string> migrations = {
     UPDATE jobs SET name = json_extract(scene, '$.name')
      WHERE json_valid(scene) AND json_type(scene, '$.name') = 'text';
     )sql",
+    // 5: each attempt writes in a folder of its own; a finished job names the one it published.
+    R"sql(
+    ALTER TABLE jobs ADD COLUMN result_attempt INTEGER;
+    )sql",
 };
 
 /// Every column but `scene` (scenes can be megabytes; only a worker needs one).
 const std::string job_columns =
     "seq, id, status, created_ms, started_ms, finished_ms, attempt, worker, lease_expires_ms, "
     "cancel_requested, idempotency_key, body_hash, effects, progress_step, progress_steps, progress_time, "
-    "progress_end, progress_eta, summary, error, kind, study, name";
+    "progress_end, progress_eta, summary, error, kind, study, name, result_attempt";
 
 Status status_column(const Statement& s, int col) {
   auto status = parse_status(s.text(col));
@@ -107,8 +111,17 @@ Job read_job(const Statement& s, bool with_scene = false) {
   job.kind = *kind;
   job.study = json_column(s, 21);
   job.name = s.optional_text(22);
-  if (with_scene) job.scene = nlohmann::json::parse(s.text(23));
+  if (auto attempt = s.optional_int64(23)) job.result_attempt = static_cast<int>(*attempt);
+  if (with_scene) job.scene = nlohmann::json::parse(s.text(24));
   return job;
+}
+
+/// The WHERE clause of a call naming a claim, its parameters ?1 (id), ?2 (worker) and ?3 (attempt).
+const std::string held_by_claim = " WHERE id = ?1 AND worker = ?2 AND attempt = ?3 AND status = 'running'";
+
+/// Binds a claim to ?1, ?2 and ?3 of held_by_claim.
+Statement& bind_claim(Statement& s, const Claim& claim) {
+  return s.bind(1, claim.id.str()).bind(2, claim.worker).bind(3, claim.attempt);
 }
 
 std::optional<Job> select_job(Connection& c, const JobId& id) {
@@ -302,14 +315,12 @@ std::optional<Job> SqliteStore::claim(const std::string& worker, Millis lease) {
   return job;
 }
 
-Lease SqliteStore::renew(const JobId& id, const std::string& worker, Millis lease) {
+Lease SqliteStore::renew(const Claim& claim, Millis lease) {
   std::lock_guard write(impl_->write_mutex);
   auto c = impl_->borrow();
   Transaction tx(*c);
-  Statement s(*c,
-              "UPDATE jobs SET lease_expires_ms = ?1 WHERE id = ?2 AND worker = ?3 AND status = 'running'"
-              " RETURNING cancel_requested");
-  s.bind(1, impl_->clock.now() + lease).bind(2, id.str()).bind(3, worker);
+  Statement s(*c, "UPDATE jobs SET lease_expires_ms = ?4" + held_by_claim + " RETURNING cancel_requested");
+  bind_claim(s, claim).bind(4, impl_->clock.now() + lease);
   if (!s.step()) return Lease::lost;
   const bool cancel = s.int64(0) != 0;
   s.run();
@@ -317,57 +328,57 @@ Lease SqliteStore::renew(const JobId& id, const std::string& worker, Millis leas
   return cancel ? Lease::cancel_requested : Lease::held;
 }
 
-bool SqliteStore::progress(const JobId& id, const std::string& worker, const Progress& p) {
+bool SqliteStore::progress(const Claim& claim, const Progress& p) {
   std::lock_guard write(impl_->write_mutex);
   auto c = impl_->borrow();
   Transaction tx(*c);
-  Statement(*c,
-            "UPDATE jobs SET progress_step = ?1, progress_steps = ?2, progress_time = ?3, progress_end = ?4,"
-            " progress_eta = ?5 WHERE id = ?6 AND worker = ?7 AND status = 'running'")
-      .bind(1, p.step)
-      .bind(2, p.steps)
-      .bind(3, p.time)
-      .bind(4, p.end)
-      .bind(5, p.eta_seconds)
-      .bind(6, id.str())
-      .bind(7, worker)
-      .run();
-  const bool held = c->changes() == 1;
-  tx.commit();
-  return held;
-}
-
-bool SqliteStore::finish(const JobId& id, const std::string& worker, const Outcome& outcome) {
-  std::lock_guard write(impl_->write_mutex);
-  auto c = impl_->borrow();
-  Transaction tx(*c);
-  Statement(
+  Statement s(
       *c,
-      "UPDATE jobs SET status = ?1, summary = ?2, error = ?3, finished_ms = ?4, lease_expires_ms = NULL,"
-      " progress_eta = NULL WHERE id = ?5 AND worker = ?6 AND status = 'running'")
-      .bind(1, to_string(outcome.status))
-      .bind(2, outcome.summary ? std::optional(outcome.summary->dump()) : std::nullopt)
-      .bind(3, outcome.error)
-      .bind(4, impl_->clock.now())
-      .bind(5, id.str())
-      .bind(6, worker)
+      "UPDATE jobs SET progress_step = ?4, progress_steps = ?5, progress_time = ?6, progress_end = ?7,"
+      " progress_eta = ?8" +
+          held_by_claim);
+  bind_claim(s, claim)
+      .bind(4, p.step)
+      .bind(5, p.steps)
+      .bind(6, p.time)
+      .bind(7, p.end)
+      .bind(8, p.eta_seconds)
       .run();
   const bool held = c->changes() == 1;
   tx.commit();
   return held;
 }
 
-bool SqliteStore::release(const JobId& id, const std::string& worker) {
+bool SqliteStore::finish(const Claim& claim, const Outcome& outcome) {
   std::lock_guard write(impl_->write_mutex);
   auto c = impl_->borrow();
   Transaction tx(*c);
-  Statement(*c,
-            "UPDATE jobs SET status = 'queued', worker = NULL, lease_expires_ms = NULL, started_ms = NULL,"
-            " attempt = attempt - 1, progress_step = 0, progress_time = 0, progress_eta = NULL"
-            " WHERE id = ?1 AND worker = ?2 AND status = 'running'")
-      .bind(1, id.str())
-      .bind(2, worker)
+  Statement s(
+      *c,
+      "UPDATE jobs SET status = ?4, summary = ?5, error = ?6, finished_ms = ?7, lease_expires_ms = NULL,"
+      " progress_eta = NULL, result_attempt = ?8" +
+          held_by_claim);
+  bind_claim(s, claim)
+      .bind(4, to_string(outcome.status))
+      .bind(5, outcome.summary ? std::optional(outcome.summary->dump()) : std::nullopt)
+      .bind(6, outcome.error)
+      .bind(7, impl_->clock.now())
+      .bind(8, outcome.result_attempt.value_or(claim.attempt))
       .run();
+  const bool held = c->changes() == 1;
+  tx.commit();
+  return held;
+}
+
+bool SqliteStore::release(const Claim& claim) {
+  std::lock_guard write(impl_->write_mutex);
+  auto c = impl_->borrow();
+  Transaction tx(*c);
+  Statement s(*c,
+              "UPDATE jobs SET status = 'queued', worker = NULL, lease_expires_ms = NULL, started_ms = NULL,"
+              " attempt = attempt - 1, progress_step = 0, progress_time = 0, progress_eta = NULL" +
+                  held_by_claim);
+  bind_claim(s, claim).run();
   const bool held = c->changes() == 1;
   tx.commit();
   return held;
@@ -395,6 +406,17 @@ CancelResult SqliteStore::request_cancel(const JobId& id) {
   job = select_job(*c, id);
   tx.commit();
   return {outcome, job};
+}
+
+std::vector<Claim> SqliteStore::expired(Millis now) {
+  auto c = impl_->borrow();
+  Statement s(*c, "SELECT id, worker, attempt FROM jobs WHERE status = 'running' AND lease_expires_ms < ?1");
+  s.bind(1, now);
+  std::vector<Claim> claims;
+  while (s.step())
+    if (auto id = JobId::parse(s.text(0)))
+      claims.push_back({*id, s.optional_text(1).value_or(""), static_cast<int>(s.int64(2))});
+  return claims;
 }
 
 Rescued SqliteStore::requeue_expired(Millis now, int max_attempts) {

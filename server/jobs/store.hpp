@@ -74,7 +74,24 @@ struct Outcome {
   Status status = Status::failed;  ///< succeeded, failed or canceled
   std::optional<nlohmann::json> summary;
   std::optional<std::string> error;
+  /// The attempt whose folder holds the run's files, when it is not the reporting attempt: an earlier
+  /// attempt's run that completed but could not be reported (its lease lapsed), adopted instead of rerun.
+  std::optional<int> result_attempt = std::nullopt;
 };
+
+/// One claimed attempt of a running job: the worker that holds its lease and the attempt number its claim
+/// made. A call naming a claim changes the job only while the store still names both, so an attempt that
+/// lost its lease (rescued, claimed again: a higher attempt) is fenced out, even under the same worker name.
+struct Claim {
+  JobId id;
+  std::string worker;
+  int attempt = 0;
+};
+
+/// The claim that `job`, as JobStore::claim returned it, holds.
+inline Claim claim_of(const Job& job) {
+  return {job.id, job.worker.value_or(""), job.attempt};
+}
 
 /// What a lease renewal found.
 enum class Lease {
@@ -98,10 +115,11 @@ enum class RemoveOutcome { removed, not_finished, not_found };
 
 /// What one pass of the rescuer did to running jobs whose lease had expired.
 struct Rescued {
+  int adopted = 0;   ///< the run had completed: its outcome reported for the worker that could not
   int requeued = 0;  ///< back to queued for another attempt
   int failed = 0;    ///< out of attempts
   int canceled = 0;  ///< cancel had been requested
-  int total() const { return requeued + failed + canceled; }
+  int total() const { return adopted + requeued + failed + canceled; }
 };
 
 /// The job queue's state. Every method is one transaction and safe to call from any thread.
@@ -121,17 +139,21 @@ class JobStore {
 
   /// Takes the oldest queued job: running, attempt + 1, lease until now + `lease`.
   virtual std::optional<Job> claim(const std::string& worker, Millis lease) = 0;
-  /// Extends the lease to now + `lease` if `worker` still holds it.
-  virtual Lease renew(const JobId& id, const std::string& worker, Millis lease) = 0;
+  /// Extends the lease to now + `lease` if `claim` still holds it.
+  virtual Lease renew(const Claim& claim, Millis lease) = 0;
   /// Records progress; false when the lease is lost.
-  virtual bool progress(const JobId& id, const std::string& worker, const Progress& p) = 0;
-  /// Records the end of a run; false (and no change) when the lease is lost.
-  virtual bool finish(const JobId& id, const std::string& worker, const Outcome& outcome) = 0;
+  virtual bool progress(const Claim& claim, const Progress& p) = 0;
+  /// Records the end of a run and publishes its files (Job::result_attempt: outcome.result_attempt, else the
+  /// claim's attempt), in one transaction that changes nothing (false) unless `claim` still holds the lease.
+  virtual bool finish(const Claim& claim, const Outcome& outcome) = 0;
   /// Gives a running job back to the queue without counting the attempt (graceful shutdown).
-  virtual bool release(const JobId& id, const std::string& worker) = 0;
+  virtual bool release(const Claim& claim) = 0;
 
   /// Cancels a queued job at once; flags a running one for its worker.
   virtual CancelResult request_cancel(const JobId& id) = 0;
+  /// The claims of running jobs whose lease ended before `now` (the rescuer adopts those whose run
+  /// completed).
+  virtual std::vector<Claim> expired(Millis now) = 0;
   /// Running jobs whose lease ended before `now`: requeued while attempt < max_attempts,
   /// otherwise failed with the reason; canceled if cancel had been requested.
   virtual Rescued requeue_expired(Millis now, int max_attempts) = 0;

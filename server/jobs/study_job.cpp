@@ -147,7 +147,7 @@ Outcome run_study_job(const Job& job, const model::Model& model, const StudyCont
   };
   const study::Result result = study::run(model, options);
   if (result.canceled) return canceled(sweep, context.log);
-  context.files.write_study(job.id, study::to_json(result).dump(-1, ' ', false, replace_invalid_utf8));
+  context.files.write_study(study::to_json(result).dump(-1, ' ', false, replace_invalid_utf8));
   progress.finished(model.time.end);
   context.log << "study completed: " << sweep.runs << " runs, " << sweep.failed << " failed, "
               << sweep.wall_seconds << " s\n"

@@ -33,7 +33,7 @@ study::Result study_result_from_json(const nlohmann::json& table);
 
 /// What a study run needs from its executor.
 struct StudyContext {
-  const JobFiles& files;
+  const AttemptFiles& files;  ///< of the attempt running the study
   const Clock& clock;
   Millis progress_interval;  ///< least time between two progress reports within a run
   std::ostream& log;         ///< one line per run

@@ -94,7 +94,7 @@ void WorkerPool::work(int index) {
 }
 
 void WorkerPool::run_claimed(const Job& job) {
-  auto running = std::make_shared<Running>(job.id, job.worker.value_or(""));
+  auto running = std::make_shared<Running>(claim_of(job));
   {
     std::lock_guard lock(mutex_);
     running_[job.id] = running;
@@ -102,9 +102,9 @@ void WorkerPool::run_claimed(const Job& job) {
   }
   auto progress = [this, running](const Progress& p) {
     try {
-      if (!store_.progress(running->id, running->worker, p)) running->stop(Stop::lease_lost);
+      if (!store_.progress(running->claim, p)) running->stop(Stop::lease_lost);
     } catch (const std::exception& e) {
-      warn("progress of job " + running->id.str(), e);
+      warn("progress of job " + running->claim.id.str(), e);
     }
   };
   const Outcome outcome = executor_.run(job, running->cancel, progress);
@@ -113,25 +113,32 @@ void WorkerPool::run_claimed(const Job& job) {
   running_.erase(job.id);
 }
 
+bool WorkerPool::stopping() const {
+  std::lock_guard lock(mutex_);
+  return stopping_;
+}
+
 void WorkerPool::report(const Running& running, const Outcome& outcome) {
-  // A store that is away for a moment (a database restart) gets the report when it is back, as long as
-  // the lease may still hold; after that the rescuer requeues the job.
-  const auto give_up = std::chrono::steady_clock::now() + std::chrono::milliseconds(options_.lease);
-  for (;;) {
+  // A store that is away (a database restart, an outage longer than the lease) gets the report when it is
+  // back, unless the lease was taken away meanwhile: then the attempt changes nothing, and the attempt
+  // that replaced it adopts a completed run from this attempt's folder (InProcessExecutor).
+  const std::string job = running.claim.id.str();
+  for (bool warned = false;; std::this_thread::sleep_for(std::chrono::milliseconds(200))) {
     try {
       const Stop why = running.why.load();
-      if (why == Stop::lease_lost) return;  // another worker owns the job now
+      if (why == Stop::lease_lost) return;  // another attempt owns the job now
       if (why == Stop::shutdown && outcome.status == Status::canceled) {
-        store_.release(running.id, running.worker);
+        store_.release(running.claim);
         return;
       }
-      store_.finish(running.id, running.worker, outcome);
+      store_.finish(running.claim, outcome);
       return;
     } catch (const StoreUnavailable& e) {
-      if (std::chrono::steady_clock::now() > give_up) return warn("reporting job " + running.id.str(), e);
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      if (stopping()) return warn("reporting job " + job + " (left for the next claim to adopt)", e);
+      if (!warned) warn("reporting job " + job + " (retrying until the store is back)", e);
+      warned = true;
     } catch (const std::exception& e) {
-      return warn("reporting job " + running.id.str(), e);  // the lease expires and the rescuer requeues it
+      return warn("reporting job " + job, e);  // the lease expires and the rescuer requeues it
     }
   }
 }
@@ -144,11 +151,11 @@ void WorkerPool::renew_leases() {
   }
   for (auto& running : snapshot) {
     try {
-      const Lease lease = store_.renew(running->id, running->worker, options_.lease);
+      const Lease lease = store_.renew(running->claim, options_.lease);
       if (lease == Lease::lost) running->stop(Stop::lease_lost);
       if (lease == Lease::cancel_requested) running->stop(Stop::user);
     } catch (const std::exception& e) {
-      warn("renewing the lease of job " + running->id.str(), e);
+      warn("renewing the lease of job " + running->claim.id.str(), e);
     }
   }
 }

@@ -52,9 +52,8 @@ class WorkerPool {
   /// Why a running job's cancel flag was set.
   enum class Stop { none, user, shutdown, lease_lost };
   struct Running {
-    Running(JobId id, std::string worker) : id(std::move(id)), worker(std::move(worker)) {}
-    JobId id;
-    std::string worker;
+    explicit Running(Claim claim) : claim(std::move(claim)) {}
+    Claim claim;
     std::atomic<bool> cancel{false};
     std::atomic<Stop> why{Stop::none};
     void stop(Stop reason);
@@ -62,7 +61,10 @@ class WorkerPool {
 
   void work(int index);
   void run_claimed(const Job& job);
+  /// Reports how the run ended while the claim holds; retries while the store is away (a completed run is
+  /// reported when the database is back), until the pool stops.
   void report(const Running& running, const Outcome& outcome);
+  bool stopping() const;
   void renew_leases();
   std::optional<Job> claim(const std::string& worker);
 

@@ -203,7 +203,9 @@ TEST(KillNine, RunsKilledAtRandomStepsResumeFromTheirCheckpointsAndEndAsUncrashe
     std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
     std::vector<pid_t> job_processes;
     for (const auto& id : unfinished()) {
-      std::ifstream in(data / "jobs" / id / server::jobs::job_pid_file);
+      const int attempt = job(c, id)["attempt"];
+      std::ifstream in(data / "jobs" / id / ("attempt-" + std::to_string(attempt)) /
+                       server::jobs::job_pid_file);
       pid_t pid = -1;
       if (in >> pid && pid > 0 && ::kill(pid, 0) == 0) job_processes.push_back(pid);
     }
@@ -232,7 +234,8 @@ TEST(KillNine, RunsKilledAtRandomStepsResumeFromTheirCheckpointsAndEndAsUncrashe
       const fs::path file = tmp.path() / (id + ".h5");
       std::ofstream(file, std::ios::binary) << result->body;
       expect_same_result(references[k], file, "job " + id + ", attempt " + done["attempt"].dump());
-      EXPECT_FALSE(fs::exists(data / "jobs" / id / output::checkpoint_directory_name));
+      for (const auto& attempt : fs::directory_iterator(data / "jobs" / id))  // every attempt's is pruned
+        EXPECT_FALSE(fs::exists(attempt.path() / output::checkpoint_directory_name)) << attempt.path();
     }
   }
 
@@ -280,20 +283,25 @@ TEST(KillNine, AJobWhoseCheckpointCannotBeReadStartsOverAndSucceeds) {
   nlohmann::json scene = short_ball_on_plate(false);
   scene["time"]["end"] = 0.05;
   job.scene = scene::load(scene).scene;  // as POST stores it: validated, defaults filled in
-  fs::create_directories(files.checkpoint(job.id));
-  std::ofstream(files.checkpoint(job.id) / "state.h5") << "a torn file, not HDF5";
+  // Attempt 1 left a torn checkpoint; attempt 2 starts from a copy of it, in its own folder.
+  const fs::path torn = files.attempt(job.id, 1).checkpoint() / "state.h5";
+  fs::create_directories(torn.parent_path());
+  std::ofstream(torn) << "a torn file, not HDF5";
   server::jobs::SystemClock clock;
   server::jobs::InProcessExecutor executor(files, clock);
   const std::atomic<bool> cancel{false};
   const server::jobs::Outcome outcome = executor.run(job, cancel, {});
   EXPECT_EQ(outcome.status, server::jobs::Status::succeeded) << outcome.error.value_or("");
-  const std::string log = read_file(files.log(job.id));
-  EXPECT_NE(log.find("cannot resume from " + (files.checkpoint(job.id) / "state.h5").string()),
-            std::string::npos)
+  const server::jobs::AttemptFiles second = files.attempt(job.id, 2);
+  const std::string log = read_file(second.log());
+  EXPECT_NE(log.find("cannot resume from " + (second.checkpoint() / "state.h5").string()), std::string::npos)
       << log;
   EXPECT_NE(log.find("; starting from step 0"), std::string::npos) << log;
-  EXPECT_TRUE(fs::exists(files.result(job.id)));
-  EXPECT_FALSE(fs::exists(files.checkpoint(job.id)));
+  EXPECT_TRUE(fs::exists(second.result()));
+  EXPECT_FALSE(fs::exists(second.checkpoint()));
+  EXPECT_FALSE(fs::exists(torn)) << "a succeeded attempt prunes the checkpoints of the attempts before it";
+  EXPECT_EQ(server::jobs::outcome_from_json(nlohmann::json::parse(read_file(second.outcome_file()))).status,
+            server::jobs::Status::succeeded);
 }
 
 }  // namespace

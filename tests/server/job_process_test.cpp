@@ -19,9 +19,9 @@ std::string id_of(const httplib::Result& r) {
   return body_json(r)["id"].get<std::string>();
 }
 
-/// The pid of job `id`'s process while it runs (from DATA/jobs/<id>/process.pid), or -1.
+/// The pid of job `id`'s first attempt's process while it runs (DATA/jobs/<id>/attempt-1/process.pid), or -1.
 pid_t job_pid(const std::filesystem::path& data, const std::string& id) {
-  std::ifstream in(data / "jobs" / id / server::jobs::job_pid_file);
+  std::ifstream in(data / "jobs" / id / "attempt-1" / server::jobs::job_pid_file);
   pid_t pid = -1;
   in >> pid;
   return in ? pid : -1;
@@ -97,7 +97,8 @@ TEST(JobProcess, AJobOverItsWallTimeLimitFailsWithTheLimitNamed) {
   EXPECT_EQ(b["status"], "failed");
   EXPECT_EQ(b["error"], "exceeded wall-time limit 2 s");
   EXPECT_EQ(c.Get("/v1/jobs/" + by_scene + "/result")->status, 409);
-  EXPECT_FALSE(std::filesystem::exists(dir.path() / "data/jobs" / by_scene / "result.h5.partial"));
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "data/jobs" / by_scene / "attempt-1/log.txt"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "data/jobs" / by_scene / "attempt-1/result.h5.partial"));
   // A short job under the same limits succeeds.
   const std::string quick = id_of(submit(c, box_scene(2, 10)));
   EXPECT_EQ(wait_for_status(c, quick, {"succeeded", "failed"}, 60s)["status"], "succeeded");

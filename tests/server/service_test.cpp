@@ -154,7 +154,8 @@ TEST(Service, CancelsQueuedAndRunningJobs) {
   EXPECT_NE(log->body.find("canceled at step"), std::string::npos) << log->body;
   auto result = c.Get("/v1/jobs/" + running + "/result");
   EXPECT_EQ(result->status, 409);
-  EXPECT_FALSE(std::filesystem::exists(dir.path() / "data/jobs" / running / "result.h5"));
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "data/jobs" / running / "attempt-1/log.txt"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "data/jobs" / running / "attempt-1/result.h5"));
   EXPECT_EQ(c.Post("/v1/jobs/" + running + "/cancel")->status, 409);  // a canceled job is finished
 
   EXPECT_EQ(c.Delete("/v1/jobs/" + running)->status, 204);
@@ -200,7 +201,8 @@ TEST(Service, RecoversFromKill9) {
     ASSERT_TRUE(eventually([&] { return job(c, interrupted)["progress"]["step"].get<int>() >= 1; }, 120s));
     first.kill9();
   }
-  EXPECT_FALSE(std::filesystem::exists(data / "jobs" / interrupted / "result.h5"));
+  EXPECT_TRUE(std::filesystem::exists(data / "jobs" / interrupted / "attempt-1/log.txt"));
+  EXPECT_FALSE(std::filesystem::exists(data / "jobs" / interrupted / "attempt-1/result.h5"));
 
   LiveServer second(data, flags);
   auto c = second.client();

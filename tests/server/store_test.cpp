@@ -136,22 +136,52 @@ TEST_P(StoreTest, ClaimsOldestFirstWithALeaseAndTheScene) {
 
 TEST_P(StoreTest, OnlyTheLeaseHolderRenewsReportsAndFinishes) {
   const JobId id = create("a").id;
-  store.claim("w1", 10'000);
+  const Claim w1 = claim_of(*store.claim("w1", 10'000)), w2{id, "w2", 1};
   clock.advance(5'000);
-  EXPECT_EQ(store.renew(id, "w1", 10'000), Lease::held);
+  EXPECT_EQ(store.renew(w1, 10'000), Lease::held);
   EXPECT_EQ(store.get(id)->lease_expires, clock.now() + 10'000);
-  EXPECT_EQ(store.renew(id, "w2", 10'000), Lease::lost);
-  EXPECT_TRUE(store.progress(id, "w1", {12, 30, 0.12, 0.3, 1.5}));
-  EXPECT_FALSE(store.progress(id, "w2", {13, 30, 0.13, 0.3, 1.4}));
+  EXPECT_EQ(store.renew(w2, 10'000), Lease::lost);
+  EXPECT_TRUE(store.progress(w1, {12, 30, 0.12, 0.3, 1.5}));
+  EXPECT_FALSE(store.progress(w2, {13, 30, 0.13, 0.3, 1.4}));
   EXPECT_EQ(store.get(id)->progress.step, 12);
   EXPECT_DOUBLE_EQ(*store.get(id)->progress.eta_seconds, 1.5);
-  EXPECT_FALSE(store.finish(id, "w2", {Status::succeeded, nlohmann::json{{"steps", 30}}, std::nullopt}));
-  EXPECT_TRUE(store.finish(id, "w1", {Status::succeeded, nlohmann::json{{"steps", 30}}, std::nullopt}));
+  EXPECT_FALSE(store.finish(w2, {Status::succeeded, nlohmann::json{{"steps", 30}}, std::nullopt}));
+  EXPECT_TRUE(store.finish(w1, {Status::succeeded, nlohmann::json{{"steps", 30}}, std::nullopt}));
   const Job done = *store.get(id);
   EXPECT_EQ(done.status, Status::succeeded);
   EXPECT_EQ((*done.summary)["steps"], 30);
   EXPECT_EQ(done.finished, clock.now());
-  EXPECT_EQ(store.renew(id, "w1", 10'000), Lease::lost);
+  EXPECT_EQ(done.result_attempt, 1);  // the reporting attempt's folder is published
+  EXPECT_EQ(store.renew(w1, 10'000), Lease::lost);
+}
+
+// Issue 20: an attempt that lost its lease changes nothing, even when the same worker name claims the job
+// again; the attempt that holds the lease may publish an earlier attempt's completed run.
+TEST_P(StoreTest, AnAttemptThatLostItsLeaseIsFencedOutByItsAttemptNumber) {
+  const JobId id = create("a").id;
+  const Claim first = claim_of(*store.claim("w", 1'000));
+  clock.advance(1'001);
+  ASSERT_EQ(store.expired(clock.now()).size(), 1u);
+  EXPECT_EQ(store.expired(clock.now())[0].attempt, 1);
+  EXPECT_EQ(store.expired(clock.now())[0].worker, "w");
+  ASSERT_EQ(store.requeue_expired(clock.now(), 3).requeued, 1);
+  EXPECT_TRUE(store.expired(clock.now()).empty());
+  const Claim second = claim_of(*store.claim("w", 1'000));  // the same name, attempt 2
+  ASSERT_EQ(second.attempt, 2);
+  EXPECT_EQ(store.renew(first, 1'000), Lease::lost);
+  EXPECT_FALSE(store.progress(first, {5, 30, 0.05, 0.3, std::nullopt}));
+  EXPECT_FALSE(store.release(first));
+  EXPECT_FALSE(store.finish(first, {Status::failed, std::nullopt, "cannot open result.h5.partial"}));
+  EXPECT_EQ(store.get(id)->status, Status::running);
+  EXPECT_FALSE(store.get(id)->result_attempt);
+  const jobs::Outcome adopted{Status::succeeded, nlohmann::json{{"steps", 30}}, std::nullopt, 1};
+  EXPECT_TRUE(store.finish(second, adopted));
+  const Job done = *store.get(id);
+  EXPECT_EQ(done.status, Status::succeeded);
+  EXPECT_EQ(done.attempt, 2);
+  EXPECT_EQ(done.result_attempt, 1);
+  EXPECT_FALSE(store.finish(first, adopted)) << "published once";
+  EXPECT_EQ(store.list(std::nullopt, 10, std::nullopt).jobs.at(0).result_attempt, 1);
 }
 
 TEST_P(StoreTest, CancelStopsAQueuedJobAtOnceAndFlagsARunningOne) {
@@ -159,7 +189,7 @@ TEST_P(StoreTest, CancelStopsAQueuedJobAtOnceAndFlagsARunningOne) {
   const JobId running = create("r").id;
   ASSERT_EQ(store.claim("w", 10'000)->id, queued);  // oldest first: claim the first, requeue trick below
   // Put the first back so that `queued` is queued and `running` runs.
-  store.release(queued, "w");
+  store.release({queued, "w", 1});
   store.request_cancel(queued);
   ASSERT_EQ(store.claim("w", 10'000)->id, running);
 
@@ -169,9 +199,9 @@ TEST_P(StoreTest, CancelStopsAQueuedJobAtOnceAndFlagsARunningOne) {
   EXPECT_EQ(r.outcome, CancelResult::Outcome::requested);
   EXPECT_EQ(r.job->status, Status::running);
   EXPECT_TRUE(r.job->cancel_requested);
-  EXPECT_EQ(store.renew(running, "w", 10'000), Lease::cancel_requested);
+  EXPECT_EQ(store.renew({running, "w", 1}, 10'000), Lease::cancel_requested);
   EXPECT_EQ(store.request_cancel(queued).outcome, CancelResult::Outcome::canceled);  // again: a no-op
-  store.finish(running, "w", {Status::succeeded, std::nullopt, std::nullopt});
+  store.finish({running, "w", 1}, {Status::succeeded, std::nullopt, std::nullopt});
   EXPECT_EQ(store.request_cancel(running).outcome, CancelResult::Outcome::already_done);
   EXPECT_EQ(store.request_cancel(JobId::random()).outcome, CancelResult::Outcome::not_found);
 }
@@ -323,7 +353,8 @@ TEST(PgStoreMigration, RefusesADatabaseFromANewerProgram) {
     PgStore store(cluster.url(db), clock);
     ADD_FAILURE() << "opened a database of schema version 999";
   } catch (const StoreError& e) {
-    EXPECT_NE(std::string(e.what()).find("database schema version 999 is newer than this program's (1)"),
+    EXPECT_NE(std::string(e.what()).find("database schema version 999 is newer than this program's (" +
+                                         std::to_string(PgStore::latest_schema_version()) + ")"),
               std::string::npos)
         << e.what();
   }

@@ -62,8 +62,8 @@ class StudyRun : public ::testing::Test {
   model::Model model = scene::load(test::box_scene(1, 20, {0, 0, 0}, 2.0));
 
   Outcome run(const Job& job) {
-    files.prepare_attempt(job.id);
-    return run_study_job(job, model, {files, clock, 0, log, cancel, sink});
+    const AttemptFiles attempt = files.prepare_attempt(job.id, 1);
+    return run_study_job(job, model, {attempt, clock, 0, log, cancel, sink});
   }
 };
 
@@ -78,7 +78,7 @@ TEST_F(StudyRun, MatchesStudyRunAndCountsProgressInRuns) {
   EXPECT_TRUE(std::is_sorted(reports.begin(), reports.end(),
                              [](const Progress& a, const Progress& b) { return a.step < b.step; }));
 
-  std::ifstream in(files.study(job.id));
+  std::ifstream in(files.attempt(job.id, 1).study());
   const study::Result served = study_result_from_json(nlohmann::json::parse(in));
   const study::Result expected = study::run(model, sweep());  // the CLI's sweep
   ASSERT_EQ(served.rows.size(), expected.rows.size());
@@ -96,7 +96,7 @@ TEST_F(StudyRun, StopsWhenCanceledAndWritesNoTable) {
   const Outcome outcome = run(job);
   EXPECT_EQ(outcome.status, Status::canceled);
   EXPECT_FALSE((*outcome.summary)["completed"].get<bool>());
-  EXPECT_FALSE(std::filesystem::exists(files.study(job.id)));
+  EXPECT_FALSE(std::filesystem::exists(files.attempt(job.id, 1).study()));
   EXPECT_NE(log.str().find("canceled after 0 of 5 runs"), std::string::npos) << log.str();
 }
 

@@ -65,8 +65,8 @@ TEST(Study, RunsTheSweepAsAJobAndServesTheTable) {
     EXPECT_LT(row(table, scheme, 0.02)["displacement_error"].get<double>(),
               row(table, scheme, 0.04)["displacement_error"].get<double>())
         << scheme;
-  EXPECT_TRUE(std::filesystem::exists(dir.path() / "data/jobs" / id / "study.json"));
-  EXPECT_FALSE(std::filesystem::exists(dir.path() / "data/jobs" / id / "study.json.partial"));
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "data/jobs" / id / "attempt-1/study.json"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "data/jobs" / id / "attempt-1/study.json.partial"));
 }
 
 /// The system shall serve the table as CSV and Markdown, and refuse a result file for a study.
@@ -118,7 +118,7 @@ TEST(Study, CancelsARunningStudy) {
   EXPECT_LT(stopped["summary"]["runs_done"].get<int>(), 4);
   EXPECT_EQ(c.Get("/v1/jobs/" + id + "/study")->status, 409);
   EXPECT_NE(c.Get("/v1/jobs/" + id + "/log")->body.find("canceled after"), std::string::npos);
-  EXPECT_FALSE(std::filesystem::exists(dir.path() / "data/jobs" / id / "study.json"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "data/jobs" / id / "attempt-1/study.json"));
 }
 
 }  // namespace
