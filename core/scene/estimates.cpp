@@ -23,8 +23,9 @@ double hex_volume(const mesh::Mesh& mesh, const mesh::Hex& h) {
 }
 
 bool has_support(const model::Model& m, const std::string& body) {
-  return std::any_of(m.boundary.begin(), m.boundary.end(),
-                     [&](const model::Boundary& b) { return b.surface.substr(0, b.surface.find('/')) == body; });
+  return std::any_of(m.boundary.begin(), m.boundary.end(), [&](const model::Boundary& b) {
+    return b.surface.substr(0, b.surface.find('/')) == body;
+  });
 }
 
 BodyScale body_scale(const model::Model& m, size_t b) {
@@ -40,7 +41,8 @@ BodyScale body_scale(const model::Model& m, size_t b) {
   for (int el = body.element_begin; el < body.element_end; ++el) {
     const mesh::Hex& h = m.mesh.hex8[el];
     for (const auto& edge : hex_edges)
-      s.smallest_element = std::min(s.smallest_element, (m.mesh.nodes[h[edge[0]]] - m.mesh.nodes[h[edge[1]]]).norm());
+      s.smallest_element =
+          std::min(s.smallest_element, (m.mesh.nodes[h[edge[0]]] - m.mesh.nodes[h[edge[1]]]).norm());
     volume += hex_volume(m.mesh, h);
   }
   s.mass = rho * volume;
@@ -105,11 +107,12 @@ PairScale pair_scale(const model::Model& m, size_t i, const std::vector<BodyScal
   const double reduced_mass = 1 / (1 / slave.mass + master_inverse_mass);
   const double radius = slave.extent.minCoeff() / 2;
   const double v0 = s.approach_speed;
-  const double indentation = std::pow(15 * reduced_mass * v0 * v0 / (16 * contact_modulus * std::sqrt(radius)), 0.4);
+  const double indentation =
+      std::pow(15 * reduced_mass * v0 * v0 / (16 * contact_modulus * std::sqrt(radius)), 0.4);
   s.hertz_duration = 2.94 * indentation / v0;  // (W4)
   const Eigen::Vector3d d = (master.centroid - slave.centroid).normalized();
   s.wave_duration = 2 * slave.extent.cwiseProduct(d.cwiseAbs()).sum() / slave.bar_speed;  // (W5)
-  s.duration = std::max(s.hertz_duration, s.wave_duration);                                // (W6)
+  s.duration = std::max(s.hertz_duration, s.wave_duration);                               // (W6)
   return s;
 }
 
@@ -118,14 +121,14 @@ PairScale pair_scale(const model::Model& m, size_t i, const std::vector<BodyScal
 Estimates estimate(const model::Model& m) {
   Estimates e;
   for (size_t b = 0; b < m.mesh.bodies.size(); ++b) e.bodies.push_back(body_scale(m, b));
-  size_t slave_nodes = 0;
   for (size_t i = 0; i < m.contact.size(); ++i) {
-    slave_nodes += m.mesh.surface_nodes(m.contact[i].slave).size();
+    e.slave_nodes += m.mesh.surface_nodes(m.contact[i].slave).size();
     if (PairScale p = pair_scale(m, i, e.bodies); p.approach_speed > 0) e.pairs.push_back(p);
   }
   const double steps = m.time.steps();
-  e.wall_seconds = steps * (m.mesh.element_count() * seconds_per_element_step +
-                            static_cast<double>(slave_nodes) * seconds_per_slave_node_step);  // (W7)
+  e.wall_seconds =
+      steps * (estimate_element_seconds * std::pow(m.mesh.element_count(), estimate_element_exponent) +
+               estimate_slave_node_seconds * static_cast<double>(e.slave_nodes));  // (W7)
   return e;
 }
 
@@ -146,7 +149,10 @@ nlohmann::json to_json(const Estimates& e) {
                      {"hertz_duration", p.hertz_duration},
                      {"wave_duration", p.wave_duration},
                      {"contact_duration", p.duration}});
-  return {{"bodies", bodies}, {"contact", pairs}, {"wall_seconds", e.wall_seconds}};
+  return {{"bodies", bodies},
+          {"contact", pairs},
+          {"slave_nodes", e.slave_nodes},
+          {"wall_seconds", e.wall_seconds}};
 }
 
 }  // namespace stoss::scene

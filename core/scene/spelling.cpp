@@ -21,7 +21,8 @@ size_t edit_distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
-std::optional<std::string> closest_name(std::string_view name, std::initializer_list<std::string_view> allowed) {
+std::optional<std::string> closest_name(std::string_view name,
+                                        std::initializer_list<std::string_view> allowed) {
   std::optional<std::string> best;
   size_t best_distance = 3;  // at most 2 edits
   for (std::string_view candidate : allowed) {

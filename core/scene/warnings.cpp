@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <optional>
 
@@ -16,6 +17,8 @@ namespace {
 std::string rounded_text(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%.3g", x);
+  if (const double shown = std::atof(text); shown == std::floor(shown) && std::abs(shown) < 1e4)
+    return std::to_string(static_cast<long long>(shown));
   std::string out = text;
   const size_t e = out.find('e');
   if (e == std::string::npos) return out;
@@ -75,9 +78,11 @@ std::optional<std::string> facing_surface(const model::Model& m, const model::Co
   double best_distance = std::numeric_limits<double>::infinity();
   for (const auto& [name, faces] : m.mesh.bodies[m.mesh.find_body(body)].surfaces) {
     const std::string ref = body + "/" + name;
-    if (name == "boundary" || name.find('+') != std::string::npos || ref == p.master || faces.empty()) continue;
+    if (name == "boundary" || name.find('+') != std::string::npos || ref == p.master || faces.empty())
+      continue;
     const Side side = side_of(m.mesh, slave, ref);
-    if (side.behind == 0 && side.mean_distance < best_distance) best = ref, best_distance = side.mean_distance;
+    if (side.behind == 0 && side.mean_distance < best_distance)
+      best = ref, best_distance = side.mean_distance;
   }
   return best;
 }
@@ -89,8 +94,9 @@ void check_orientation(const model::Model& m, size_t i, std::vector<Warning>& ou
   const auto better = facing_surface(m, p, slave);
   const std::string fix = better ? "did you mean " + *better + "?"
                                  : "name a surface of the master body whose outward normals face " + p.slave;
-  out.push_back({warning::contact_behind_master, pair_pointer(i, "master"),
-                 "every node of " + p.slave + " is behind " + p.master + " (its normals point away); " + fix});
+  out.push_back(
+      {warning::contact_behind_master, pair_pointer(i, "master"),
+       "every node of " + p.slave + " is behind " + p.master + " (its normals point away); " + fix});
 }
 
 /// ρ and E of no solid in SI units: c₀ = √(E/ρ) above 2e4 (beryllium's ~1.3e4 m/s is the fastest) with an
@@ -99,9 +105,9 @@ void check_units(const model::Model& m, const Estimates& e, std::vector<Warning>
   for (size_t b = 0; b < e.bodies.size(); ++b) {
     const model::Material& mat = m.bodies[b].material;
     if (mat.youngs_modulus < 1e8 || e.bodies[b].bar_speed <= 2e4) continue;
-    const std::string guess = mat.density < 100 ? "density in g/cm³? In kg/m³ it is " +
-                                                      rounded_text(mat.density * 1000) + ". "
-                                                : "E and ρ in one unit system? ";
+    const std::string guess =
+        mat.density < 100 ? "density in g/cm³? In kg/m³ it is " + rounded_text(mat.density * 1000) + ". "
+                          : "E and ρ in one unit system? ";
     out.push_back({warning::unit_scale, "/bodies/" + std::to_string(b) + "/material/density",
                    "ρ = " + rounded_text(mat.density) + " with E = " + rounded_text(mat.youngs_modulus) +
                        ": " + guess + "The wave speed √(E/ρ) is " + rounded_text(e.bodies[b].bar_speed) +
@@ -114,10 +120,10 @@ void check_contact_step(const model::Model& m, const Estimates& e, std::vector<W
     if (m.time.step <= s.duration) continue;
     const model::ContactPair& p = m.contact[s.pair];
     out.push_back({warning::step_longer_than_contact, "/time/step",
-                   "the contact of " + p.slave + " on " + p.master + " lasts about " + rounded_text(s.duration) +
-                       " (approach speed " + rounded_text(s.approach_speed) + "), less than one step h = " +
-                       rounded_text(m.time.step) + ": take h <= " + rounded_text(s.duration / 10) +
-                       " to resolve it, or check the units"});
+                   "the contact of " + p.slave + " on " + p.master + " lasts about " +
+                       rounded_text(s.duration) + " (approach speed " + rounded_text(s.approach_speed) +
+                       "), less than one step h = " + rounded_text(m.time.step) + ": take h <= " +
+                       rounded_text(s.duration / 10) + " to resolve it, or check the units"});
   }
 }
 
@@ -125,19 +131,20 @@ void check_contact_step(const model::Model& m, const Estimates& e, std::vector<W
 /// or (over at least 1,000 steps) a Courant number below 1e-3 in every body.
 void check_mode_step(const model::Model& m, const Estimates& e, std::vector<Warning>& out) {
   if (e.bodies.empty()) return;
-  const auto slowest = std::max_element(e.bodies.begin(), e.bodies.end(), [](const BodyScale& a, const BodyScale& b) {
-    return a.lowest_period < b.lowest_period;
-  });
+  const auto slowest = std::max_element(
+      e.bodies.begin(), e.bodies.end(),
+      [](const BodyScale& a, const BodyScale& b) { return a.lowest_period < b.lowest_period; });
   if (m.time.step > 10 * slowest->lowest_period)
     out.push_back({warning::step_longer_than_modes, "/time/step",
                    "the step h = " + rounded_text(m.time.step) + " spans " +
-                       rounded_text(m.time.step / slowest->lowest_period) + " periods of the slowest mode of " +
-                       slowest->name + " (about " + rounded_text(slowest->lowest_period) +
-                       "): no vibration is resolved; take h <= " + rounded_text(slowest->lowest_period / 10) +
-                       ", or check the units"});
-  const double courant = std::max_element(e.bodies.begin(), e.bodies.end(), [](const BodyScale& a, const BodyScale& b) {
-                           return a.courant < b.courant;
-                         })->courant;
+                       rounded_text(m.time.step / slowest->lowest_period) +
+                       " periods of the slowest mode of " + slowest->name + " (about " +
+                       rounded_text(slowest->lowest_period) + "): no vibration is resolved; take h <= " +
+                       rounded_text(slowest->lowest_period / 10) + ", or check the units"});
+  const double courant =
+      std::max_element(e.bodies.begin(), e.bodies.end(), [](const BodyScale& a, const BodyScale& b) {
+        return a.courant < b.courant;
+      })->courant;
   if (courant < 1e-3 && m.time.steps() >= 1000)
     out.push_back({warning::step_far_below_waves, "/time/step",
                    "the step h = " + rounded_text(m.time.step) + " is " + rounded_text(courant) +
@@ -163,15 +170,16 @@ std::vector<ResolvedChoice> resolved_choices(const model::Model& m) {
     const bool smooth = p.master_surface == model::MasterSurface::smooth;
     const auto why_not = smooth ? std::nullopt : detail::smooth_unavailable(m, p);
     const std::string surface_reason =
-        smooth ? p.master + " qualifies for the smooth surface, the default wherever it can be had"
+        smooth    ? p.master + " qualifies for the smooth surface, the default wherever it can be had"
         : why_not ? *why_not + "; faceted is the fallback (asking for smooth would be an error)"
                   : "the scene asks for it (smooth could be had)";
     out.push_back({pair_pointer(i, "master_surface"), smooth ? "smooth" : "faceted", surface_reason});
     const bool keep = p.switch_gap == model::SwitchGap::keep;
     const bool as_default = keep == smooth;
     out.push_back({pair_pointer(i, "switch_gap"), keep ? "keep" : "clamp",
-                   as_default ? std::string("the default on a ") + (smooth ? "smooth" : "faceted") + " surface"
-                              : "the scene asks for it"});
+                   as_default
+                       ? std::string("the default on a ") + (smooth ? "smooth" : "faceted") + " surface"
+                       : "the scene asks for it"});
   }
   return out;
 }
