@@ -212,7 +212,8 @@ std::vector<std::string> split_commas(const std::string& text) {
 
 model::Scheme parse_scheme(const std::string& name) {
   if (auto scheme = model::scheme_from_string(name)) return *scheme;
-  throw std::invalid_argument("--schemes: unknown scheme \"" + name + "\" (energy_momentum, midpoint, hht)");
+  throw std::invalid_argument("--schemes: unknown scheme \"" + name +
+                              "\" (energy_momentum, midpoint, hht, generalized_alpha)");
 }
 
 study::Options study_options(const std::vector<std::string>& args, std::string& scene_path, std::string& format) {
@@ -226,6 +227,9 @@ study::Options study_options(const std::vector<std::string>& args, std::string& 
       for (const auto& name : split_commas(args[++i])) o.schemes.push_back(parse_scheme(name));
     } else if (args[i] == "--reference" && has_value) {
       o.reference_step = std::stod(args[++i]);
+    } else if (args[i] == "--repeat" && has_value) {
+      o.repeat = std::stoi(args[++i]);
+      if (o.repeat < 1) throw std::invalid_argument("--repeat: must be >= 1");
     } else if (args[i] == "--csv" || args[i] == "--json") {
       format = args[i].substr(2);
     } else if (scene_path.empty() && args[i].rfind("-", 0) != 0) {
@@ -244,8 +248,9 @@ study::Options study_options(const std::vector<std::string>& args, std::string& 
 
 int study_command(const std::vector<std::string>& args) {
   constexpr const char* text =
-      "stoss study SCENE.json --steps h1,h2,... [--schemes energy_momentum,midpoint,hht] [--reference H] "
-      "[--csv|--json]";
+      "stoss study SCENE.json --steps h1,h2,... [--schemes energy_momentum,midpoint,hht,generalized_alpha] "
+      "[--reference H] [--repeat N] [--csv|--json]\n"
+      "  wall seconds are the median of N runs of each scheme and step (default 3)";
   if (wants_help(args)) {
     std::cout << "usage: " << text << "\n";
     return success;
