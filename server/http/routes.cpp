@@ -99,10 +99,12 @@ nlohmann::json job_body(const App& app, const jobs::Job& job) {
 /// a new job keeps `before_run` in its directory.
 void queue_job(App& app, const jobs::NewJob& job, const nlohmann::json& before_run, Response& res) {
   const jobs::CreateResult created = app.store.create(job, app.limits.max_queued);
-  if (created.outcome == jobs::CreateResult::Outcome::created) {
-    std::filesystem::create_directories(app.files.dir(created.job->id));
-    jobs::write_synced(before_run_file(app, created.job->id), before_run.dump());
-  }
+  if (created.outcome == jobs::CreateResult::Outcome::created) try {
+      std::filesystem::create_directories(app.files.dir(created.job->id));
+      jobs::write_synced(before_run_file(app, created.job->id), before_run.dump());
+    } catch (const std::exception& e) {  // the job is queued: without the file its JSON has no warnings
+      std::cerr << "job " << created.job->id.str() << ": cannot keep its warnings: " << e.what() << "\n";
+    }
   using Outcome = jobs::CreateResult::Outcome;
   switch (created.outcome) {
     case Outcome::queue_full:

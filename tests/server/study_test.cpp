@@ -98,7 +98,7 @@ TEST(Study, ServesCsvAndMarkdownAndNoResultFile) {
         << r->body;
   }
   const std::string log = c.Get("/v1/jobs/" + id + "/log")->body;
-  EXPECT_NE(log.find("run 1/5: reference energy_momentum"), std::string::npos) << log;
+  EXPECT_NE(log.find("run 1/13: reference energy_momentum"), std::string::npos) << log;
   EXPECT_NE(log.find("study completed: 13 runs"), std::string::npos) << log;
 }
 

@@ -20,7 +20,8 @@ nlohmann::json seed_with_master(const std::string& master) {
 const nlohmann::json behind_warning = {
     {"code", "contact_behind_master"},
     {"pointer", "/contact/0/master"},
-    {"message", "every node of ball/outer is behind plate/bottom (its normals point away); did you mean plate/top?"}};
+    {"message",
+     "every node of ball/outer is behind plate/bottom (its normals point away); did you mean plate/top?"}};
 
 TEST(WarningsApi, ValidateAnswersWarningsChoicesAndEstimates) {
   TempDir dir;
@@ -32,9 +33,10 @@ TEST(WarningsApi, ValidateAnswersWarningsChoicesAndEstimates) {
   const auto body = nlohmann::json::parse(wrong->body);
   EXPECT_EQ(body["warnings"], nlohmann::json::array({behind_warning}));
   EXPECT_EQ(body["choices"][0], (nlohmann::json{{"pointer", "/contact/0/master_surface"},
-                                                 {"value", "smooth"},
-                                                 {"reason", "plate/bottom qualifies for the smooth surface, the "
-                                                            "default wherever it can be had"}}));
+                                                {"value", "smooth"},
+                                                {"reason",
+                                                 "plate/bottom qualifies for the smooth surface, the "
+                                                 "default wherever it can be had"}}));
   EXPECT_GT(body["estimates"]["wall_seconds"].get<double>(), 0);
   EXPECT_EQ(body["estimates"]["bodies"][1]["name"], "plate");
 
@@ -64,6 +66,23 @@ TEST(WarningsApi, TheJobJsonKeepsTheWarningsAndStartsWithTheEstimatedEta) {
   const auto listed = c.Get("/v1/jobs");
   ASSERT_TRUE(listed);
   EXPECT_EQ(nlohmann::json::parse(listed->body)["jobs"][0]["warnings"], created["warnings"]);
+}
+
+TEST(WarningsCli, ValidatePrintsTheWarningAndStillExits0) {
+  TempDir dir;
+  const auto path = dir.path() / "bottom.json";
+  std::ofstream(path) << seed_with_master("plate/bottom").dump();
+  const CommandResult text = run_stoss({"validate", path.string()});
+  EXPECT_EQ(text.exit_code, 0) << text.out;
+  EXPECT_NE(text.out.find(
+                "1 warning:\n  warning contact_behind_master: /contact/0/master: every node of ball/outer "
+                "is behind plate/bottom (its normals point away); did you mean plate/top?"),
+            std::string::npos)
+      << text.out;
+  EXPECT_NE(text.out.find("/contact/0/master_surface: smooth ("), std::string::npos) << text.out;
+  const CommandResult json = run_stoss({"validate", path.string(), "--json"});
+  EXPECT_EQ(json.exit_code, 0) << json.out;
+  EXPECT_EQ(nlohmann::json::parse(json.out)["warnings"], nlohmann::json::array({behind_warning}));
 }
 
 }  // namespace

@@ -54,8 +54,10 @@ TEST(Study, EachPointRunsRepeatTimesAndShowsTheMedianWallTime) {
   o.schemes = {model::Scheme::energy_momentum, model::Scheme::midpoint};
   o.steps = {0.08};
   o.repeat = 3;
-  std::vector<std::pair<Run, double>> finished;
-  o.run_finished = [&](const Run& run, const model::Summary& s, const std::string&) { finished.push_back({run, s.wall_seconds}); };
+  std::vector<std::pair<study::Run, double>> finished;
+  o.run_finished = [&](const study::Run& run, const model::Summary& s, const std::string&) {
+    finished.push_back({run, s.wall_seconds});
+  };
   EXPECT_EQ(plan(spinning_bar(), o).size(), 7u);  // the reference once, each point 3 times
   const Result r = run(spinning_bar(), o);
   ASSERT_EQ(finished.size(), 7u);
