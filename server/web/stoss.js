@@ -60,19 +60,23 @@ function number(value) {
 const UNITS = 'model units';
 
 // Log-axis ticks (a dygraphs `ticker`): decades only (1e-11, 1e-10, …), every k-th one so that labels stay
-// 30 px apart; where fewer than two decades fall inside, the 1-2-5 steps. Each label is a distinct number.
+// 30 px apart; where fewer than two decades fall inside, the 1-2-5 steps, then 1…9 (each label a distinct
+// one-digit number); on a range narrower than that, its two ends.
 function logTicks(min, max, pixels) {
   if (!(min > 0) || !(max > min)) return [];
   const low = Math.floor(Math.log10(min)), high = Math.ceil(Math.log10(max));
-  const inside = (v) => v >= min && v <= max;
   const every = Math.ceil((high - low + 1) / Math.max(2, Math.floor(pixels / 30)));
-  let values = [];
-  for (let e = low; e <= high; ++e) if (e % every === 0) values.push(10 ** e);
-  if (values.filter(inside).length < 2) {
-    values = [];
-    for (let e = low; e <= high; ++e) for (const m of [1, 2, 5]) values.push(m * 10 ** e);
+  const ticks = (mantissas, step) => {
+    const values = [];
+    for (let e = low; e <= high; ++e) if (e % step === 0) for (const m of mantissas) values.push(m * 10 ** e);
+    return values.filter((v) => v >= min && v <= max).map((v) => ({ v, label: logLabel(v) }));
+  };
+  for (const [mantissas, step] of [[[1], every], [[1, 2, 5], 1]]) {
+    const found = ticks(mantissas, step);
+    if (found.length >= 2) return found;
   }
-  return values.filter(inside).map((v) => ({ v, label: logLabel(v) }));
+  const dense = ticks([1, 2, 3, 4, 5, 6, 7, 8, 9], 1);
+  return dense.length ? dense : [min, max].map((v) => ({ v, label: Number(v.toPrecision(2)).toString() }));
 }
 
 // 1, 20, 0.005 as written; outside 1e-3 … 1e4 as 1e-11, 2e-5.
@@ -317,7 +321,7 @@ function plotRows(state, series) {
     const y = plot.logscale ? { axisLabelWidth: 64, ticker: logTicks } : { axisLabelWidth: 64 };
     const options = { labels: ['t', ...plot.labels], title: plot.title, xlabel: 't (' + UNITS + ')', ylabel: Y_LABELS[plot.id] || '',
                       logscale: !!plot.logscale, stepPlot: !!plot.stepPlot, series: plot.series || {}, connectSeparatedPoints: true,
-                      legend: 'always', labelsDiv: entry.legend, height: 220, axes: { y, y2: { independentTicks: true } } };
+                      legend: 'always', labelsDiv: entry.legend, height: 220, axes: { y, y2: { independentTicks: true, axisLabelWidth: 64 } } };
     if (entry.graph) entry.graph.updateOptions({ file: data });
     else entry.graph = new Dygraph(entry.box, data, options);
     entry.box.dataset.points = String(data.length);

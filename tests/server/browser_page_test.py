@@ -203,12 +203,12 @@ def warnings_listed(browser):
 
 
 def decade_labels(browser, selector, what):
-    """The axis labels under `selector` are distinct decades (1e-12, 0.01, 1, 100, …), or 1-2-5 steps where
-    the axis spans less than two decades; no 1.00e-11, 9.00e-13."""
+    """The axis labels under `selector` are distinct decades (1e-12, 0.01, 1, 100, …), or one-digit steps
+    (1-2-5, then 1…9) where fewer than two decades fall inside; never 1.00e-11, 9.00e-13."""
     labels = browser.run(f"[...document.querySelectorAll({js(selector)})].map(l => l.textContent)")
-    decade = re.compile(r"^([125]e-?\d+|0\.0*[125]|[125]0*)$")
+    decade = re.compile(r"^([1-9]e-?\d+|0\.0*[1-9]|[1-9]0*)$")
     check(labels and all(decade.match(label) for label in labels) and len(set(labels)) == len(labels),
-          f"{what}: decades (or 1-2-5) only, none repeated: {labels}")
+          f"{what}: decades (or one-digit steps) only, none repeated: {labels}")
 
 
 def live_run(browser, out):
@@ -286,8 +286,8 @@ def study_view(browser, server, source_dir):
     log_scales = browser.run("(() => { const g = document.querySelector('#plot-accuracy canvas'); return !!g; })()")
     check(log_scales, "the accuracy plot is drawn")
     x_labels = browser.run("[...document.querySelectorAll('#plot-accuracy .dygraph-axis-label-x')].map(l => l.textContent)")
-    check(len(x_labels) >= 2 and len(set(x_labels)) == len(x_labels),
-          f"the study's wall-time axis has distinct labels: {x_labels}")
+    check(len(x_labels) >= 2, f"the study's wall-time axis has at least two labels: {x_labels}")
+    decade_labels(browser, "#plot-accuracy .dygraph-axis-label-x", "the study's wall-time axis")
     decade_labels(browser, "#plot-accuracy .dygraph-axis-label-y", "the study's error axis")
     xlabel = browser.run("document.querySelector('#plot-accuracy .dygraph-xlabel')?.textContent")
     check(xlabel == "wall seconds (median of 3 runs)", f"the x axis says how wall time was measured: {xlabel!r}")
@@ -299,13 +299,15 @@ def study_view(browser, server, source_dir):
 
 
 def fits_1280(browser):
-    """At 1280 px wide no table or panel is wider than its column."""
+    """At 1280 px wide nothing in either column reaches past the column's right edge."""
     browser.call("Emulation.setDeviceMetricsOverride", width=1280, height=2400, deviceScaleFactor=1, mobile=False)
     time.sleep(0.5)
-    overflowing = browser.run("""[...document.querySelectorAll('main > section, #jobs, #job-summary, #study-table')]
-        .filter(e => e.offsetParent !== null && e.scrollWidth > e.parentElement.clientWidth + 1)
-        .map(e => `${e.id}: ${e.scrollWidth} > ${e.parentElement.clientWidth}`)""")
-    check(overflowing == [], f"nothing overflows its column at 1280 px: {overflowing}")
+    overflowing = browser.run("""[...document.querySelectorAll('main > section')].filter(s => !s.hidden)
+        .flatMap(s => [...s.querySelectorAll('*')].filter(e => e.offsetParent !== null &&
+                 e.getBoundingClientRect().right > s.getBoundingClientRect().right + 1)
+            .map(e => `${s.id} ${e.tagName.toLowerCase()}#${e.id}.${e.className}: right edge ` +
+                      `${Math.round(e.getBoundingClientRect().right)} > ${Math.round(s.getBoundingClientRect().right)}`))""")
+    check(overflowing == [], f"nothing reaches past its column at 1280 px: {overflowing[:6]}")
     browser.call("Emulation.clearDeviceMetricsOverride")
 
 
