@@ -2,10 +2,10 @@
 /// @file The master surface of each contact pair, resolved once the mesh exists
 /// (docs/smooth_master_surface.md §1).
 
-#include "core/model/model.hpp"
-
 #include <optional>
 #include <string>
+
+#include "core/model/model.hpp"
 
 namespace stoss::scene::detail {
 

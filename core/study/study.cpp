@@ -94,7 +94,8 @@ std::vector<Run> plan(const model::Model& model, const Options& options) {
   std::vector<Run> runs{{options.reference_scheme, reference, true, steps_to_end(reference)}};
   for (model::Scheme scheme : options.schemes)
     for (double step : options.steps)
-      for (int k = 0; k < std::max(1, options.repeat); ++k) runs.push_back({scheme, step, false, steps_to_end(step), k});
+      for (int k = 0; k < std::max(1, options.repeat); ++k)
+        runs.push_back({scheme, step, false, steps_to_end(step), k});
   return runs;
 }
 

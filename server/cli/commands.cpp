@@ -61,11 +61,13 @@ void print_before_run(const scene::Summary& s) {
                 b.name.c_str(), b.dilatational_speed, b.smallest_element, b.courant, b.lowest_period);
   for (const scene::PairScale& p : s.estimates.pairs)
     std::printf("contact %s on %s: approach speed %.3g, contact lasts ~%.3g (Hertz %.3g, wave %.3g)\n",
-                p.slave.c_str(), p.master.c_str(), p.approach_speed, p.duration, p.hertz_duration, p.wave_duration);
+                p.slave.c_str(), p.master.c_str(), p.approach_speed, p.duration, p.hertz_duration,
+                p.wave_duration);
   for (const scene::ResolvedChoice& c : s.choices)
     std::printf("%s: %s (%s)\n", c.pointer.c_str(), c.value.c_str(), c.reason.c_str());
   std::printf("estimated run time %.3g s\n", s.estimates.wall_seconds);
-  if (!s.warnings.empty()) std::printf("%zu warning%s:\n", s.warnings.size(), s.warnings.size() == 1 ? "" : "s");
+  if (!s.warnings.empty())
+    std::printf("%zu warning%s:\n", s.warnings.size(), s.warnings.size() == 1 ? "" : "s");
   for (const scene::Warning& w : s.warnings)
     std::printf("  warning %s: %s: %s\n", w.code.c_str(), w.pointer.c_str(), w.message.c_str());
 }
@@ -310,8 +312,9 @@ int validate_command(const std::vector<std::string>& args) {
     precheck_scene_file(path);
     const scene::Summary s = scene::summarize(scene::load_file(path));
     if (json) {
-      nlohmann::json out{{"valid", true}, {"effects", s.effects}, {"nodes", s.nodes}, {"elements", s.elements},
-                         {"dofs", s.dofs},  {"steps", s.steps},     {"frames", s.frames}};
+      nlohmann::json out{{"valid", true},          {"effects", s.effects}, {"nodes", s.nodes},
+                         {"elements", s.elements}, {"dofs", s.dofs},       {"steps", s.steps},
+                         {"frames", s.frames}};
       out.update(scene::before_run_json(s));
       std::cout << server::safe_dump(out, 2) << "\n";
     } else {

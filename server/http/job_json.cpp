@@ -27,8 +27,10 @@ nlohmann::json links(const jobs::Job& job) {
 void add_before_run(nlohmann::json& j, const jobs::Job& job, const nlohmann::json& before_run) {
   j["warnings"] = before_run.value("warnings", nlohmann::json::array());
   j["choices"] = before_run.value("choices", nlohmann::json::array());
-  const nlohmann::json estimate = before_run.value("estimates", nlohmann::json::object()).value("wall_seconds", nlohmann::json());
-  if (!job.progress.eta_seconds && job.progress.step == 0 && !jobs::is_terminal(job.status) && estimate.is_number())
+  const nlohmann::json estimate =
+      before_run.value("estimates", nlohmann::json::object()).value("wall_seconds", nlohmann::json());
+  if (!job.progress.eta_seconds && job.progress.step == 0 && !jobs::is_terminal(job.status) &&
+      estimate.is_number())
     j["progress"]["eta_seconds"] = estimate;
 }
 

@@ -444,8 +444,9 @@ void get_mesh(App& app, const Request& req, Response& res) {
 void validate_scene(App& app, const Request& req, Response& res) {
   const nlohmann::json scene = parse_json_body(req, app.limits);
   const scene::Summary s = check_scene(scene, app.limits, app.files.mesh_files());
-  nlohmann::json body = {{"valid", true},       {"effects", s.effects}, {"nodes", s.nodes}, {"elements", s.elements},
-                         {"dofs", s.dofs},      {"steps", s.steps},     {"frames", s.frames}};
+  nlohmann::json body = {{"valid", true},          {"effects", s.effects}, {"nodes", s.nodes},
+                         {"elements", s.elements}, {"dofs", s.dofs},       {"steps", s.steps},
+                         {"frames", s.frames}};
   body.update(scene::before_run_json(s));
   send_json(res, 200, body);
 }

@@ -47,7 +47,8 @@ std::string format_step(double h) {
 void check_members(const nlohmann::json& body, nlohmann::json& errors) {
   for (const auto& [name, value] : body.items())
     if (std::find(std::begin(study_members), std::end(study_members), name) == std::end(study_members))
-      add(errors, member_pointer(name), "is not a member of a study (scene, steps, schemes, reference_step, repeat)");
+      add(errors, member_pointer(name),
+          "is not a member of a study (scene, steps, schemes, reference_step, repeat)");
 }
 
 std::vector<double> check_steps(const nlohmann::json& body, nlohmann::json& errors) {
@@ -114,7 +115,8 @@ int check_repeat(const nlohmann::json& body, nlohmann::json& errors) {
   if (it == body.end()) return study::Options{}.repeat;
   if (it->is_number_integer() && it->get<long long>() >= 1 && it->get<long long>() <= max_study_repeat)
     return it->get<int>();
-  add(errors, "/repeat", "must be an integer in [1, " + std::to_string(max_study_repeat) + "], got " + describe(*it));
+  add(errors, "/repeat",
+      "must be an integer in [1, " + std::to_string(max_study_repeat) + "], got " + describe(*it));
   return 1;
 }
 

@@ -2,14 +2,14 @@
 // with an ETA, and once more at the end.
 #include "server/jobs/job_observer.hpp"
 
-#include "core/scene/estimates.hpp"
-#include "core/scene/scene.hpp"
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include "core/scene/estimates.hpp"
+#include "core/scene/scene.hpp"
 
 namespace stoss::server::jobs {
 namespace {
@@ -44,7 +44,8 @@ TEST(ProgressObserver, ReportsAtMostOncePerIntervalWithAnEta) {
 }
 
 TEST(ProgressObserver, TheFirstEtaIsTheEstimateMadeBeforeTheRun) {
-  const model::Model seed = scene::load_file(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json");
+  const model::Model seed =
+      scene::load_file(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json");
   ManualClock clock;
   std::vector<Progress> reports;
   ProgressObserver observer([&](const Progress& p) { reports.push_back(p); }, clock, 500);
