@@ -51,9 +51,9 @@ nlohmann::json to_json(const Estimates& estimates);
 /// The run-time estimate (W7): steps × (a E^k + b S), E the elements, S the slave nodes. a E^k covers
 /// assembly and the sparse factorisation (which grows faster than E) over a step's Newton iterations, b S
 /// the contact search and terms. Fitted to two runs of each shipped example with build/stoss run, on 2
-/// cores at load ~10 (docs/measurements.md, "The run-time estimate"): every run within 2.5× of it.
-inline constexpr double estimate_element_seconds = 6.3e-5;     ///< a
-inline constexpr double estimate_element_exponent = 1.2;       ///< k
-inline constexpr double estimate_slave_node_seconds = 1.4e-4;  ///< b
+/// cores at load ~10 (docs/measurements.md, "The run-time estimate"): every run within 2.7× of it.
+inline constexpr double estimate_element_seconds = 3e-5;       ///< a
+inline constexpr double estimate_element_exponent = 1.3;       ///< k
+inline constexpr double estimate_slave_node_seconds = 1.2e-4;  ///< b
 
 }  // namespace stoss::scene

@@ -42,7 +42,9 @@ std::vector<int> sampled_nodes(const mesh::Mesh& mesh, const std::string& surfac
 }
 
 /// Where `nodes` lie against the faces of `surface`: how many lie behind their nearest face (by centre),
-/// (x − c_f)·n_f < 0 with n_f the outward normal (b−a)×(d−a), and their mean distance to that face's centre.
+/// (x − c_f)·n_f < −ℓ_f / 20 with n_f the outward normal (b−a)×(d−a) and ℓ_f the face's size (a body
+/// resting on the face, or pressed slightly into it, is not behind), and their mean distance to that
+/// face's centre.
 struct Side {
   size_t behind = 0;
   double mean_distance = 0;
@@ -51,20 +53,23 @@ struct Side {
 Side side_of(const mesh::Mesh& mesh, const std::vector<int>& nodes, const std::string& surface) {
   struct Face {
     Eigen::Vector3d centre, normal;
+    double size;
   };
   std::vector<Face> faces;
   for (const mesh::Quad& q : mesh.surface(surface)) {
     const auto& x = mesh.nodes;
     const Eigen::Vector3d centre = (x[q[0]] + x[q[1]] + x[q[2]] + x[q[3]]) / 4;
-    faces.push_back({centre, (x[q[1]] - x[q[0]]).cross(x[q[3]] - x[q[0]]).normalized()});
+    const Eigen::Vector3d normal = (x[q[1]] - x[q[0]]).cross(x[q[3]] - x[q[0]]);
+    faces.push_back({centre, normal.normalized(), std::sqrt(normal.norm())});
   }
   Side side;
+  if (faces.empty()) return side;
   for (int n : nodes) {
     const Eigen::Vector3d& x = mesh.nodes[n];
     const auto nearest = std::min_element(faces.begin(), faces.end(), [&](const Face& a, const Face& b) {
       return (x - a.centre).squaredNorm() < (x - b.centre).squaredNorm();
     });
-    side.behind += (x - nearest->centre).dot(nearest->normal) < 0;
+    side.behind += (x - nearest->centre).dot(nearest->normal) < -nearest->size / 20;
     side.mean_distance += (x - nearest->centre).norm() / static_cast<double>(nodes.size());
   }
   return side;

@@ -60,6 +60,19 @@ TEST(Warnings, ASlaveBehindItsMasterNamesTheSurfaceItFaces) {
       "every node of ball/outer is behind plate/bottom (its normals point away); did you mean plate/top?");
 }
 
+TEST(Warnings, ABlockPressedSlightlyIntoItsMasterIsNotBehindIt) {
+  json scene = seed();
+  // Its bottom 1e-3 below plate/top, whose faces are 0.25 wide: within ℓ_f / 20.
+  scene["bodies"][0]["mesh"] = json::parse(
+      R"({ "box": { "min": [-0.5, -0.5, -0.001], "max": [0.5, 0.5, 0.5], "divisions": [2, 2, 2] } })");
+  scene["contact"][0]["slave"] = "ball/bottom";
+  EXPECT_TRUE(with_code(summary_of(scene), warning::contact_behind_master).empty());
+  scene["contact"][0]["master"] = "plate/bottom";  // 0.2 behind: a mistake again
+  const auto behind = with_code(summary_of(scene), warning::contact_behind_master);
+  ASSERT_EQ(behind.size(), 1u);
+  EXPECT_NE(behind[0].message.find("did you mean plate/top?"), std::string::npos) << behind[0].message;
+}
+
 TEST(Warnings, SteelWithDensityInGramsPerCubicCentimetreIsAUnitSlip) {
   json scene = seed();
   for (json& body : scene["bodies"]) body["material"].update({{"youngs_modulus", 2e11}, {"density", 7.8}});
