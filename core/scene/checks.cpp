@@ -6,6 +6,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "core/scene/spelling.hpp"
+
 namespace stoss::scene::detail {
 
 std::string child(const std::string& pointer, std::string_view key) {
@@ -62,7 +64,7 @@ bool object_with(const json& value, const std::string& pointer,
   }
   for (const auto& [key, ignored] : value.items())
     if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
-      checker.fail(child(pointer, key), "unknown field");
+      checker.fail(child(pointer, key), unknown_field_message(key, allowed));
   return true;
 }
 

@@ -7,16 +7,12 @@
 #include "core/scene/scene.hpp"
 
 namespace stoss::scene::detail {
-namespace {
 
-/// Why pair p cannot use the smooth surface, or nothing.
 std::optional<std::string> smooth_unavailable(const model::Model& m, const model::ContactPair& p) {
   const contact::SmoothSurface s = contact::smooth_surface(m.mesh.surface(p.master));
   if (!s.ok()) return "master " + p.master + " cannot carry a smooth surface: " + s.problem;
   return std::nullopt;
 }
-
-}  // namespace
 
 void resolve_master_surfaces(model::Model& m) {
   std::vector<Issue> issues;

@@ -2,9 +2,15 @@
 /// @file The master surface of each contact pair, resolved once the mesh exists
 /// (docs/smooth_master_surface.md §1).
 
+#include <optional>
+#include <string>
+
 #include "core/model/model.hpp"
 
 namespace stoss::scene::detail {
+
+/// Why pair `p` cannot use the smooth surface (naming the node or edge that breaks the rules), or nothing.
+std::optional<std::string> smooth_unavailable(const model::Model& m, const model::ContactPair& p);
 
 /// Resolves every pair's `master_surface` and `switch_gap` and writes them into the model and into its
 /// resolved scene: `smooth` by default wherever it is implemented (enforcement lagrange, every scheme)

@@ -8,6 +8,7 @@
 #include "core/scene/build.hpp"
 #include "core/scene/master_surface.hpp"
 #include "core/scene/validate.hpp"
+#include "core/scene/warnings.hpp"
 
 namespace stoss::scene {
 
@@ -83,6 +84,9 @@ Summary summarize(const model::Model& model) {
   s.dofs = model.dof_count();
   s.steps = model.time.steps();
   s.frames = model.output.frame_count(s.steps);
+  s.estimates = estimate(model);
+  s.warnings = warnings(model, s.estimates);
+  s.choices = resolved_choices(model);
   return s;
 }
 

@@ -13,6 +13,7 @@
 
 #include "core/mesh/mesh_file.hpp"
 #include "core/model/model.hpp"
+#include "core/scene/estimates.hpp"
 
 namespace stoss::scene {
 
@@ -26,6 +27,22 @@ inline constexpr long long max_generated_nodes = 10'000'000;
 struct Issue {
   std::string pointer;
   std::string message;
+};
+
+/// Something in a valid scene that looks like a mistake (docs/scene.md, "Checks before the run"): a stable
+/// `code` ("contact_behind_master", "density_unit", …), where (JSON pointer) and what to do about it. An
+/// expert may mean it, so it never stops a run.
+struct Warning {
+  std::string code;
+  std::string pointer;
+  std::string message;
+};
+
+/// A choice the scene left open and loading made (today: each pair's master_surface and switch_gap), and why.
+struct ResolvedChoice {
+  std::string pointer;  ///< e.g. "/contact/0/master_surface"
+  std::string value;    ///< "smooth", "faceted", "keep", "clamp"
+  std::string reason;
 };
 
 /// A scene that cannot be run: every issue found, not just the first.
@@ -79,6 +96,9 @@ struct Summary {
   int dofs = 0;
   int steps = 0;
   int frames = 0;  ///< frames written: step 0, every output.every-th step, and the last step
+  std::vector<Warning> warnings;        ///< scene::warnings (warnings.hpp)
+  std::vector<ResolvedChoice> choices;  ///< scene::resolved_choices
+  Estimates estimates;                  ///< scales and the run-time estimate (estimates.hpp)
 };
 Summary summarize(const model::Model& model);
 

@@ -64,6 +64,12 @@ Row row_of(const Outcome& o, const Run& run, const Eigen::VectorXd& reference) {
   return r;
 }
 
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
+}
+
 bool canceled(const Options& options) { return options.cancel && options.cancel->load(); }
 
 double number_or_nan(const nlohmann::json& j, const char* key) {
@@ -87,7 +93,9 @@ std::vector<Run> plan(const model::Model& model, const Options& options) {
   const double reference = resolved_reference_step(options);
   std::vector<Run> runs{{options.reference_scheme, reference, true, steps_to_end(reference)}};
   for (model::Scheme scheme : options.schemes)
-    for (double step : options.steps) runs.push_back({scheme, step, false, steps_to_end(step)});
+    for (double step : options.steps)
+      for (int k = 0; k < std::max(1, options.repeat); ++k)
+        runs.push_back({scheme, step, false, steps_to_end(step), k});
   return runs;
 }
 
@@ -95,7 +103,9 @@ Result run(const model::Model& model, const Options& options) {
   if (options.steps.empty()) throw std::invalid_argument("study: no step sizes given");
   Result result;
   result.reference_step = resolved_reference_step(options);
+  result.repeat = std::max(1, options.repeat);
   Eigen::VectorXd reference_position;
+  std::vector<double> walls;  // of the repetitions of the row in progress
   for (const Run& r : plan(model, options)) {
     const Outcome o = run_once(model, r, options);
     if (canceled(options)) {
@@ -103,7 +113,9 @@ Result run(const model::Model& model, const Options& options) {
       return result;
     }
     if (!r.reference) {
-      result.rows.push_back(row_of(o, r, reference_position));
+      if (r.repetition == 0) result.rows.push_back(row_of(o, r, reference_position)), walls.clear();
+      walls.push_back(o.summary.wall_seconds);
+      result.rows.back().wall_seconds = median(walls);
       continue;
     }
     if (!o.failure.empty()) throw SolverError("study: the reference run failed: " + o.failure);
@@ -139,6 +151,8 @@ nlohmann::json to_json(const Result& result) {
   }
   return {{"reference_step", result.reference_step},
           {"reference_wall_seconds", result.reference_wall_seconds},
+          {"repeat", result.repeat},
+          {"timing", timing_note(result)},
           {"rows", rows}};
 }
 
@@ -146,6 +160,7 @@ Result result_from_json(const nlohmann::json& table) {
   Result result;
   result.reference_step = number_or_nan(table, "reference_step");
   result.reference_wall_seconds = number_or_nan(table, "reference_wall_seconds");
+  result.repeat = table.value("repeat", 1);
   for (const auto& j : table.at("rows")) {
     Row r;
     r.scheme = j.value("scheme", "");
@@ -164,8 +179,14 @@ Result result_from_json(const nlohmann::json& table) {
   return result;
 }
 
+std::string timing_note(const Result& result) {
+  return result.repeat > 1 ? "wall seconds: the median of " + std::to_string(result.repeat) + " runs"
+                           : "wall seconds: one run";
+}
+
 std::string to_markdown(const Result& result) {
   std::ostringstream out;
+  out << timing_note(result) << " of each scheme and step\n\n";
   out << "| scheme | h | displacement error | energy error | momentum error | wall s | Newton its/step |\n"
          "|---|---|---|---|---|---|---|\n";
   char line[256];

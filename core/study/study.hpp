@@ -18,7 +18,8 @@ struct Run {
   model::Scheme scheme = model::Scheme::energy_momentum;
   double step = 0;
   bool reference = false;
-  int steps = 0;  ///< time steps to reach the scene's end
+  int steps = 0;       ///< time steps to reach the scene's end
+  int repetition = 0;  ///< 0 … Options::repeat − 1: the same run again, for its wall time
 };
 
 struct Row;
@@ -28,6 +29,9 @@ struct Options {
   std::vector<double> steps;                                   ///< step sizes to sweep
   double reference_step = 0;                                   ///< 0: smallest step / 32
   model::Scheme reference_scheme = model::Scheme::energy_momentum;
+  /// Runs of each scheme × step; the row's wall_seconds is their median (wall time is noisy on a shared
+  /// machine; everything else a run reports is the same each time). The reference runs once.
+  int repeat = 3;
   /// Set from any thread to stop the sweep inside the run in progress.
   const std::atomic<bool>* cancel = nullptr;
   /// Before each run: an observer to attach to it (e.g. a job's progress), or nullptr.
@@ -46,7 +50,7 @@ struct Row {
   double displacement_error = 0;    ///< max over nodes |x(T) − x_ref(T)| at the end time T
   double energy_error = 0;          ///< max over steps |H_n − H_0| / |H_0|
   double momentum_error = 0;        ///< max of the relative linear and angular momentum drifts
-  double wall_seconds = 0;
+  double wall_seconds = 0;          ///< the median over Result::repeat runs
   int newton_iterations = 0;
   double newton_per_step = 0;
 };
@@ -55,10 +59,15 @@ struct Result {
   bool canceled = false;            ///< stopped by Options::cancel; rows holds the runs done
   double reference_step = 0;
   double reference_wall_seconds = 0;
+  int repeat = 1;                   ///< runs behind each row's wall_seconds (their median)
   std::vector<Row> rows;
 };
 
-/// The runs of a sweep of `model` in order, reference first (reference_step resolved).
+/// How the rows' wall seconds were measured, for a reader: "wall seconds: the median of 3 runs".
+std::string timing_note(const Result& result);
+
+/// The runs of a sweep of `model` in order, reference first (reference_step resolved), each other run
+/// options.repeat times in a row.
 std::vector<Run> plan(const model::Model& model, const Options& options);
 /// The reference step options.reference_step resolves to (smallest step / 32 when 0).
 double resolved_reference_step(const Options& options);

@@ -11,6 +11,7 @@
 #include "core/output/durable_file.hpp"
 #include "core/output/result_writer.hpp"
 #include "core/scene/scene.hpp"
+#include "core/scene/warnings.hpp"
 #include "core/simulate.hpp"
 #include "core/study/study.hpp"
 #include "server/cli/progress.hpp"
@@ -51,6 +52,24 @@ void print_summary(const model::Model& m, const model::Summary& s) {
   if (s.krylov_iterations_per_solve > 0)
     std::printf("krylov iterations %.1f per solve (%d fell back to LU)\n", s.krylov_iterations_per_solve,
                 s.krylov_fallbacks);
+}
+
+/// The scales, the choices loading made and the warnings of `stoss validate` (docs/command_line.md).
+void print_before_run(const scene::Summary& s) {
+  for (const scene::BodyScale& b : s.estimates.bodies)
+    std::printf("body %s: wave speed %.3g, smallest element %.3g, Courant number %.3g, lowest period ~%.3g\n",
+                b.name.c_str(), b.dilatational_speed, b.smallest_element, b.courant, b.lowest_period);
+  for (const scene::PairScale& p : s.estimates.pairs)
+    std::printf("contact %s on %s: approach speed %.3g, contact lasts ~%.3g (Hertz %.3g, wave %.3g)\n",
+                p.slave.c_str(), p.master.c_str(), p.approach_speed, p.duration, p.hertz_duration,
+                p.wave_duration);
+  for (const scene::ResolvedChoice& c : s.choices)
+    std::printf("%s: %s (%s)\n", c.pointer.c_str(), c.value.c_str(), c.reason.c_str());
+  std::printf("estimated run time %.3g s\n", s.estimates.wall_seconds);
+  if (!s.warnings.empty())
+    std::printf("%zu warning%s:\n", s.warnings.size(), s.warnings.size() == 1 ? "" : "s");
+  for (const scene::Warning& w : s.warnings)
+    std::printf("  warning %s: %s: %s\n", w.code.c_str(), w.pointer.c_str(), w.message.c_str());
 }
 
 int usage(const char* text) {
@@ -195,7 +214,8 @@ std::vector<std::string> split_commas(const std::string& text) {
 
 model::Scheme parse_scheme(const std::string& name) {
   if (auto scheme = model::scheme_from_string(name)) return *scheme;
-  throw std::invalid_argument("--schemes: unknown scheme \"" + name + "\" (energy_momentum, midpoint, hht)");
+  throw std::invalid_argument("--schemes: unknown scheme \"" + name +
+                              "\" (energy_momentum, midpoint, hht, generalized_alpha)");
 }
 
 study::Options study_options(const std::vector<std::string>& args, std::string& scene_path, std::string& format) {
@@ -209,6 +229,9 @@ study::Options study_options(const std::vector<std::string>& args, std::string& 
       for (const auto& name : split_commas(args[++i])) o.schemes.push_back(parse_scheme(name));
     } else if (args[i] == "--reference" && has_value) {
       o.reference_step = std::stod(args[++i]);
+    } else if (args[i] == "--repeat" && has_value) {
+      o.repeat = std::stoi(args[++i]);
+      if (o.repeat < 1) throw std::invalid_argument("--repeat: must be >= 1");
     } else if (args[i] == "--csv" || args[i] == "--json") {
       format = args[i].substr(2);
     } else if (scene_path.empty() && args[i].rfind("-", 0) != 0) {
@@ -227,8 +250,9 @@ study::Options study_options(const std::vector<std::string>& args, std::string& 
 
 int study_command(const std::vector<std::string>& args) {
   constexpr const char* text =
-      "stoss study SCENE.json --steps h1,h2,... [--schemes energy_momentum,midpoint,hht] [--reference H] "
-      "[--csv|--json]";
+      "stoss study SCENE.json --steps h1,h2,... [--schemes energy_momentum,midpoint,hht,generalized_alpha] "
+      "[--reference H] [--repeat N] [--csv|--json]\n"
+      "  wall seconds are the median of N runs of each scheme and step (default 3)";
   if (wants_help(args)) {
     std::cout << "usage: " << text << "\n";
     return success;
@@ -288,14 +312,15 @@ int validate_command(const std::vector<std::string>& args) {
     precheck_scene_file(path);
     const scene::Summary s = scene::summarize(scene::load_file(path));
     if (json) {
-      std::cout << server::safe_dump(nlohmann::json{{"valid", true}, {"effects", s.effects}, {"nodes", s.nodes},
-                                                    {"elements", s.elements}, {"dofs", s.dofs},
-                                                    {"steps", s.steps}, {"frames", s.frames}},
-                                     2)
-                << "\n";
+      nlohmann::json out{{"valid", true},          {"effects", s.effects}, {"nodes", s.nodes},
+                         {"elements", s.elements}, {"dofs", s.dofs},       {"steps", s.steps},
+                         {"frames", s.frames}};
+      out.update(scene::before_run_json(s));
+      std::cout << server::safe_dump(out, 2) << "\n";
     } else {
       std::printf("valid scene\neffects: %s\nnodes %d, elements %d, dofs %d\nsteps %d, frames %d\n",
                   join(s.effects).c_str(), s.nodes, s.elements, s.dofs, s.steps, s.frames);
+      print_before_run(s);
     }
     return success;
   } catch (const scene::SceneError& e) {

@@ -23,9 +23,20 @@ nlohmann::json links(const jobs::Job& job) {
   return l;
 }
 
+/// The warnings and choices of POST; the estimated run time as the ETA of a job that has not measured one.
+void add_before_run(nlohmann::json& j, const jobs::Job& job, const nlohmann::json& before_run) {
+  j["warnings"] = before_run.value("warnings", nlohmann::json::array());
+  j["choices"] = before_run.value("choices", nlohmann::json::array());
+  const nlohmann::json estimate =
+      before_run.value("estimates", nlohmann::json::object()).value("wall_seconds", nlohmann::json());
+  if (!job.progress.eta_seconds && job.progress.step == 0 && !jobs::is_terminal(job.status) &&
+      estimate.is_number())
+    j["progress"]["eta_seconds"] = estimate;
+}
+
 }  // namespace
 
-nlohmann::json job_json(const jobs::Job& job) {
+nlohmann::json job_json(const jobs::Job& job, const nlohmann::json& before_run) {
   nlohmann::json j = {{"id", job.id.str()},
                       {"kind", jobs::to_string(job.kind)},
                       {"status", jobs::to_string(job.status)},
@@ -43,6 +54,7 @@ nlohmann::json job_json(const jobs::Job& job) {
   if (job.error) j["error"] = *job.error;
   if (job.idempotency_key) j["idempotency_key"] = *job.idempotency_key;
   if (job.study) j["study"] = *job.study;
+  if (before_run.is_object()) add_before_run(j, job, before_run);
   return j;
 }
 

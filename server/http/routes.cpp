@@ -12,6 +12,7 @@
 
 #include "core/output/result_reader.hpp"
 #include "core/scene/scene.hpp"
+#include "core/scene/warnings.hpp"
 #include "server/http/byte_range.hpp"
 #include "server/http/job_json.hpp"
 #include "server/http/problem.hpp"
@@ -109,9 +110,28 @@ std::optional<std::string> idempotency_key(const Request& req) {
   return key;
 }
 
-/// Stores `job` (201, or 200 for a repeated Idempotency-Key with the same body) and wakes the workers.
-void queue_job(App& app, const jobs::NewJob& job, Response& res) {
+/// DIR/jobs/<id>/before_run.json: the warnings, choices and estimates POST found (scene::before_run_json),
+/// kept beside the job's log for its job JSON.
+std::filesystem::path before_run_file(const App& app, const jobs::JobId& id) {
+  return app.files.dir(id) / "before_run.json";
+}
+
+/// The job JSON of `job` with what POST found before the run, when it was kept.
+nlohmann::json job_body(const App& app, const jobs::Job& job) {
+  const auto text = read_file(before_run_file(app, job.id));
+  return job_json(job, text ? nlohmann::json::parse(*text, nullptr, false) : nlohmann::json());
+}
+
+/// Stores `job` (201, or 200 for a repeated Idempotency-Key with the same body) and wakes the workers;
+/// a new job keeps `before_run` in its directory.
+void queue_job(App& app, const jobs::NewJob& job, const nlohmann::json& before_run, Response& res) {
   const jobs::CreateResult created = app.store.create(job, app.limits.max_queued);
+  if (created.outcome == jobs::CreateResult::Outcome::created) try {
+      std::filesystem::create_directories(app.files.dir(created.job->id));
+      jobs::write_synced(before_run_file(app, created.job->id), before_run.dump());
+    } catch (const std::exception& e) {  // the job is queued: without the file its JSON has no warnings
+      std::cerr << "job " << created.job->id.str() << ": cannot keep its warnings: " << e.what() << "\n";
+    }
   using Outcome = jobs::CreateResult::Outcome;
   switch (created.outcome) {
     case Outcome::queue_full:
@@ -123,11 +143,11 @@ void queue_job(App& app, const jobs::NewJob& job, Response& res) {
            "Idempotency-Key '" + *job.idempotency_key + "' was used for job " + created.job->id.str() +
                " with a different body");
     case Outcome::existing:
-      return send_json(res, 200, job_json(*created.job));
+      return send_json(res, 200, job_body(app, *created.job));
     case Outcome::created:
       app.pool.notify();
       res.set_header("Location", "/v1/jobs/" + created.job->id.str());
-      return send_json(res, 201, job_json(*created.job));
+      return send_json(res, 201, job_body(app, *created.job));
   }
 }
 
@@ -142,7 +162,19 @@ void submit_job(App& app, const Request& req, Response& res) {
   job.effects = summary.effects;
   job.progress.steps = summary.steps;
   job.progress.end = job.scene.contains("time") ? job.scene["time"].value("end", 0.0) : 0.0;
-  queue_job(app, job, res);
+  queue_job(app, job, scene::before_run_json(summary), res);
+}
+
+/// A study's before-run JSON: the scene's warnings but those on /time/step (a study sweeps steps of its own),
+/// its choices, no run-time estimate.
+nlohmann::json study_before_run(const StudyRequest& study) {
+  nlohmann::json found = scene::before_run_json(study.summary);
+  nlohmann::json& warnings = found["warnings"];
+  warnings.erase(std::remove_if(warnings.begin(), warnings.end(),
+                                [](const nlohmann::json& w) { return w["pointer"] == "/time/step"; }),
+                 warnings.end());
+  found.erase("estimates");
+  return found;
 }
 
 /// A study is a job of kind "study": progress counts runs; its table is served by get_study.
@@ -158,7 +190,7 @@ void submit_study(App& app, const Request& req, Response& res) {
   job.effects = study.summary.effects;
   job.progress.steps = study.runs;
   job.progress.end = study.scene.value("time", nlohmann::json::object()).value("end", 0.0);
-  queue_job(app, job, res);
+  queue_job(app, job, study_before_run(study), res);
 }
 
 /// 1 to `max_length` ASCII digits.
@@ -196,13 +228,13 @@ std::optional<jobs::Status> list_status(const Request& req) {
 void list_jobs(App& app, const Request& req, Response& res) {
   const jobs::Page page = app.store.list(list_status(req), list_limit(req), list_cursor(req));
   nlohmann::json body = {{"jobs", nlohmann::json::array()}, {"next_cursor", nullptr}};
-  for (const auto& job : page.jobs) body["jobs"].push_back(job_json(job));
+  for (const auto& job : page.jobs) body["jobs"].push_back(job_body(app, job));
   if (page.next_cursor) body["next_cursor"] = std::to_string(*page.next_cursor);
   send_json(res, 200, body);
 }
 
 void get_job(App& app, const Request& req, Response& res) {
-  send_json(res, 200, job_json(find_job(app, req)));
+  send_json(res, 200, job_body(app, find_job(app, req)));
 }
 
 void cancel_job(App& app, const Request& req, Response& res) {
@@ -222,7 +254,7 @@ void cancel_job(App& app, const Request& req, Response& res) {
       app.pool.cancel(job.id);
       [[fallthrough]];
     case Outcome::canceled:
-      return send_json(res, 202, job_json(*result.job));
+      return send_json(res, 202, job_body(app, *result.job));
   }
 }
 
@@ -481,14 +513,11 @@ void delete_mesh(App& app, const Request& req, Response& res) {
 void validate_scene(App& app, const Request& req, Response& res) {
   const nlohmann::json scene = parse_json_body(req, app.limits);
   const scene::Summary s = check_scene(scene, app.limits, mesh_files(app));
-  send_json(res, 200,
-            {{"valid", true},
-             {"effects", s.effects},
-             {"nodes", s.nodes},
-             {"elements", s.elements},
-             {"dofs", s.dofs},
-             {"steps", s.steps},
-             {"frames", s.frames}});
+  nlohmann::json body = {{"valid", true},          {"effects", s.effects}, {"nodes", s.nodes},
+                         {"elements", s.elements}, {"dofs", s.dofs},       {"steps", s.steps},
+                         {"frames", s.frames}};
+  body.update(scene::before_run_json(s));
+  send_json(res, 200, body);
 }
 
 void get_schema(App&, const Request&, Response& res) {

@@ -14,7 +14,10 @@ namespace stoss::server::http {
 
 namespace {
 
-const char* const study_members[] = {"scene", "steps", "schemes", "reference_step"};
+const char* const study_members[] = {"scene", "steps", "schemes", "reference_step", "repeat"};
+
+/// Most runs of each scheme × step (`repeat`).
+constexpr int max_study_repeat = 9;
 
 void add(nlohmann::json& errors, const std::string& pointer, const std::string& message) {
   errors.push_back({{"pointer", pointer}, {"message", message}});
@@ -45,7 +48,8 @@ std::string format_step(double h) {
 void check_members(const nlohmann::json& body, nlohmann::json& errors) {
   for (const auto& [name, value] : body.items())
     if (std::find(std::begin(study_members), std::end(study_members), name) == std::end(study_members))
-      add(errors, member_pointer(name), "is not a member of a study (scene, steps, schemes, reference_step)");
+      add(errors, member_pointer(name),
+          "is not a member of a study (scene, steps, schemes, reference_step, repeat)");
 }
 
 std::vector<double> check_steps(const nlohmann::json& body, nlohmann::json& errors) {
@@ -104,6 +108,17 @@ double check_reference(const nlohmann::json& body, nlohmann::json& errors) {
   if (positive_number(*it)) return it->get<double>();
   add(errors, "/reference_step", "must be a positive number, got " + describe(*it));
   return 0;
+}
+
+/// Runs per scheme × step whose median wall time a row shows; study::Options' default when absent.
+int check_repeat(const nlohmann::json& body, nlohmann::json& errors) {
+  auto it = body.find("repeat");
+  if (it == body.end()) return study::Options{}.repeat;
+  if (it->is_number_integer() && it->get<long long>() >= 1 && it->get<long long>() <= max_study_repeat)
+    return it->get<int>();
+  add(errors, "/repeat",
+      "must be an integer in [1, " + std::to_string(max_study_repeat) + "], got " + describe(*it));
+  return 1;
 }
 
 /// Checks the scene (its own step and frames aside); its 422 errors are added under /scene, a 413 is thrown.
@@ -165,6 +180,7 @@ StudyRequest check_study(const nlohmann::json& body, const Limits& limits, const
   request.options.steps = check_steps(body, errors);
   request.options.schemes = check_schemes(body, errors);
   request.options.reference_step = check_reference(body, errors);
+  request.options.repeat = check_repeat(body, errors);
   request.summary = check_study_scene(body, limits, mesh_files, request.scene, errors);
   if (!errors.empty()) throw ProblemError(invalid_study(std::move(errors)));
   if (request.options.reference_step == 0)

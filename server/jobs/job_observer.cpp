@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/scene/estimates.hpp"
+
 namespace stoss::server::jobs {
 
 ProgressObserver::ProgressObserver(ProgressSink sink, const Clock& clock, Millis interval)
@@ -9,7 +11,8 @@ ProgressObserver::ProgressObserver(ProgressSink sink, const Clock& clock, Millis
 
 void ProgressObserver::begin(const model::Model& model, const model::SeriesLayout&) {
   started_ = clock_.now();
-  current_ = Progress{0, model.time.steps(), 0.0, model.time.end, std::nullopt};
+  // Until a step is measured, the ETA is the estimate made before the run (scene/estimates.hpp, W7).
+  current_ = Progress{0, model.time.steps(), 0.0, model.time.end, scene::estimate(model).wall_seconds};
   report(started_);
 }
 

@@ -102,7 +102,10 @@ std::optional<model::Scheme> parse_scheme(std::string_view name) { return model:
 nlohmann::json study_params_json(const study::Options& options) {
   nlohmann::json schemes = nlohmann::json::array();
   for (model::Scheme s : options.schemes) schemes.push_back(model::to_string(s));
-  return {{"steps", options.steps}, {"schemes", schemes}, {"reference_step", options.reference_step}};
+  return {{"steps", options.steps},
+          {"schemes", schemes},
+          {"reference_step", options.reference_step},
+          {"repeat", options.repeat}};
 }
 
 study::Options study_options(const nlohmann::json& params) {
@@ -115,11 +118,12 @@ study::Options study_options(const nlohmann::json& params) {
     options.schemes.push_back(*scheme);
   }
   options.reference_step = params.at("reference_step").get<double>();
+  options.repeat = params.value("repeat", 1);  // a study queued before `repeat` ran each point once
   return options;
 }
 
 int study_run_count(const study::Options& options) {
-  return 1 + static_cast<int>(options.schemes.size() * options.steps.size());
+  return 1 + static_cast<int>(options.schemes.size() * options.steps.size()) * std::max(1, options.repeat);
 }
 
 study::Result study_result_from_json(const nlohmann::json& table) { return study::result_from_json(table); }

@@ -56,6 +56,50 @@ function number(value) {
   return Math.abs(value) >= 1e-3 && Math.abs(value) < 1e5 ? value.toPrecision(4) : value.toExponential(3);
 }
 
+// The scene format has no units field (docs/scene.md): lengths, times, energies are in the scene's own units.
+const UNITS = 'model units';
+
+// Log-axis ticks (a dygraphs `ticker`): decades only (1e-11, 1e-10, …), every k-th one so that labels stay
+// 30 px apart; where fewer than two decades fall inside, the 1-2-5 steps, then 1…9 (each label a distinct
+// one-digit number); on a range narrower than that, its two ends.
+function logTicks(min, max, pixels) {
+  if (!(min > 0) || !(max > min)) return [];
+  const low = Math.floor(Math.log10(min)), high = Math.ceil(Math.log10(max));
+  const every = Math.ceil((high - low + 1) / Math.max(2, Math.floor(pixels / 30)));
+  const ticks = (mantissas, step) => {
+    const values = [];
+    for (let e = low; e <= high; ++e) if (e % step === 0) for (const m of mantissas) values.push(m * 10 ** e);
+    return values.filter((v) => v >= min && v <= max).map((v) => ({ v, label: logLabel(v) }));
+  };
+  for (const [mantissas, step] of [[[1], every], [[1, 2, 5], 1]]) {
+    const found = ticks(mantissas, step);
+    if (found.length >= 2) return found;
+  }
+  const dense = ticks([1, 2, 3, 4, 5, 6, 7, 8, 9], 1);
+  return dense.length ? dense : [min, max].map((v) => ({ v, label: Number(v.toPrecision(2)).toString() }));
+}
+
+// 1, 20, 0.005 as written; outside 1e-3 … 1e4 as 1e-11, 2e-5.
+function logLabel(v) {
+  const e = Math.floor(Math.log10(v) + 1e-9);
+  const m = Math.round(v / 10 ** e);
+  return e >= -3 && e <= 4 ? String(Number((m * 10 ** e).toPrecision(1))) : m + 'e' + e;
+}
+
+// The unit of a summary member, from its name.
+function unitOf(key) {
+  if (/_seconds$/.test(key)) return 's';
+  if (/_mb$/.test(key)) return 'MB';
+  if (/drift|_error/.test(key)) return 'relative';
+  if (/iterations|steps|fallbacks|^step$|runs/.test(key)) return '';
+  if (/energy|time|penetration/.test(key)) return UNITS;
+  return '';
+}
+
+// What each plot's y axis measures (by plot id).
+const Y_LABELS = { energy: 'energy (' + UNITS + ')', 'energy-error': 'relative error', 'momentum-error': 'momentum (' + UNITS + ')',
+                   contact: 'count; penetration (' + UNITS + ')', newton: 'iterations', dissipation: 'energy (' + UNITS + ')' };
+
 function duration(seconds) {
   if (seconds === null || seconds === undefined) return '';
   if (seconds < 90) return Math.round(seconds) + ' s';
@@ -168,14 +212,23 @@ function showErrors(errors, scene, scenePrefix) {
   }
 }
 
+// What a dry run or a submission found before the run: warnings (code, pointer, message) and the choices made.
+function showBeforeRun(list, answer) {
+  const items = (answer.warnings || []).map((w) =>
+    el('li', { class: 'warning', 'data-code': w.code, 'data-pointer': w.pointer }, `warning ${w.pointer}: ${w.message}`));
+  for (const c of answer.choices || []) items.push(el('li', { class: 'choice', 'data-pointer': c.pointer }, `${c.pointer}: ${c.value} (${c.reason})`));
+  list.replaceChildren(...items);
+}
+
 function requestBody() {
   const text = document.getElementById('scene-text').value;
   if (!document.getElementById('as-study').checked) return { path: '/v1/jobs', text, prefix: '' };
   const steps = document.getElementById('study-steps').value.split(',').map((s) => Number(s.trim()));
   const schemes = [...document.querySelectorAll('#study-schemes input:checked')].map((box) => box.value);
+  const repeat = Number(document.getElementById('study-repeat').value);
   let scene;
   try { scene = JSON.parse(text); } catch (e) { return { path: '/v1/studies', text, prefix: '/scene' }; }
-  return { path: '/v1/studies', text: JSON.stringify({ scene, steps, schemes }), prefix: '/scene' };
+  return { path: '/v1/studies', text: JSON.stringify({ scene, steps, schemes, repeat }), prefix: '/scene' };
 }
 
 async function submit(validateOnly) {
@@ -187,11 +240,14 @@ async function submit(validateOnly) {
   const answer = await response.json();
   let scene;
   try { scene = JSON.parse(document.getElementById('scene-text').value); } catch (e) { scene = undefined; }
+  showBeforeRun(document.getElementById('scene-warnings'), response.ok ? answer : {});
   if (response.ok) {
     showErrors([], undefined, '');
     outcome.className = 'ok';
     if (validateOnly) {
-      outcome.textContent = `valid: ${answer.effects.join(', ')}; ${answer.nodes} nodes, ${answer.steps} steps`;
+      const estimate = answer.estimates ? `; about ${duration(answer.estimates.wall_seconds) || '0 s'} to run` : '';
+      const warned = answer.warnings.length ? `; ${answer.warnings.length} warning(s) below` : '';
+      outcome.textContent = `valid: ${answer.effects.join(', ')}; ${answer.nodes} nodes, ${answer.steps} steps${estimate}${warned}`;
       return;
     }
     outcome.textContent = 'queued ' + answer.id;
@@ -262,9 +318,10 @@ function plotRows(state, series) {
     const data = state.data[plot.id];
     const entry = state.graphs[plot.id];
     for (let i = 0; i < count; ++i) data.push([series.time[i], ...plot.row(series, i, state.first)]);
-    const options = { labels: ['t', ...plot.labels], title: plot.title, xlabel: 't', logscale: !!plot.logscale,
-                      stepPlot: !!plot.stepPlot, series: plot.series || {}, connectSeparatedPoints: true, legend: 'always',
-                      labelsDiv: entry.legend, height: 220, axes: { y: { axisLabelWidth: 64 }, y2: { independentTicks: true } } };
+    const y = plot.logscale ? { axisLabelWidth: 64, ticker: logTicks } : { axisLabelWidth: 64 };
+    const options = { labels: ['t', ...plot.labels], title: plot.title, xlabel: 't (' + UNITS + ')', ylabel: Y_LABELS[plot.id] || '',
+                      logscale: !!plot.logscale, stepPlot: !!plot.stepPlot, series: plot.series || {}, connectSeparatedPoints: true,
+                      legend: 'always', labelsDiv: entry.legend, height: 220, axes: { y, y2: { independentTicks: true, axisLabelWidth: 64 } } };
     if (entry.graph) entry.graph.updateOptions({ file: data });
     else entry.graph = new Dygraph(entry.box, data, options);
     entry.box.dataset.points = String(data.length);
@@ -285,8 +342,9 @@ async function pollSeries(job) {
 }
 
 function showSummary(summary, note) {
-  const rows = Object.entries(summary).map(([key, value]) => el('tr', {}, el('th', {}, key), el('td', {}, number(value))));
-  if (note) rows.unshift(el('tr', {}, el('th', { colspan: 2 }, 'summary ' + note)));
+  const rows = Object.entries(summary).map(([key, value]) =>
+    el('tr', {}, el('th', {}, key), el('td', {}, number(value)), el('td', { class: 'unit' }, unitOf(key))));
+  if (note) rows.unshift(el('tr', {}, el('th', { colspan: 3 }, 'summary ' + note)));
   document.getElementById('job-summary').replaceChildren(...rows);
 }
 
@@ -331,6 +389,7 @@ function showJobHeader(job) {
   document.getElementById('job-progress').textContent = progressText(job, true) + (eta !== null ? ' · ETA ' + duration(eta) : '');
   document.getElementById('cancel-button').hidden = !job.links.cancel;
   document.getElementById('job-error').textContent = job.error || '';
+  showBeforeRun(document.getElementById('job-warnings'), { warnings: job.warnings });
   showDownloads(job);
   if (job.summary) showSummary(job.summary, '');
 }
@@ -348,21 +407,30 @@ async function showStudy(job) {
   const { body } = await apiJson(job.links.study);
   shown.studyShown = true;
   const schemes = [...new Set(body.rows.map((r) => r.scheme))];
-  const points = body.rows.filter((r) => r.completed && r.displacement_error > 0)
+  const plotted = body.rows.filter((r) => r.completed && r.displacement_error > 0);
+  const points = plotted
     .map((r) => { const row = [r.wall_seconds, ...schemes.map(() => null)]; row[1 + schemes.indexOf(r.scheme)] = r.displacement_error; return row; })
     .sort((a, b) => a[0] - b[0]);
   const xs = points.map((p) => p[0]);
-  const ys = body.rows.filter((r) => r.completed && r.displacement_error > 0).map((r) => r.displacement_error);
+  const ys = plotted.map((r) => r.displacement_error);
+  const timing = body.timing || 'wall seconds: one run';
   const box = document.getElementById('plot-accuracy');
   box.dataset.points = String(points.length);
   box.dataset.lines = String(schemes.length);
-  new Dygraph(box, points, { labels: ['wall seconds', ...schemes], title: 'Displacement error at the end against wall time',
-    xlabel: 'wall seconds', ylabel: 'max nodal displacement error', logscale: true,
-    connectSeparatedPoints: true, drawPoints: true, pointSize: 3, legend: 'always', height: 300,
-    labelsDiv: document.getElementById('accuracy-legend'), axes: { x: { logscale: true }, y: { axisLabelWidth: 64 } },
+  box.dataset.pointLabels = JSON.stringify(plotted.map((r) => 'h=' + r.step));
+  const graph = new Dygraph(box, points, { labels: ['wall seconds', ...schemes], title: 'Displacement error at the end against wall time',
+    xlabel: body.repeat > 1 ? `wall seconds (median of ${body.repeat} runs)` : 'wall seconds (one run)', ylabel: 'max nodal displacement error (' + UNITS + ')',
+    logscale: true, connectSeparatedPoints: true, drawPoints: true, pointSize: 3, legend: 'always', height: 300,
+    labelsDiv: document.getElementById('accuracy-legend'),
+    axes: { x: { logscale: true, ticker: logTicks }, y: { axisLabelWidth: 64, ticker: logTicks } },
     dateWindow: [Math.min(...xs) / 1.5, Math.max(...xs) * 1.5], valueRange: [Math.min(...ys) / 1.5, Math.max(...ys) * 1.5] });
+  // Each point says its step size.
+  graph.ready(() => graph.setAnnotations(plotted.map((r) => ({ series: r.scheme, x: r.wall_seconds, shortText: 'h=' + r.step,
+    text: `${r.scheme}, h = ${r.step}`, width: 48, height: 14, cssClass: 'step-label' }))));
+  document.getElementById('study-timing').textContent = timing + ' of each scheme and step.';
   const columns = ['scheme', 'step', 'steps', 'displacement_error', 'energy_error', 'momentum_error', 'wall_seconds', 'newton_per_step'];
-  const head = el('tr', {}, ...columns.map((c) => el('th', {}, c)));
+  const unitOfColumn = { step: UNITS, displacement_error: UNITS, energy_error: 'relative', momentum_error: 'relative', wall_seconds: 's' };
+  const head = el('tr', {}, ...columns.map((c) => el('th', {}, c + (unitOfColumn[c] ? ` (${unitOfColumn[c]})` : ''))));
   const rows = body.rows.map((r) => el('tr', { class: r.completed ? '' : 'failed' },
     ...columns.map((c) => el('td', {}, r[c] === null || r[c] === undefined ? (r.failure || '') : number(r[c])))));
   document.getElementById('study-table').replaceChildren(head, ...rows);

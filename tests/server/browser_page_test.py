@@ -3,8 +3,10 @@
 
 The system shall serve a page that submits a bundled example, plots its series while it runs (the number of
 points grows), reaches `succeeded` with every step plotted once, offers a working download of the result,
-shows validation errors next to the field their JSON pointer names, filters the job list by status, plots a
-study's accuracy against time with its table, and asks for the bearer token when the server has one.
+shows validation errors next to the field their JSON pointer names and the scene's warnings, labels log axes by
+decades without repeats, filters the job list by status, plots a study's accuracy against time with its table
+(every point labelled with its h), fits 1280 px without overflow, and asks for the bearer token when the server
+has one.
 
 Starts `stoss serve` on 127.0.0.1 (port 0) and Debian's headless Chromium, drives the page through the
 DevTools protocol (python3-websocket), asserts on the DOM and saves screenshots under BUILD/browser/.
@@ -178,6 +180,37 @@ def validation_errors_next_to_fields(browser):
           f"a missing member is reported next to its object: {field} {message!r}")
 
 
+def warnings_listed(browser):
+    """A scene whose slave lies behind its master validates with a warning, listed as data under the form."""
+    choose(browser, "example", EXAMPLE)
+    scene = json.loads(browser.run("document.getElementById('scene-text').value"))
+    scene["contact"][0]["master"] = "plate/bottom"
+    browser.run(f"document.getElementById('scene-text').value = {js(json.dumps(scene, indent=2))}")
+    browser.run("document.getElementById('validate-button').click()")
+    browser.wait_for("document.querySelector('#scene-warnings li.warning')", "the validate warnings are listed")
+    warning = browser.run("(() => { const w = document.querySelector('#scene-warnings li.warning');"
+                          " return [w.dataset.code, w.dataset.pointer, w.textContent]; })()")
+    check(warning[0] == "contact_behind_master" and warning[1] == "/contact/0/master",
+          f"the warning has its code and pointer: {warning[:2]}")
+    check("did you mean plate/top?" in warning[2], f"and its fix: {warning[2]!r}")
+    outcome = browser.run("document.getElementById('submit-outcome').textContent")
+    check(outcome.startswith("valid:") and "1 warning" in outcome, f"a scene with a warning is still valid: {outcome!r}")
+    choice = browser.run("document.querySelector('#scene-warnings li.choice')?.textContent || ''")
+    check(choice.startswith("/contact/0/master_surface: smooth"), f"the resolved master surface is listed: {choice!r}")
+    schemes = browser.run("[...document.querySelectorAll('#study-schemes input')].map(b => b.value)")
+    check(schemes == ["energy_momentum", "midpoint", "hht", "generalized_alpha"],
+          f"the study form offers every dynamic scheme: {schemes}")
+
+
+def decade_labels(browser, selector, what):
+    """The axis labels under `selector` are distinct decades (1e-12, 0.01, 1, 100, …), or one-digit steps
+    (1-2-5, then 1…9) where fewer than two decades fall inside; never 1.00e-11, 9.00e-13."""
+    labels = browser.run(f"[...document.querySelectorAll({js(selector)})].map(l => l.textContent)")
+    decade = re.compile(r"^([1-9]e-?\d+|0\.0*[1-9]|[1-9]0*)$")
+    check(labels and all(decade.match(label) for label in labels) and len(set(labels)) == len(labels),
+          f"{what}: decades (or one-digit steps) only, none repeated: {labels}")
+
+
 def live_run(browser, out):
     choose(browser, "example", EXAMPLE)
     browser.run("document.getElementById('submit-button').click()")
@@ -209,6 +242,10 @@ def live_run(browser, out):
     check([p[0] for p in plots] == expected, f"the contact run has the plots {expected} (got {plots})")
     check(all(p[1] == EXAMPLE_ROWS for p in plots),
           f"every plot holds each of the {EXAMPLE_ROWS} steps exactly once, polled with ?since")
+    decade_labels(browser, "#plot-energy-error .dygraph-axis-label-y", "the energy error's log axis")
+    decade_labels(browser, "#plot-momentum-error .dygraph-axis-label-y", "the momentum error's log axis")
+    xlabel = browser.run("document.querySelector('#plot-energy .dygraph-xlabel')?.textContent")
+    check(xlabel == "t (model units)", f"the time axis names its units: {xlabel!r}")
     summary = browser.run("document.getElementById('job-summary').textContent")
     check("energy_drift" in summary and "max_penetration" in summary, "the summary shows energy drift and penetration")
     log = browser.run("document.getElementById('job-log').textContent")
@@ -248,6 +285,30 @@ def study_view(browser, server, source_dir):
     check(rows == 7, f"the study table has a header and 6 rows (got {rows})")
     log_scales = browser.run("(() => { const g = document.querySelector('#plot-accuracy canvas'); return !!g; })()")
     check(log_scales, "the accuracy plot is drawn")
+    x_labels = browser.run("[...document.querySelectorAll('#plot-accuracy .dygraph-axis-label-x')].map(l => l.textContent)")
+    check(len(x_labels) >= 2, f"the study's wall-time axis has at least two labels: {x_labels}")
+    decade_labels(browser, "#plot-accuracy .dygraph-axis-label-x", "the study's wall-time axis")
+    decade_labels(browser, "#plot-accuracy .dygraph-axis-label-y", "the study's error axis")
+    xlabel = browser.run("document.querySelector('#plot-accuracy .dygraph-xlabel')?.textContent")
+    check(xlabel == "wall seconds (median of 3 runs)", f"the x axis says how wall time was measured: {xlabel!r}")
+    browser.wait_for("document.querySelectorAll('#plot-accuracy .step-label').length === 6", "every point is labelled")
+    steps = browser.run("[...document.querySelectorAll('#plot-accuracy .step-label')].map(a => a.textContent).sort()")
+    check(steps == ["h=0.05"] * 3 + ["h=0.1"] * 3, f"each point is labelled with its h: {steps}")
+    note = browser.run("document.getElementById('study-energy-note').textContent")
+    check("2.0 and 2.3 H₀" in note and "4v/h" in note, "the study page says why HHT-α and generalized-α gain energy")
+
+
+def fits_1280(browser):
+    """At 1280 px wide nothing in either column reaches past the column's right edge."""
+    browser.call("Emulation.setDeviceMetricsOverride", width=1280, height=2400, deviceScaleFactor=1, mobile=False)
+    time.sleep(0.5)
+    overflowing = browser.run("""[...document.querySelectorAll('main > section')].filter(s => !s.hidden)
+        .flatMap(s => [...s.querySelectorAll('*')].filter(e => e.offsetParent !== null &&
+                 e.getBoundingClientRect().right > s.getBoundingClientRect().right + 1)
+            .map(e => `${s.id} ${e.tagName.toLowerCase()}#${e.id}.${e.className}: right edge ` +
+                      `${Math.round(e.getBoundingClientRect().right)} > ${Math.round(s.getBoundingClientRect().right)}`))""")
+    check(overflowing == [], f"nothing reaches past its column at 1280 px: {overflowing[:6]}")
+    browser.call("Emulation.clearDeviceMetricsOverride")
 
 
 def token_prompt(browser, binary, work):
@@ -285,6 +346,7 @@ def main():
         check(EXAMPLE in names and "ball_plate_inp" not in names,
               "the bundled examples are offered, without those that need a mesh file")
         validation_errors_next_to_fields(browser)
+        warnings_listed(browser)
         job_id = live_run(browser, out)
         job_list_filter(browser, job_id)
         click_job_row(browser, job_id)
@@ -293,6 +355,7 @@ def main():
         browser.screenshot(out / "page.png")
         study_view(browser, server, source_dir)
         browser.screenshot(out / "study.png")
+        fits_1280(browser)
         token_prompt(browser, binary, work)
     finally:
         if browser:

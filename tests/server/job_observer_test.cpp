@@ -8,6 +8,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/scene/estimates.hpp"
+#include "core/scene/scene.hpp"
+
 namespace stoss::server::jobs {
 namespace {
 
@@ -38,6 +41,23 @@ TEST(ProgressObserver, ReportsAtMostOncePerIntervalWithAnEta) {
   EXPECT_NEAR(*reports[2].eta_seconds, 9.0, 1e-9);  // 900 steps to go at 10 ms each
   observer.end({});
   EXPECT_EQ(reports.size(), 4u);
+}
+
+TEST(ProgressObserver, TheFirstEtaIsTheEstimateMadeBeforeTheRun) {
+  const model::Model seed =
+      scene::load_file(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json");
+  ManualClock clock;
+  std::vector<Progress> reports;
+  ProgressObserver observer([&](const Progress& p) { reports.push_back(p); }, clock, 500);
+  observer.begin(seed, {});
+  ASSERT_EQ(reports.size(), 1u);
+  ASSERT_TRUE(reports[0].eta_seconds);
+  EXPECT_GT(*reports[0].eta_seconds, 0);
+  EXPECT_DOUBLE_EQ(*reports[0].eta_seconds, scene::estimate(seed).wall_seconds);  // (W7)
+  clock.advance(20);
+  observer.step({1, 0.01, {}});  // then the run's own rate: 99 steps to go at 20 ms each
+  observer.end({});
+  EXPECT_NEAR(*reports.back().eta_seconds, 99 * 0.02, 1e-9);
 }
 
 TEST(ProgressObserver, TheFinalReportOfACompletedRunHasEtaZero) {

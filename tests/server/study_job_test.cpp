@@ -17,6 +17,7 @@ study::Options sweep() {
   o.schemes = {model::Scheme::energy_momentum, model::Scheme::midpoint};
   o.steps = {0.04, 0.02};
   o.reference_step = 0.02 / 32;
+  o.repeat = 1;
   return o;
 }
 
@@ -32,7 +33,12 @@ TEST(StudyJob, ParametersRoundTripThroughTheirJson) {
   EXPECT_EQ(o.steps, sweep().steps);
   EXPECT_EQ(o.schemes, sweep().schemes);
   EXPECT_EQ(o.reference_step, sweep().reference_step);
+  EXPECT_EQ(o.repeat, 1);
   EXPECT_EQ(study_run_count(o), 5);
+  study::Options thrice = sweep();
+  thrice.repeat = 3;
+  EXPECT_EQ(study_options(study_params_json(thrice)).repeat, 3);
+  EXPECT_EQ(study_run_count(thrice), 13);  // the reference once, 2 schemes × 2 steps three times
   EXPECT_EQ(parse_scheme("hht"), model::Scheme::hht);
   EXPECT_FALSE(parse_scheme("newmark"));
 }

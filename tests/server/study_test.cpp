@@ -42,15 +42,15 @@ TEST(Study, RunsTheSweepAsAJobAndServesTheTable) {
   EXPECT_EQ(r->get_header_value("Location"), "/v1/jobs/" + id);
   const auto queued = nlohmann::json::parse(r->body);
   EXPECT_EQ(queued["kind"], "study");
-  EXPECT_EQ(queued["progress"]["steps"], 5);  // the reference and 2 schemes × 2 steps
+  EXPECT_EQ(queued["progress"]["steps"], 13);  // the reference and 2 schemes × 2 steps, 3 times each (repeat)
   EXPECT_DOUBLE_EQ(queued["study"]["reference_step"].get<double>(), 0.02 / 32);
 
   const auto done = wait_for_status(c, id, {"succeeded", "failed", "canceled"});
   ASSERT_EQ(done["status"], "succeeded") << done.dump();
-  EXPECT_EQ(done["progress"]["step"], 5);
+  EXPECT_EQ(done["progress"]["step"], 13);
   EXPECT_EQ(done["links"]["study"], "/v1/jobs/" + id + "/study");
   EXPECT_FALSE(done["links"].contains("result"));
-  EXPECT_EQ(done["summary"]["runs_done"], 5);
+  EXPECT_EQ(done["summary"]["runs_done"], 13);
   EXPECT_TRUE(done["summary"]["completed"].get<bool>());
 
   const auto table = body_json(c.Get("/v1/jobs/" + id + "/study"));
@@ -98,8 +98,8 @@ TEST(Study, ServesCsvAndMarkdownAndNoResultFile) {
         << r->body;
   }
   const std::string log = c.Get("/v1/jobs/" + id + "/log")->body;
-  EXPECT_NE(log.find("run 1/5: reference energy_momentum"), std::string::npos) << log;
-  EXPECT_NE(log.find("study completed: 5 runs"), std::string::npos) << log;
+  EXPECT_NE(log.find("run 1/13: reference energy_momentum"), std::string::npos) << log;
+  EXPECT_NE(log.find("study completed: 13 runs"), std::string::npos) << log;
 }
 
 /// The system shall stop a running study when canceled (within the run in progress) and serve no table.

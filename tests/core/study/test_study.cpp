@@ -2,6 +2,7 @@
 // about 4 when h halves, and every row carries the cost (wall time, Newton iterations).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "core/mesh/generators.hpp"
@@ -28,6 +29,7 @@ model::Model spinning_bar() {
 TEST(Study, ErrorsFallAtSecondOrderAndCostsAreRecorded) {
   Options o;
   o.steps = {0.01, 0.005, 0.0025};  // asymptotic range: the stiffest mode has hω ≤ 0.35
+  o.repeat = 1;
   const Result r = run(spinning_bar(), o);
   ASSERT_EQ(r.rows.size(), 9u);
   EXPECT_DOUBLE_EQ(r.reference_step, 0.0025 / 32);
@@ -45,6 +47,33 @@ TEST(Study, ErrorsFallAtSecondOrderAndCostsAreRecorded) {
   EXPECT_EQ(r.rows[0].scheme, "energy_momentum");
   EXPECT_LT(r.rows[0].energy_error, 1e-9) << "energy_momentum conserves energy at every h";
   EXPECT_GT(r.rows[3].energy_error, 1e3 * r.rows[0].energy_error) << "midpoint does not";
+}
+
+TEST(Study, EachPointRunsRepeatTimesAndShowsTheMedianWallTime) {
+  Options o;
+  o.schemes = {model::Scheme::energy_momentum, model::Scheme::midpoint};
+  o.steps = {0.08};
+  o.repeat = 3;
+  std::vector<std::pair<study::Run, double>> finished;
+  o.run_finished = [&](const study::Run& run, const model::Summary& s, const std::string&) {
+    finished.push_back({run, s.wall_seconds});
+  };
+  EXPECT_EQ(plan(spinning_bar(), o).size(), 7u);  // the reference once, each point 3 times
+  const Result r = run(spinning_bar(), o);
+  ASSERT_EQ(finished.size(), 7u);
+  ASSERT_EQ(r.rows.size(), 2u);
+  EXPECT_EQ(r.repeat, 3);
+  for (size_t k = 0; k < 2; ++k) {
+    std::vector<double> walls;
+    for (size_t i = 1 + 3 * k; i < 4 + 3 * k; ++i) {
+      EXPECT_EQ(finished[i].first.repetition, static_cast<int>(i - 1 - 3 * k));
+      walls.push_back(finished[i].second);
+    }
+    std::sort(walls.begin(), walls.end());
+    EXPECT_EQ(r.rows[k].wall_seconds, walls[1]) << r.rows[k].scheme;
+  }
+  EXPECT_EQ(to_json(r)["timing"], "wall seconds: the median of 3 runs");
+  EXPECT_EQ(to_markdown(r).rfind("wall seconds: the median of 3 runs of each scheme and step\n", 0), 0u);
 }
 
 TEST(Study, TableFormatsListEveryRow) {
