@@ -30,7 +30,8 @@ std::optional<Partial> load(const std::filesystem::path& path) {
   std::string line;
   if (!std::getline(in, line)) return std::nullopt;
   try {
-    for (const auto& s : nlohmann::json::parse(line).at("series")) p.layout.push_back(spec_of(s));
+    const nlohmann::json first = nlohmann::json::parse(line);
+    for (const auto& s : first.at("series")) p.layout.push_back(spec_of(s));
   } catch (const std::exception&) {
     return std::nullopt;
   }
