@@ -106,6 +106,18 @@ double ElasticityTerm::energy(const Eigen::VectorXd& x) const {
   return V;
 }
 
+void ElasticityTerm::element_stresses(const Eigen::VectorXd& x, Eigen::VectorXd& cauchy,
+                                      Eigen::VectorXd& von_mises_stress) const {
+  const Eigen::Index E = static_cast<Eigen::Index>(hex8_.size());
+  cauchy.resize(6 * E);
+  von_mises_stress.resize(E);
+  for (Eigen::Index e = 0; e < E; ++e) {
+    const Eigen::Matrix3d sigma = average_cauchy_stress(geometry_[e], *material_[e], gather(hex8_[e], x));
+    cauchy.segment<6>(6 * e) << sigma(0, 0), sigma(0, 1), sigma(0, 2), sigma(1, 1), sigma(1, 2), sigma(2, 2);
+    von_mises_stress[e] = von_mises(sigma);
+  }
+}
+
 void ElasticityTerm::register_blocks(solve::BlockPattern& pattern) {
   block_.resize(hex8_.size());
   for (size_t e = 0; e < hex8_.size(); ++e) block_[e] = pattern.add_block(element_dofs(hex8_[e]));

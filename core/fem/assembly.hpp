@@ -43,6 +43,9 @@ class ElasticityTerm : public time::Term {
   void begin_step(const time::StepContext& step, Eigen::VectorXd& z) override;
   void add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
            solve::BlockPattern* K) const override;
+  /// The element stresses of a frame at positions x: Cauchy stress (average_cauchy_stress), 6 per element in
+  /// XDMF Tensor6 order (xx, xy, xz, yy, yz, zz), and von Mises, 1 per element.
+  void element_stresses(const Eigen::VectorXd& x, Eigen::VectorXd& cauchy, Eigen::VectorXd& von_mises) const;
 
  private:
   /// h·f_alg and h·∂f_alg/∂x_1 of element e under the step's force rule.

@@ -1,5 +1,8 @@
 #include "core/fem/element.hpp"
 
+#include <Eigen/LU>
+#include <cmath>
+
 namespace stoss::fem {
 namespace {
 
@@ -87,6 +90,25 @@ void discrete_gradient_force(const ElementGeometry& e, const Material& m, const 
     K->noalias() += gp.wJ * B_m.transpose() * D_alg * B_1;  // (2.9), material part
     add_geometric_stiffness(gp.dN_dX, S_alg, 0.5 * gp.wJ, *K);                    // (2.9), ½ ∂F_m/∂x_1
   }
+}
+
+Eigen::Matrix3d average_cauchy_stress(const ElementGeometry& e, const Material& m, const Matrix83& x) {
+  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+  double volume = 0;
+  for (const GaussPoint& gp : e.gp) {
+    const Eigen::Matrix3d F = deformation_gradient(x, gp);
+    const double J = F.determinant();
+    const Eigen::Matrix3d S = m.stress(green_lagrange_strain(F));
+    const double w = gp.wJ * J;  // the Gauss point's current volume
+    sum += w * (F * S * F.transpose()) / J;
+    volume += w;
+  }
+  return sum / volume;
+}
+
+double von_mises(const Eigen::Matrix3d& sigma) {
+  const Eigen::Matrix3d s = sigma - sigma.trace() / 3 * Eigen::Matrix3d::Identity();
+  return std::sqrt(1.5 * (s.array() * s.array()).sum());
 }
 
 Matrix8 consistent_mass(const ElementGeometry& e, double density) {

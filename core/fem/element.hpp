@@ -30,6 +30,13 @@ void internal_force(const ElementGeometry& e, const Material& m, const Matrix83&
 void discrete_gradient_force(const ElementGeometry& e, const Material& m, const Matrix83& x_n,
                              const Matrix83& x_1, Vector24& f, Matrix24* K);
 
+/// Cauchy stress σ = J⁻¹ F S Fᵀ (S from the material, (1.4) for St. Venant–Kirchhoff) at the Gauss points,
+/// averaged over the element's current volume, weights wJ·J (docs/results.md "/frames", cauchy_stress).
+Eigen::Matrix3d average_cauchy_stress(const ElementGeometry& e, const Material& m, const Matrix83& x);
+
+/// von Mises stress √(3/2 s:s), s = σ − tr(σ)/3 · 1 (docs/results.md "/frames", von_mises).
+double von_mises(const Eigen::Matrix3d& sigma);
+
 /// Consistent mass M_IJ = Σ_g wJ ρ N_I N_J (1.9), scalar 8×8.
 Matrix8 consistent_mass(const ElementGeometry& e, double density);
 

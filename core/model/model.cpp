@@ -22,6 +22,26 @@ std::optional<Scheme> scheme_from_string(std::string_view name) {
   return std::nullopt;
 }
 
+std::string to_string(LinearSolver s) {
+  switch (s) {
+    case LinearSolver::automatic:
+      return "auto";
+    case LinearSolver::direct:
+      return "direct";
+    case LinearSolver::iterative:
+      return "iterative";
+    case LinearSolver::petsc_gamg:
+      return "petsc_gamg";
+  }
+  return "unknown";
+}
+
+std::optional<LinearSolver> linear_solver_from_string(std::string_view name) {
+  for (LinearSolver s : all_linear_solvers)
+    if (to_string(s) == name) return s;
+  return std::nullopt;
+}
+
 std::optional<SchemeConflict> contact_scheme_conflict(Scheme scheme, Enforcement enforcement, ImpactMode impact) {
   const std::string name = "\"" + to_string(scheme) + "\"";
   if (impact == ImpactMode::velocity_correction && scheme != Scheme::energy_momentum)

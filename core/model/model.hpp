@@ -104,10 +104,20 @@ struct TimeSpec {
   int steps() const;                   ///< step_count(end, step); a validated scene has at most 1e9
 };
 
+/// solver.linear (docs/scene.md): auto picks direct or petsc_gamg by the element count (SolverSpec).
+enum class LinearSolver { automatic, direct, iterative, petsc_gamg };
+/// Every linear solver, in the order the docs list them.
+inline constexpr LinearSolver all_linear_solvers[] = {LinearSolver::automatic, LinearSolver::direct,
+                                                      LinearSolver::iterative, LinearSolver::petsc_gamg};
+/// The scene's name of a linear solver: "auto", "direct", "iterative", "petsc_gamg".
+std::string to_string(LinearSolver s);
+/// The linear solver named `name`, or nullopt.
+std::optional<LinearSolver> linear_solver_from_string(std::string_view name);
+
 struct SolverSpec {
   double tolerance = 1e-10;            ///< relative residual and increment tolerance of Newton
   int max_iterations = 25;
-  std::string linear = "auto";         ///< solver.linear: auto | direct | iterative | petsc_gamg (docs/scene.md)
+  LinearSolver linear = LinearSolver::automatic;  ///< solver.linear
   /// auto picks petsc_gamg from this many elements on. Estimated from loaded-machine tables; measured
   /// quietly the contact-free sphere's crossover is nearer 3,500 elements, with contact not yet measured
   /// there (docs/measurements.md, "Growth with size").

@@ -6,22 +6,9 @@
 #include <vector>
 
 #include "core/model/model.hpp"
+#include "core/model/series.hpp"
 
 namespace stoss::model {
-
-/// One named time series (docs/results.md /series/<name>): `components` values per step.
-struct SeriesSpec {
-  std::string name;
-  int components = 1;    ///< 1 → dataset [S], 3 → [S,3]
-  bool integer = false;  ///< stored as int32
-};
-
-/// The series a run writes; only those of effects the scene calls for (docs/results.md).
-struct SeriesLayout {
-  std::vector<SeriesSpec> series;
-  int index_of(const std::string& name) const;  ///< -1 if absent
-  int row_size() const;                         ///< sum of components
-};
 
 /// Values of every series at one converged step (t0 included as step 0), in layout order.
 struct StepRow {
@@ -30,12 +17,14 @@ struct StepRow {
   std::vector<double> values;  ///< row_size() values, components of a series contiguous
 };
 
-/// Node fields written as a frame (docs/results.md /frames).
+/// Node and element fields written as a frame (docs/results.md /frames).
 struct Frame {
   double time = 0;
   Eigen::VectorXd position;          ///< 3 per node
   Eigen::VectorXd velocity;          ///< 3 per node
   Eigen::VectorXd contact_pressure;  ///< 1 per node; empty when the scene has no contact
+  Eigen::VectorXd cauchy_stress;     ///< 6 per element (xx, xy, xz, yy, yz, zz); empty: no stresses
+  Eigen::VectorXd von_mises;         ///< 1 per element, of cauchy_stress; empty with it
 };
 
 /// What a finished (or stopped) run reports: the job summary of docs/api.md.

@@ -62,6 +62,13 @@ bool ResultFile::series_is_integer(const std::string& name) const {
   return file_->is_integer(series_dataset(name));
 }
 
+model::SeriesSpec ResultFile::series_spec(const std::string& name) const {
+  const h5::Dims dims = file_->shape(series_dataset(name));
+  std::vector<int> shape;
+  for (size_t i = 1; i < dims.size(); ++i) shape.push_back(static_cast<int>(dims[i]));
+  return model::SeriesSpec::of_shape(name, shape, series_is_integer(name));
+}
+
 bool ResultFile::has_attribute(const std::string& name) const {
   h5::silence_errors();
   return file_->has_attribute("/", name);
@@ -196,46 +203,16 @@ Eigen::VectorXd ResultFile::frame_von_mises(int k) const {
 
 namespace {
 
-nlohmann::json number_json(double value, bool integer) {
-  if (integer) return static_cast<std::int64_t>(std::llround(value));
-  return value;
-}
-
-nlohmann::json series_values_json(const Eigen::MatrixXd& values, bool integer) {
-  nlohmann::json out = nlohmann::json::array();
-  for (Eigen::Index r = 0; r < values.rows(); ++r) {
-    if (values.cols() == 1) {
-      out.push_back(number_json(values(r, 0), integer));
-      continue;
-    }
-    nlohmann::json row = nlohmann::json::array();
-    for (Eigen::Index c = 0; c < values.cols(); ++c) row.push_back(number_json(values(r, c), integer));
-    out.push_back(std::move(row));
-  }
-  return out;
-}
-
 /// One named, loaded series for the CSV table.
 struct Column {
-  std::string name;
-  Eigen::MatrixXd values;
-  bool integer = false;
+  model::SeriesSpec spec;
+  RowMajor values;  ///< S rows of spec.components
 };
 
 std::vector<Column> load_columns(const ResultFile& file) {
   std::vector<Column> columns;
-  for (const auto& name : file.series_names())
-    columns.push_back({name, file.series(name), file.series_is_integer(name)});
+  for (const auto& name : file.series_names()) columns.push_back({file.series_spec(name), file.series(name)});
   return columns;
-}
-
-/// CSV header cells of one series: name, or name_x,name_y,name_z, or name_0,name_1,...
-std::vector<std::string> component_headers(const std::string& name, Eigen::Index components) {
-  if (components == 1) return {name};
-  if (components == 3) return {name + "_x", name + "_y", name + "_z"};
-  std::vector<std::string> out;
-  for (Eigen::Index c = 0; c < components; ++c) out.push_back(name + "_" + std::to_string(c));
-  return out;
 }
 
 void append_cell(std::string& line, const std::string& cell) {
@@ -250,10 +227,13 @@ std::string number_text(double value, bool integer) {
 }  // namespace
 
 nlohmann::json series_json(const std::filesystem::path& path) {
-  const ResultFile file = ResultFile::open(path);
   nlohmann::json out = nlohmann::json::object();
-  for (const auto& name : file.series_names())
-    out[name] = series_values_json(file.series(name), file.series_is_integer(name));
+  for (const Column& column : load_columns(ResultFile::open(path))) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (Eigen::Index r = 0; r < column.values.rows(); ++r)
+      rows.push_back(model::row_json(column.spec, column.values.row(r).data()));
+    out[column.spec.name] = std::move(rows);
+  }
   return out;
 }
 
@@ -262,7 +242,7 @@ std::string series_csv(const std::filesystem::path& path) {
   std::string header;
   Eigen::Index rows = columns.empty() ? 0 : columns.front().values.rows();
   for (const auto& column : columns) {
-    for (const auto& cell : component_headers(column.name, column.values.cols())) append_cell(header, cell);
+    for (const auto& cell : model::csv_columns(column.spec)) append_cell(header, cell);
     rows = std::min(rows, column.values.rows());
   }
   std::string out = header + '\n';
@@ -270,7 +250,7 @@ std::string series_csv(const std::filesystem::path& path) {
     std::string line;
     for (const auto& column : columns)
       for (Eigen::Index c = 0; c < column.values.cols(); ++c)
-        append_cell(line, number_text(column.values(r, c), column.integer));
+        append_cell(line, number_text(column.values(r, c), column.spec.integer));
     out += line + '\n';
   }
   return out;

@@ -4,12 +4,14 @@
 
 #include <Eigen/Core>
 #include <cstdint>
-#include <map>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "core/model/series.hpp"
 
 namespace stoss::output {
 
@@ -35,6 +37,8 @@ class ResultFile {
   Eigen::MatrixXd series(const std::string& name) const;
   /// Whether /series/<name> is stored as integers.
   bool series_is_integer(const std::string& name) const;
+  /// Name, shape and type of /series/<name> ([S], [S,c], [S,k,w], [S,k]; model/series.hpp).
+  model::SeriesSpec series_spec(const std::string& name) const;
 
   /// Root attribute as a string (a string array attribute must hold exactly one element).
   std::string attribute_string(const std::string& name) const;
@@ -89,11 +93,11 @@ class ResultFile {
 };
 
 /// Every series of a result as JSON: {"time": [...], "kinetic_energy": [...],
-/// "linear_momentum": [[x,y,z], ...], "newton_iterations": [int, ...], ...}.
+/// "linear_momentum": [[x,y,z], ...], "newton_iterations": [int, ...], ...}; rows as model::row_json.
 nlohmann::json series_json(const std::filesystem::path& path);
 
-/// Every series of a result as CSV: a header of names (vector series as name_x,name_y,name_z;
-/// other widths as name_0,name_1,...), then one line per step. Numbers round-trip exactly.
+/// Every series of a result as CSV: a header of names (model::csv_columns: vector series as
+/// name_x,name_y,name_z, [S,k,3] as name_<i>_x,…), then one line per step. Numbers round-trip exactly.
 std::string series_csv(const std::filesystem::path& path);
 
 }  // namespace stoss::output

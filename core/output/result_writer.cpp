@@ -10,7 +10,6 @@
 #include "core/output/durable_file.hpp"
 #include "core/output/h5.hpp"
 #include "core/output/layout.hpp"
-#include "core/output/stress.hpp"
 #include "core/output/xdmf.hpp"
 
 namespace stoss::output {
@@ -99,8 +98,10 @@ void write_mesh(const h5::File& file, const mesh::Mesh& mesh) {
   }
 }
 
-h5::Dims row_shape(int components) {
-  return components == 1 ? h5::Dims{} : h5::Dims{static_cast<hsize_t>(components)};
+h5::Dims row_shape(const model::SeriesSpec& spec) {
+  h5::Dims dims;
+  for (int n : spec.row_shape()) dims.push_back(static_cast<hsize_t>(n));
+  return dims;
 }
 
 void create_series(const h5::File& file, const model::SeriesLayout& layout) {
@@ -108,7 +109,7 @@ void create_series(const h5::File& file, const model::SeriesLayout& layout) {
   file.create_extendible("/series/time", H5T_IEEE_F64LE, {}, series_chunk_rows);
   for (const auto& spec : layout.series)
     file.create_extendible("/series/" + spec.name, spec.integer ? H5T_STD_I32LE : H5T_IEEE_F64LE,
-                           row_shape(spec.components), series_chunk_rows);
+                           row_shape(spec), series_chunk_rows);
 }
 
 void create_frames(const h5::File& file) {
@@ -151,12 +152,12 @@ struct ResultWriter::Run {
   std::vector<double> buffered_values;  ///< rows of layout.row_size() values
   std::vector<double> frame_times;
   std::optional<bool> contact_pressure;  ///< decided by the first frame
+  std::optional<bool> stress;            ///< cauchy_stress and von_mises, decided by the first frame
   Eigen::VectorXd reference;             ///< X, 3 per node
-  std::unique_ptr<ElementStress> stress;  ///< null when some body has no material
 
   void flush_rows();
   void append_series(const model::SeriesSpec& spec, int offset);
-  void decide_contact_pressure(const model::Frame& frame);
+  void check_frame(const model::Frame& frame);
   XdmfLayout xdmf_layout() const;
 };
 
@@ -185,18 +186,35 @@ void ResultWriter::Run::append_series(const model::SeriesSpec& spec, int offset)
   }
 }
 
-void ResultWriter::Run::decide_contact_pressure(const model::Frame& frame) {
-  const bool present = frame.contact_pressure.size() > 0;
-  if (!contact_pressure) contact_pressure = present;
-  if (present != *contact_pressure)
-    throw std::invalid_argument(*contact_pressure ? "frame without contact_pressure after frames with it"
-                                                  : "frame with contact_pressure after frames without it");
-  if (present) check_size(frame.contact_pressure, node_count, "contact_pressure");
+namespace {
+
+/// Whether the optional `field` is in the frame; the first frame decides for every later one.
+bool decide(std::optional<bool>& decided, const Eigen::VectorXd& field, const char* name) {
+  const bool present = field.size() > 0;
+  if (!decided) decided = present;
+  if (present != *decided)
+    throw std::invalid_argument(std::string(*decided ? "frame without " : "frame with ") + name +
+                                (*decided ? " after frames with it" : " after frames without it"));
+  return present;
+}
+
+}  // namespace
+
+void ResultWriter::Run::check_frame(const model::Frame& frame) {
+  check_size(frame.position, 3 * node_count, "position");
+  check_size(frame.velocity, 3 * node_count, "velocity");
+  if (decide(contact_pressure, frame.contact_pressure, "contact_pressure"))
+    check_size(frame.contact_pressure, node_count, "contact_pressure");
+  if (decide(stress, frame.cauchy_stress, "cauchy_stress")) {
+    check_size(frame.cauchy_stress, 6 * element_count, "cauchy_stress");
+    check_size(frame.von_mises, element_count, "von_mises");
+  }
 }
 
 XdmfLayout ResultWriter::Run::xdmf_layout() const {
-  return XdmfLayout{result_file_name, node_count, element_count, frame_times, contact_pressure.value_or(false),
-                    stress != nullptr};
+  return XdmfLayout{
+      result_file_name,      node_count, element_count, frame_times, contact_pressure.value_or(false),
+      stress.value_or(false)};
 }
 
 ResultWriter::ResultWriter(std::filesystem::path directory) : directory_(std::move(directory)) {}
@@ -218,8 +236,6 @@ void ResultWriter::begin(const model::Model& model, const model::SeriesLayout& l
   create_series(run->file, layout);
   create_frames(run->file);
   run->reference = model.mesh.reference_positions();
-  auto stress = std::make_unique<ElementStress>(model);
-  if (stress->available()) run->stress = std::move(stress);
   run_ = std::move(run);
 }
 
@@ -240,9 +256,7 @@ void ResultWriter::step(const model::StepRow& row) {
 void ResultWriter::frame(const model::Frame& frame) {
   if (!run_) throw std::logic_error("ResultWriter::frame called outside begin()..end()");
   h5::silence_errors();
-  check_size(frame.position, 3 * run_->node_count, "position");
-  check_size(frame.velocity, 3 * run_->node_count, "velocity");
-  run_->decide_contact_pressure(frame);
+  run_->check_frame(frame);
   const h5::File& file = run_->file;
   const long k = static_cast<long>(run_->frame_times.size());
   const hsize_t N = run_->node_count, E = run_->element_count;
@@ -256,11 +270,9 @@ void ResultWriter::frame(const model::Frame& frame) {
   const Eigen::VectorXd displacement = frame.position - run_->reference;
   write("displacement", {N, 3}, displacement.data());
   if (*run_->contact_pressure) write("contact_pressure", {N}, frame.contact_pressure.data());
-  if (run_->stress) {
-    std::vector<double> cauchy, von_mises;
-    run_->stress->compute(frame.position, cauchy, von_mises);
-    write("cauchy_stress", {E, 6}, cauchy.data());
-    write("von_mises", {E}, von_mises.data());
+  if (*run_->stress) {
+    write("cauchy_stress", {E, 6}, frame.cauchy_stress.data());
+    write("von_mises", {E}, frame.von_mises.data());
   }
   file.append_rows("/frames/time", H5T_NATIVE_DOUBLE, 1, &frame.time);
   run_->frame_times.push_back(frame.time);

@@ -15,6 +15,8 @@ inline constexpr const char* partial_file_name = "result.h5.partial";        ///
 inline constexpr const char* incomplete_file_name = "result.incomplete.h5";  ///< canceled or failed runs
 inline constexpr const char* xdmf_file_name = "result.xdmf";  ///< time series sidecar, complete runs
 inline constexpr const char* xdmf_mesh_file_name = "result_mesh.xdmf";  ///< reference mesh sidecar, complete runs
+/// The run's checkpoints (core/run/checkpoint.hpp) while it goes (a job's directory, stoss run's -o DIR).
+inline constexpr const char* checkpoint_directory_name = "checkpoint";
 
 /// Writes one run into a directory. While the run goes the data is in result.h5.partial;
 /// end() renames it to result.h5 only when the run completed (after writing the XDMF sidecars),
@@ -37,10 +39,10 @@ class ResultWriter : public model::Observer {
   void begin(const model::Model& model, const model::SeriesLayout& layout) override;
   /// Buffers one row; throws std::invalid_argument when its size is not layout.row_size().
   void step(const model::StepRow& row) override;
-  /// Writes one frame (group /frames/<k>: position, velocity, displacement, contact_pressure, and the
-  /// element stresses when every body has a material); throws std::invalid_argument when a field has the
-  /// wrong size, or when
-  /// contact_pressure is present in some frames and absent in others (the first frame decides).
+  /// Writes one frame (group /frames/<k>: position, velocity, displacement, and contact_pressure,
+  /// cauchy_stress and von_mises when the frame carries them); throws std::invalid_argument when a field
+  /// has the wrong size, or when contact_pressure or the stresses are in some frames and not in others
+  /// (the first frame decides).
   void frame(const model::Frame& frame) override;
   /// Flushes, writes wall_seconds and complete, closes and renames (see the class comment).
   void end(const model::Summary& summary) override;

@@ -144,7 +144,7 @@ model::Model build_model(const json& scene, const MeshFiles& mesh_files) {
   if (g.norm() > 0) m.gravity = g;
   m.time = time_spec(scene["time"]);
   m.solver = {scene["solver"]["tolerance"].get<double>(), scene["solver"]["max_iterations"].get<int>(),
-              scene["solver"]["linear"].get<std::string>()};
+              model::linear_solver_from_string(scene["solver"]["linear"].get<std::string>()).value()};
   const json& output = scene["output"];
   m.output = {output["every"].get<int>(), output.value("checkpoint_seconds", 60.0), output.value("checkpoint_every", 0)};
   m.effects = model::resolve_effects(m);

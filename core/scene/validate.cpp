@@ -361,7 +361,9 @@ void check_time(json& t, const std::string& p, Checker& c) {
 
 void check_solver(json& s, const std::string& p, Checker& c) {
   if (!object_with(s, p, {"tolerance", "max_iterations", "max_wall_seconds", "linear"}, c)) return;
-  choice_field(s, "linear", p, Presence::or_default("auto"), {"auto", "direct", "iterative", "petsc_gamg"}, c);
+  std::vector<std::string> names;
+  for (model::LinearSolver l : model::all_linear_solvers) names.push_back(model::to_string(l));
+  choice_field(s, "linear", p, Presence::or_default("auto"), {names.begin(), names.end()}, c);
   number_field(s, "tolerance", p, Presence::or_default(1e-10), between(0, 1e-3, false, true, "0, 1e-3"), c);
   integer_field(s, "max_iterations", p, Presence::or_default(25), between(1, 200, true, true), c);
   // Read by the job service only (a job's wall-time limit); the core ignores it.

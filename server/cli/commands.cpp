@@ -7,7 +7,6 @@
 #include <iostream>
 #include <sstream>
 
-#include "core/output/checkpoint.hpp"
 #include "core/output/durable_file.hpp"
 #include "core/output/result_writer.hpp"
 #include "core/scene/scene.hpp"

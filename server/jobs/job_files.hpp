@@ -11,7 +11,6 @@
 #include <string>
 #include <string_view>
 
-#include "core/output/checkpoint.hpp"
 #include "core/output/result_writer.hpp"
 #include "core/scene/scene.hpp"
 #include "server/jobs/id.hpp"

@@ -7,15 +7,6 @@ namespace stoss::server::jobs {
 
 namespace {
 
-int offset_of(const model::SeriesLayout& layout, const std::string& name) {
-  int offset = 0;
-  for (const auto& s : layout.series) {
-    if (s.name == name) return offset;
-    offset += s.components;
-  }
-  return -1;
-}
-
 std::string shortest(double value) {
   char buffer[32];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
@@ -24,9 +15,13 @@ std::string shortest(double value) {
 
 /// The layout line and the rows of a partial series file (a torn last line is left out).
 struct Partial {
-  nlohmann::json layout;                       ///< [{"name", "components", "integer"}...]
-  std::vector<std::vector<double>> rows;       ///< [step, time, values...]
+  std::vector<model::SeriesSpec> layout;  ///< from [{"name", "components", "integer", "items"}...]
+  std::vector<std::vector<double>> rows;  ///< [step, time, values...]
 };
+
+model::SeriesSpec spec_of(const nlohmann::json& s) {
+  return {s.value("name", ""), s.value("components", 1), s.value("integer", false), s.value("items", 0)};
+}
 
 std::optional<Partial> load(const std::filesystem::path& path) {
   std::ifstream in(path);
@@ -35,7 +30,8 @@ std::optional<Partial> load(const std::filesystem::path& path) {
   std::string line;
   if (!std::getline(in, line)) return std::nullopt;
   try {
-    p.layout = nlohmann::json::parse(line).at("series");
+    const nlohmann::json first = nlohmann::json::parse(line);
+    for (const auto& s : first.at("series")) p.layout.push_back(spec_of(s));
   } catch (const std::exception&) {
     return std::nullopt;
   }
@@ -62,11 +58,12 @@ SeriesRecorder::SeriesRecorder(const std::filesystem::path& path, Millis flush_e
 void SeriesRecorder::begin(const model::Model&, const model::SeriesLayout& layout) {
   nlohmann::json series = nlohmann::json::array();
   for (const auto& s : layout.series)
-    series.push_back({{"name", s.name}, {"components", s.components}, {"integer", s.integer}});
+    series.push_back(
+        {{"name", s.name}, {"components", s.components}, {"integer", s.integer}, {"items", s.items}});
   out_ << nlohmann::json{{"series", series}}.dump() << '\n' << std::flush;
   last_flush_ = std::chrono::steady_clock::now();
-  total_ = offset_of(layout, "total_energy");
-  dissipated_ = offset_of(layout, "dissipated_energy");
+  total_ = layout.index_of("total_energy");
+  dissipated_ = layout.index_of("dissipated_energy");
 }
 
 void SeriesRecorder::step(const model::StepRow& row) {
@@ -114,30 +111,19 @@ std::optional<nlohmann::json> read_partial_series(const std::filesystem::path& p
   out["time"] = time;
   std::size_t offset = 2;
   int total = -1, dissipated = -1, newton = -1;
-  for (const auto& s : p->layout) {
-    const std::string name = s.value("name", "");
-    const std::size_t components = s.value("components", 1);
-    const bool integer = s.value("integer", false);
-    if (name == "total_energy") total = static_cast<int>(offset);
-    if (name == "dissipated_energy") dissipated = static_cast<int>(offset);
-    if (name == "newton_iterations") newton = static_cast<int>(offset);
+  for (const model::SeriesSpec& spec : p->layout) {
+    if (spec.name == "total_energy") total = static_cast<int>(offset);
+    if (spec.name == "dissipated_energy") dissipated = static_cast<int>(offset);
+    if (spec.name == "newton_iterations") newton = static_cast<int>(offset);
     nlohmann::json values = nlohmann::json::array();
-    for (const auto& row : p->rows) {
-      auto cell = [&](std::size_t c) -> nlohmann::json {
-        if (offset + c >= row.size()) return nullptr;
-        const double v = row[offset + c];
-        return integer ? nlohmann::json(static_cast<std::int64_t>(std::llround(v))) : nlohmann::json(v);
-      };
-      if (components == 1) {
-        values.push_back(cell(0));
-      } else {
-        nlohmann::json r = nlohmann::json::array();
-        for (std::size_t c = 0; c < components; ++c) r.push_back(cell(c));
-        values.push_back(r);
-      }
+    std::vector<double> cells(static_cast<std::size_t>(spec.components));
+    for (const auto& row : p->rows) {  // cells past a short row are null
+      for (std::size_t c = 0; c < cells.size(); ++c)
+        cells[c] = offset + c < row.size() ? row[offset + c] : std::nan("");
+      values.push_back(model::row_json(spec, cells.data()));
     }
-    out[name] = values;
-    offset += components;
+    out[spec.name] = values;
+    offset += static_cast<std::size_t>(spec.components);
   }
   // The summary up to the last recorded step.
   const auto& last = p->rows.back();
@@ -177,14 +163,8 @@ std::optional<std::string> partial_series_csv(const std::filesystem::path& path,
   const auto p = load(path);
   if (!p) return std::nullopt;
   std::string header = "time";
-  for (const auto& s : p->layout) {
-    const std::string name = s.value("name", "");
-    const int components = s.value("components", 1);
-    if (components == 1) header += "," + name;
-    else if (components == 3) header += "," + name + "_x," + name + "_y," + name + "_z";
-    else
-      for (int c = 0; c < components; ++c) header += "," + name + "_" + std::to_string(c);
-  }
+  for (const model::SeriesSpec& spec : p->layout)
+    for (const std::string& column : model::csv_columns(spec)) header += "," + column;
   std::string out = header + "\n";
   for (const auto& row : p->rows) {
     if (since && row[0] <= static_cast<double>(*since)) continue;

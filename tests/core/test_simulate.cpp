@@ -302,7 +302,8 @@ model::Model small_tumbling_sphere() {
 /// Runs m with the direct solver and with `linear`; both complete, the Krylov path really ran (no
 /// LU fallback), and the last frames agree to `tolerance` in position (100 × in velocity, which
 /// carries 1/h). Returns both runs' observers.
-std::pair<RecordingObserver, RecordingObserver> expect_the_direct_answer(model::Model m, const char* linear,
+std::pair<RecordingObserver, RecordingObserver> expect_the_direct_answer(model::Model m,
+                                                                         model::LinearSolver linear,
                                                                          double tolerance) {
   RecordingObserver direct, krylov;
   const model::Summary sd = simulate(m, direct);
@@ -311,15 +312,17 @@ std::pair<RecordingObserver, RecordingObserver> expect_the_direct_answer(model::
   EXPECT_TRUE(sd.completed);
   EXPECT_TRUE(sk.completed);
   EXPECT_EQ(sd.krylov_iterations_per_solve, 0.0);
-  EXPECT_GT(sk.krylov_iterations_per_solve, 1.0) << linear << " really used a Krylov solver";
-  EXPECT_EQ(sk.krylov_fallbacks, 0) << linear;
+  EXPECT_GT(sk.krylov_iterations_per_solve, 1.0)
+      << model::to_string(linear) << " really used a Krylov solver";
+  EXPECT_EQ(sk.krylov_fallbacks, 0) << model::to_string(linear);
   EXPECT_EQ(direct.frames.size(), krylov.frames.size());
   if (direct.frames.empty() || direct.frames.size() != krylov.frames.size()) return {direct, krylov};
   const model::Frame &fd = direct.frames.back(), &fk = krylov.frames.back();
-  EXPECT_LT((fd.position - fk.position).lpNorm<Eigen::Infinity>(), tolerance) << linear;
-  EXPECT_LT((fd.velocity - fk.velocity).lpNorm<Eigen::Infinity>(), 100 * tolerance) << linear;
+  EXPECT_LT((fd.position - fk.position).lpNorm<Eigen::Infinity>(), tolerance) << model::to_string(linear);
+  EXPECT_LT((fd.velocity - fk.velocity).lpNorm<Eigen::Infinity>(), 100 * tolerance)
+      << model::to_string(linear);
   const auto Hd = direct.series("total_energy"), Hk = krylov.series("total_energy");
-  EXPECT_LT(std::abs(Hd.back() - Hk.back()), tolerance * std::abs(Hd.front())) << linear;
+  EXPECT_LT(std::abs(Hd.back() - Hk.back()), tolerance * std::abs(Hd.front())) << model::to_string(linear);
   return {direct, krylov};
 }
 
@@ -352,20 +355,22 @@ TEST(Simulate, AutoLinearSolverPicksByElementCountAndSaysSo) {
 // Both Newton solves stop at increments ≤ 1e-12 of the model size (diagonal ≈ 2); ten steps of such
 // differences stay far below 1e-9.
 TEST(Simulate, IterativeLinearSolverGivesTheDirectAnswerToTheNewtonTolerance) {
-  const auto [direct, iterative] = expect_the_direct_answer(small_tumbling_sphere(), "iterative", 1e-9);
+  const auto [direct, iterative] =
+      expect_the_direct_answer(small_tumbling_sphere(), model::LinearSolver::iterative, 1e-9);
   EXPECT_GT((direct.frames.back().position - direct.frames.front().position).norm(), 0.1) << "the sphere moved";
 }
 
 TEST(Simulate, PetscGamgGivesTheDirectAnswerOnTheTumblingSphere) {
-  const auto [direct, amg] = expect_the_direct_answer(small_tumbling_sphere(), "petsc_gamg", 1e-9);
+  const auto [direct, amg] =
+      expect_the_direct_answer(small_tumbling_sphere(), model::LinearSolver::petsc_gamg, 1e-9);
   EXPECT_TRUE(logged(amg, "GAMG")) << "the log names the preconditioner";
 }
 
 // Contact steps add the mixed energy–momentum contact unknowns and multipliers (saddle-point rows):
 // the Schur field split of the petsc_gamg path solves them.
 TEST(Simulate, PetscGamgGivesTheDirectAnswerThroughAContactBounce) {
-  const auto [direct, amg] =
-      expect_the_direct_answer(cube_onto_clamped_plate(model::Scheme::energy_momentum), "petsc_gamg", 1e-9);
+  const auto [direct, amg] = expect_the_direct_answer(cube_onto_clamped_plate(model::Scheme::energy_momentum),
+                                                      model::LinearSolver::petsc_gamg, 1e-9);
   const auto active = amg.series("active_contacts");
   EXPECT_EQ(*std::max_element(active.begin(), active.end()), 4) << "all four bottom nodes land";
   EXPECT_TRUE(logged(amg, "Schur")) << "the last factorisation was a contact step's field split";

@@ -68,6 +68,26 @@ TEST(SeriesSince, APartialSeriesNamesItsStepsAndIsCutByThem) {
   EXPECT_EQ(server::jobs::partial_series_csv(file, 2), "time,total_energy,newton_iterations\n1.5,2,9\n2,2,12\n");
 }
 
+// A per-item vector series ([S,k,3], model/series.hpp) in a running job's partial series: its JSON rows are
+// k [x, y, z] arrays and its CSV columns name_<i>_x,…, as the result file's routes give them.
+TEST(SeriesSince, APartialSeriesGivesItemVectorsInTheTablesTextForms) {
+  TempDir dir;
+  const auto file = dir.path() / server::jobs::partial_series_file;
+  {
+    server::jobs::SeriesRecorder recorder(file, 0);
+    model::SeriesLayout layout;
+    layout.series = {{"total_energy", 1, false}, {"pair_force", 6, false, 2}};
+    recorder.begin(model::Model{}, layout);
+    for (int step = 0; step <= 2; ++step) recorder.step({step, 0.5 * step, {2.0, 1.0 * step, 0, 0, 0, 0, -1.5}});
+  }
+  const auto series = server::jobs::read_partial_series(file);
+  ASSERT_TRUE(series);
+  EXPECT_EQ((*series)["pair_force"][2], nlohmann::json({{2.0, 0.0, 0.0}, {0.0, 0.0, -1.5}}));
+  EXPECT_EQ(server::jobs::partial_series_csv(file, 1),
+            "time,total_energy,pair_force_0_x,pair_force_0_y,pair_force_0_z,pair_force_1_x,pair_force_1_y,"
+            "pair_force_1_z\n1,2,2,0,0,0,0,-1.5\n");
+}
+
 TEST(SeriesSince, ASucceededJobAnswersWithTheRowsAfterStepInJsonAndCsv) {
   TempDir dir;
   LiveServer server(dir.path() / "data", {"--workers", "1"});

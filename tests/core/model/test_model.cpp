@@ -258,7 +258,7 @@ TEST(ObserverList, PassesEveryCallToEveryObserverInOrder) {
   ObserverList list({&first, &second});
   list.begin(Model{}, layout());
   list.step(StepRow{3, 0.03, {}});
-  list.frame(Frame{0.5, {}, {}, {}});
+  list.frame(Frame{0.5, {}, {}, {}, {}, {}});
   list.log("hello");
   Summary summary;
   summary.completed = true;

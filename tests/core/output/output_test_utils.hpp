@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/fem/assembly.hpp"
 #include "core/model/model.hpp"
 #include "core/model/observer.hpp"
 
@@ -61,7 +62,16 @@ inline model::StepRow tiny_row(int s) {
 inline constexpr int tiny_steps = 130;
 inline const std::vector<double> tiny_frame_times{0.0, 0.64, 1.29};
 
-/// Frame k of the tiny run: positions drift by 0.001·node·k, velocity (k, node, −k), pressure 0.5·node·k.
+/// The element stresses of `frame`'s positions, from fem's kernel as a run computes them.
+inline void add_stresses(const model::Model& m, model::Frame& frame) {
+  std::vector<std::shared_ptr<const fem::Material>> material;
+  for (int body : m.mesh.element_body) material.push_back(fem::make_material(m.bodies[body].material));
+  const fem::ElasticityTerm term(m.mesh, fem::precompute_mesh(m.mesh), std::move(material));
+  term.element_stresses(frame.position, frame.cauchy_stress, frame.von_mises);
+}
+
+/// Frame k of the tiny run: positions drift by 0.001·node·k, velocity (k, node, −k), pressure 0.5·node·k,
+/// and the element stresses of those positions.
 inline model::Frame tiny_frame(const model::Model& m, int k, bool with_pressure) {
   const int n = m.mesh.node_count();
   model::Frame f;
@@ -74,6 +84,7 @@ inline model::Frame tiny_frame(const model::Model& m, int k, bool with_pressure)
     f.velocity.segment<3>(3 * i) << k, i, -k;
     if (with_pressure) f.contact_pressure[i] = 0.5 * i * k;
   }
+  add_stresses(m, f);
   return f;
 }
 

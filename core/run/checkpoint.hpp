@@ -2,7 +2,7 @@
 /// @file Checkpoints of a run (docs/results.md, "Checkpoints"): the full state at the end of a step, so
 /// that a run stopped by a crash goes on from there and ends with the result it would have had.
 ///
-/// A run's checkpoint directory holds
+/// A run's checkpoint directory (output::checkpoint_directory_name in a result directory) holds
 ///   state.h5      the last checkpoint (format stoss-checkpoint/1; written as state.h5.tmp, fsync'd, renamed)
 ///   frame_<k>.h5  frame k of the run (written once each, fsync'd before the next checkpoint names it)
 /// state.h5:
@@ -21,14 +21,13 @@
 #include <vector>
 
 #include "core/model/observer.hpp"
+#include "core/output/result_writer.hpp"
 #include "core/time/scheme.hpp"
 #include "core/time/term.hpp"
 
-namespace stoss::output {
+namespace stoss::run {
 
 inline constexpr const char* checkpoint_format = "stoss-checkpoint/1";
-/// The checkpoint directory's name inside a result directory (a job's directory, stoss run's -o DIR).
-inline constexpr const char* checkpoint_directory_name = "checkpoint";
 
 /// The state of a run at the end of a converged step: what it needs to go on as if it had never stopped.
 struct Checkpoint {
@@ -73,4 +72,4 @@ class CheckpointStore {
   std::vector<std::filesystem::path> unsynced_;  ///< frames written since the last checkpoint
 };
 
-}  // namespace stoss::output
+}  // namespace stoss::run

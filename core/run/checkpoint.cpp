@@ -1,4 +1,4 @@
-#include "core/output/checkpoint.hpp"
+#include "core/run/checkpoint.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -8,9 +8,12 @@
 #include "core/output/durable_file.hpp"
 #include "core/output/h5.hpp"
 
-namespace stoss::output {
+namespace stoss::run {
 
 namespace fs = std::filesystem;
+namespace h5 = output::h5;
+using output::rename_durably;
+using output::sync_to_disk;
 
 namespace {
 
@@ -223,4 +226,4 @@ void CheckpointStore::remove() const {
   fs::remove_all(directory_, ignored);
 }
 
-}  // namespace stoss::output
+}  // namespace stoss::run

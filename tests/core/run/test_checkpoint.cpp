@@ -10,11 +10,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/output/checkpoint.hpp"
+#include "core/run/checkpoint.hpp"
 #include "core/scene/scene.hpp"
 #include "core/simulate.hpp"
-#include "recording_observer.hpp"
-#include "short_ball_on_plate.hpp"
+#include "../recording_observer.hpp"
+#include "../short_ball_on_plate.hpp"
 
 namespace stoss {
 namespace {
@@ -113,7 +113,7 @@ TEST_P(CheckpointResume, AResumedRunComputesOnlyTheStepsAfterTheCheckpointAndEnd
     CrashingObserver first(crash_at);
     EXPECT_THROW(simulate(m, first, nullptr, {dir.path, true}), Crash);
     const int checkpoint = (crash_at - 1) / 4 * 4;  // the last one before the crash
-    EXPECT_EQ(output::CheckpointStore(dir.path).exists(), checkpoint > 0);
+    EXPECT_EQ(run::CheckpointStore(dir.path).exists(), checkpoint > 0);
 
     CrashingObserver resumed;
     const model::Summary summary = simulate(m, resumed, nullptr, {dir.path, true});
@@ -169,7 +169,7 @@ TEST(Checkpoint, TheStateFileHoldsTheFullStateOfItsStep) {
   const model::Model m = scene::load(ball_on_plate("penalty", 5));
   CrashingObserver run(12);
   EXPECT_THROW(simulate(m, run, nullptr, {dir.path, false}), Crash);
-  const output::Checkpoint c = output::CheckpointStore(dir.path).read();
+  const run::Checkpoint c = run::CheckpointStore(dir.path).read();
   EXPECT_EQ(c.state.step, 10);
   EXPECT_NEAR(c.state.t, 0.1, 1e-12);
   EXPECT_EQ(c.state.x.size(), m.dof_count());

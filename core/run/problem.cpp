@@ -1,0 +1,109 @@
+#include "core/run/problem.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+
+#include "core/run/timing.hpp"
+
+namespace stoss::run {
+
+namespace {
+
+double bounding_box_diagonal(const mesh::Mesh& mesh) {
+  Eigen::Vector3d lo = mesh.nodes.front(), hi = mesh.nodes.front();
+  for (const auto& p : mesh.nodes) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return std::max((hi - lo).norm(), 1e-300);
+}
+
+std::vector<char> fixed_dofs(const model::Model& m) {
+  std::vector<char> fixed(m.dof_count(), 0);
+  for (const model::Boundary& b : m.boundary)
+    for (int node : m.mesh.surface_nodes(b.surface))
+      for (int k = 0; k < 3; ++k)
+        if (b.fix[k]) fixed[3 * node + k] = 1;
+  return fixed;
+}
+
+/// v_I = v_0 + ω × (X_I − c), c the given centre or the body's centre of mass; zero on fixed dofs.
+Eigen::VectorXd initial_velocity(const model::Model& m, const Problem& p, const Eigen::VectorXd& X) {
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(X.size());
+  const Eigen::VectorXd nodal_mass = p.mass * Eigen::VectorXd::Ones(X.size());
+  for (size_t b = 0; b < m.bodies.size(); ++b) {
+    const mesh::Body& body = m.mesh.bodies[b];
+    const model::BodySpec& spec = m.bodies[b];
+    Eigen::Vector3d com = Eigen::Vector3d::Zero();
+    double mass = 0;
+    for (int I = body.node_begin; I < body.node_end; ++I) {
+      com += nodal_mass[3 * I] * X.segment<3>(3 * I);
+      mass += nodal_mass[3 * I];
+    }
+    const Eigen::Vector3d center = spec.center.value_or(com / mass);
+    for (int I = body.node_begin; I < body.node_end; ++I)
+      v.segment<3>(3 * I) =
+          spec.initial_velocity + spec.initial_angular_velocity.cross(X.segment<3>(3 * I) - center);
+  }
+  for (Eigen::Index i = 0; i < v.size(); ++i)
+    if (p.fixed[i]) v[i] = 0;
+  return v;
+}
+
+}  // namespace
+
+std::vector<time::Term*> Problem::terms() const {
+  std::vector<time::Term*> out{elasticity.get()};
+  if (gravity) out.push_back(gravity.get());
+  for (const auto& c : contact) out.push_back(c.get());
+  return out;
+}
+
+Problem build_problem(const model::Model& m) {
+  const auto t0 = Clock::now();
+  Problem p;
+  for (const model::ContactPair& pair : m.contact) p.contact.push_back(contact::make_pair_term(m, pair));
+  if (!m.contact.empty()) p.setup_contact_seconds = seconds_since(t0);
+  const auto t1 = Clock::now();
+  p.geometry = fem::precompute_mesh(m.mesh);
+  std::vector<double> density;
+  std::vector<std::shared_ptr<const fem::Material>> body_material, material;
+  for (const model::BodySpec& body : m.bodies) body_material.push_back(fem::make_material(body.material));
+  for (int body : m.mesh.element_body) {
+    density.push_back(m.bodies[body].material.density);
+    material.push_back(body_material[body]);
+  }
+  p.mass = fem::assemble_mass(m.mesh, p.geometry, density);
+  p.elasticity = std::make_unique<fem::ElasticityTerm>(m.mesh, p.geometry, std::move(material));
+  if (m.has_effect(model::effect::gravity))
+    p.gravity = std::make_unique<fem::GravityTerm>(p.mass, *m.gravity);
+  p.fixed = fixed_dofs(m);
+  p.total_mass = p.mass.sum() / 3;
+  p.length_scale = bounding_box_diagonal(m.mesh);
+  p.setup_seconds = seconds_since(t1);
+  return p;
+}
+
+time::State initial_state(const model::Model& m, const Problem& p) {
+  time::State s;
+  s.x = m.mesh.reference_positions();
+  s.v = initial_velocity(m, p, s.x);
+  s.a = Eigen::VectorXd::Zero(s.x.size());
+  return s;
+}
+
+model::Frame frame_of(const time::State& s, const Problem& p) {
+  model::Frame f{s.t, s.x, s.v, {}, {}, {}};
+  if (!p.contact.empty()) {
+    f.contact_pressure = Eigen::VectorXd::Zero(s.x.size() / 3);
+    for (const auto& term : p.contact) term->contact_pressure(f.contact_pressure);  // lagrange_term.hpp
+  }
+  return with_stresses(std::move(f), p);
+}
+
+model::Frame with_stresses(model::Frame frame, const Problem& p) {
+  p.elasticity->element_stresses(frame.position, frame.cauchy_stress, frame.von_mises);
+  return frame;
+}
+
+}  // namespace stoss::run

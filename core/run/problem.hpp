@@ -1,0 +1,46 @@
+#pragma once
+/// @file What a run builds from its model: mass, the terms the scene calls for, fixed dofs and the
+/// initial state, and the frames it reports of a state.
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "core/contact/contact.hpp"
+#include "core/fem/assembly.hpp"
+#include "core/model/model.hpp"
+#include "core/model/observer.hpp"
+#include "core/time/scheme.hpp"
+
+namespace stoss::run {
+
+/// Everything a run builds from the model: only the terms the scene calls for.
+struct Problem {
+  std::vector<fem::ElementGeometry> geometry;
+  solve::SparseMatrix mass;
+  std::unique_ptr<fem::ElasticityTerm> elasticity;
+  std::unique_ptr<fem::GravityTerm> gravity;
+  std::vector<std::unique_ptr<contact::ContactTerm>> contact;  ///< one per pair; none without contact
+  std::vector<char> fixed;
+  double total_mass = 0;
+  double length_scale = 1;
+  double setup_contact_seconds = 0;  ///< building the contact terms
+  double setup_seconds = 0;          ///< the rest of build_problem: geometry, mass, elasticity
+
+  /// The terms in the order the integrator gets them: elasticity, gravity if any, then the contact pairs.
+  std::vector<time::Term*> terms() const;
+  /// Index of the first contact term in terms().
+  size_t first_contact_term() const { return gravity ? 2 : 1; }
+};
+
+Problem build_problem(const model::Model& m);
+
+/// The state at t = 0: reference positions, the bodies' initial velocities, zero accelerations.
+time::State initial_state(const model::Model& m, const Problem& p);
+
+/// Positions, velocities, element stresses and, with contact, the nodal contact pressure of state s.
+model::Frame frame_of(const time::State& s, const Problem& p);
+/// `frame` (positions, velocities and contact pressure as a checkpoint keeps them) with its stresses.
+model::Frame with_stresses(model::Frame frame, const Problem& p);
+
+}  // namespace stoss::run
