@@ -57,7 +57,7 @@ struct StepContext {
 };
 
 /// What a term carries from one converged step to the next (active set, multipliers, friction history), as
-/// named flat arrays: what a checkpoint stores for the term (core/output/checkpoint.hpp) and gives back
+/// named flat arrays: what a checkpoint stores for the term (core/run/checkpoint.hpp) and gives back
 /// to it on resume.
 struct TermState {
   std::map<std::string, std::vector<double>> reals;

@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "core/output/durable_file.hpp"
+#include "core/run/checkpoint.hpp"
 #include "server/common/json_input.hpp"
 #include "server/jobs/series_recorder.hpp"
 
@@ -164,7 +165,7 @@ AttemptFiles JobFiles::prepare_attempt(const JobId& id, int attempt_number) cons
        {files.result(), files.xdmf(), files.xdmf_mesh(), files.study(), files.outcome_file()})
     fs::remove(left, ignored);
   fs::remove(files.dir() / partial_series_file, ignored);
-  if (!output::CheckpointStore(files.checkpoint()).exists()) seed_checkpoint(id, attempt_number, files);
+  if (!run::CheckpointStore(files.checkpoint()).exists()) seed_checkpoint(id, attempt_number, files);
   return files;
 }
 
@@ -176,7 +177,7 @@ void JobFiles::seed_checkpoint(const JobId& id, int attempt_number, const Attemp
   sources.push_back(AttemptFiles(dir(id)).checkpoint());
   const fs::path seed = into.checkpoint().string() + ".seed";
   for (const fs::path& source : sources) {
-    const output::CheckpointStore from(source);
+    const run::CheckpointStore from(source);
     if (!from.exists()) continue;
     std::error_code ignored;
     fs::remove_all(seed, ignored);

@@ -43,7 +43,7 @@ class AttemptFiles {
   std::filesystem::path result() const { return dir_ / output::result_file_name; }
   std::filesystem::path xdmf() const { return dir_ / output::xdmf_file_name; }
   std::filesystem::path xdmf_mesh() const { return dir_ / output::xdmf_mesh_file_name; }
-  /// The attempt's checkpoints (core/output/checkpoint.hpp), seeded from the attempt before (prepare).
+  /// The attempt's checkpoints (core/run/checkpoint.hpp), seeded from the attempt before (prepare).
   std::filesystem::path checkpoint() const { return dir_ / output::checkpoint_directory_name; }
   /// A study's table (study::to_json); it exists only after the study completed.
   std::filesystem::path study() const { return dir_ / "study.json"; }
