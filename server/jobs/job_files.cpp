@@ -1,5 +1,7 @@
 #include "server/jobs/job_files.hpp"
 
+#include <signal.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <fstream>
@@ -198,10 +200,26 @@ void JobFiles::seed_checkpoint(const JobId& id, int attempt_number, const Attemp
   }
 }
 
+namespace {
+
+/// Whether the attempt's folder names a job process that still runs here (process.pid is written by
+/// ProcessExecutor while its child lives). Such an attempt lost its lease but may still write its files.
+bool attempt_process_alive(const fs::path& attempt_dir) {
+  std::ifstream in(attempt_dir / "process.pid");  // ProcessExecutor's job_pid_file
+  long pid = 0;
+  if (!(in >> pid) || pid <= 0) return false;
+  return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;
+}
+
+}  // namespace
+
 void JobFiles::prune_through(const JobId& id, int attempt_number) const {
   for (int n : attempt_numbers(dir(id))) {
     if (n > attempt_number) break;
     const AttemptFiles earlier = attempt(id, n);
+    // A superseded attempt whose process still runs (stopped past its lease, say) keeps its files: it
+    // writes only there, and removing them under it would only make it fail noisily.
+    if (n != attempt_number && attempt_process_alive(earlier.dir())) continue;
     std::error_code ignored;
     fs::remove_all(earlier.checkpoint(), ignored);
     earlier.discard_partial();
