@@ -153,12 +153,13 @@ bool LagrangeContactTerm::release_tensile(const time::StepContext& step, const E
   for (size_t k = 0; k < elements_.size(); ++k) {
     ContactElement& e = elements_[k];
     read_auxiliaries(e, z, element_offset(static_cast<int>(k)));
-    const double fraction = e.lambda[0] > 0 && locates(e.slave, step) ? release_event(e, step).fraction : 0;
+    const LocatedEvent release =
+        e.lambda[0] > 0 && locates(e.slave, step) ? release_event(e, step) : LocatedEvent{e.slave, 0, 0, 0};
     if (!(e.lambda[0] > 0)) {
       kept.push_back(e);
-    } else if (fraction >= least_cut && fraction < 1) {
+    } else if (release.fraction >= least_cut && release.fraction < 1) {
       kept.push_back(e);  // §4.6.2: the step ends where λ_1 crosses zero; the release follows then
-      events_.push_back(release_event(e, step));
+      events_.push_back(release);
     } else if (toggles_[e.slave] > 0) {
       kept.push_back(e);  // anti-cycling (§3.5): a second change in this step is refused
       log(step, "slave node " + std::to_string(slave_node(e)) + " kept active with tensile λ_1 = " +
