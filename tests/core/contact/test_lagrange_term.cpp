@@ -7,8 +7,8 @@
 #include <set>
 
 #include "core/contact/contact.hpp"
-#include "core/contact/elements/midpoint_term.hpp"
-#include "core/contact/elements/mixed_term.hpp"
+#include "core/contact/lagrange/elements/midpoint_term.hpp"
+#include "core/contact/lagrange/elements/mixed_term.hpp"
 #include "core/mesh/generators.hpp"
 #include "core/time/scheme.hpp"
 

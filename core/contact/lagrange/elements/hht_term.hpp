@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/contact/elements/midpoint_term.hpp"
+#include "core/contact/lagrange/elements/midpoint_term.hpp"
 
 namespace stoss::contact {
 

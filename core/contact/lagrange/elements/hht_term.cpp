@@ -1,6 +1,6 @@
-#include "core/contact/elements/hht_term.hpp"
+#include "core/contact/lagrange/elements/hht_term.hpp"
 
-#include "core/contact/elements/hht_element.hpp"
+#include "core/contact/lagrange/elements/hht_element.hpp"
 #include "core/contact/geometry/patch_projection.hpp"
 #include "core/contact/geometry/patch_variations.hpp"
 

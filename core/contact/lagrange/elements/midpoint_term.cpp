@@ -1,9 +1,9 @@
-#include "core/contact/elements/midpoint_term.hpp"
+#include "core/contact/lagrange/elements/midpoint_term.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/contact/elements/midpoint_element.hpp"
+#include "core/contact/lagrange/elements/midpoint_element.hpp"
 
 namespace stoss::contact {
 

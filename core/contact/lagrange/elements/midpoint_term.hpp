@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/contact/lagrange/lagrange_term.hpp"
-#include "core/contact/elements/patch_nts_element.hpp"
+#include "core/contact/lagrange/elements/patch_nts_element.hpp"
 #include "core/contact/geometry/surface.hpp"
 
 namespace stoss::contact {
