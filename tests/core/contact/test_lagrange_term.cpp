@@ -3,10 +3,13 @@
 // switch (§3.4) as specified. Scene: one hex8 cube over a 2 × 2 plate, its bottom nodes on different faces.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <random>
 #include <set>
+#include <stdexcept>
 
 #include "core/contact/contact.hpp"
+#include "core/contact/lagrange/elements/hht_term.hpp"
 #include "core/contact/lagrange/elements/midpoint_term.hpp"
 #include "core/contact/lagrange/elements/mixed_term.hpp"
 #include "core/mesh/generators.hpp"
@@ -30,6 +33,17 @@ model::ContactPair pair(model::ImpactMode impact = model::ImpactMode::exact) {
   return p;
 }
 
+/// The Lagrange term the module's factory builds for `p` in a run of `scheme` on `mesh`.
+std::unique_ptr<LagrangeContactTerm> lagrange_term(const mesh::Mesh& mesh, const model::ContactPair& p,
+                                                   model::Scheme scheme) {
+  model::Model m;
+  m.mesh = mesh;
+  m.time.scheme = scheme;
+  std::unique_ptr<ContactTerm> term = make_pair_term(m, p);
+  if (!dynamic_cast<LagrangeContactTerm*>(term.get())) throw std::logic_error("not a Lagrange contact term");
+  return std::unique_ptr<LagrangeContactTerm>(static_cast<LagrangeContactTerm*>(term.release()));
+}
+
 /// A step of the cube falling onto the plate with every node jittered, and its contact elements.
 struct Fixture {
   mesh::Mesh mesh = cube_over_plate();
@@ -48,7 +62,7 @@ struct Fixture {
     v_n = Eigen::VectorXd::Zero(nx);
     for (int I = mesh.bodies[1].node_begin; I < mesh.bodies[1].node_end; ++I)
       v_n[3 * I + 2] = -5;  // −0.05 per step
-    term = make_contact_term(mesh, pair(), scheme);
+    term = lagrange_term(mesh, pair(), scheme);
     const time::ForceRule rule = time::make_scheme(model::TimeSpec{scheme})->force_rule();
     step = std::make_unique<time::StepContext>(time::StepContext{x_n, v_n, h, rule});
     term->prepare_step(*step);
@@ -206,18 +220,28 @@ TEST(ContactTerm, SwitchesFaceOnlyBeyondTheHysteresisWithTheClampedGapTarget) {
 TEST(ContactTerm, UnsupportedCombinationsAreRejectedByName) {
   const mesh::Mesh m = cube_over_plate();
   model::ContactPair p = pair();
-  EXPECT_NO_THROW(make_contact_term(m, p, model::Scheme::hht));
+  EXPECT_NE(dynamic_cast<HhtContactTerm*>(lagrange_term(m, p, model::Scheme::hht).get()), nullptr);
   p.impact = model::ImpactMode::velocity_correction;
-  EXPECT_THROW(make_contact_term(m, p, model::Scheme::midpoint), std::invalid_argument);
-  EXPECT_THROW(make_contact_term(m, p, model::Scheme::hht), std::invalid_argument);
+  EXPECT_THROW(lagrange_term(m, p, model::Scheme::midpoint), std::invalid_argument);
+  EXPECT_THROW(lagrange_term(m, p, model::Scheme::hht), std::invalid_argument);
   p = pair();
-  p.enforcement = model::Enforcement::penalty;
+  p.friction = 0.3;
   try {
-    make_contact_term(m, p, model::Scheme::energy_momentum);
-    FAIL() << "penalty is not implemented";
+    lagrange_term(m, p, model::Scheme::energy_momentum);
+    FAIL() << "frictional Lagrange contact is not implemented";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("cube/bottom"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()),
+              "contact pair cube/bottom / plate/top: enforcement \"lagrange\" is frictionless; friction > 0 "
+              "needs enforcement \"penalty\"");
   }
+}
+
+TEST(ContactTerm, EachSchemeGetsTheElementOfItsForceRule) {
+  const mesh::Mesh m = cube_over_plate();
+  EXPECT_NE(dynamic_cast<MixedContactTerm*>(lagrange_term(m, pair(), model::Scheme::energy_momentum).get()), nullptr);
+  EXPECT_NE(dynamic_cast<MidpointContactTerm*>(lagrange_term(m, pair(), model::Scheme::midpoint).get()), nullptr);
+  EXPECT_EQ(dynamic_cast<HhtContactTerm*>(lagrange_term(m, pair(), model::Scheme::midpoint).get()), nullptr);
+  EXPECT_NE(dynamic_cast<HhtContactTerm*>(lagrange_term(m, pair(), model::Scheme::generalized_alpha).get()), nullptr);
 }
 
 }  // namespace
