@@ -2,9 +2,8 @@
 
 #include <stdexcept>
 
-#include "core/contact/lagrange/elements/hht_term.hpp"
-#include "core/contact/lagrange/elements/midpoint_term.hpp"
 #include "core/contact/lagrange/elements/mixed_term.hpp"
+#include "core/contact/lagrange/elements/nts_term.hpp"
 #include "core/contact/penalty/penalty_term.hpp"
 #include "core/time/scheme.hpp"
 
@@ -37,8 +36,7 @@ std::unique_ptr<ContactTerm> make_lagrange_term(const mesh::Mesh& mesh, const mo
                                 "enforcement \"lagrange\" is frictionless; friction > 0 needs enforcement \"penalty\"");
   const time::ForceRule rule = time::make_scheme(model::TimeSpec{scheme})->force_rule();
   if (rule.kind == time::ForceRule::Kind::discrete_gradient) return std::make_unique<MixedContactTerm>(mesh, pair);
-  if (rule.is_end_point()) return std::make_unique<HhtContactTerm>(mesh, pair);  // (2.11), (2.12)
-  if (rule.is_midpoint()) return std::make_unique<MidpointContactTerm>(mesh, pair);
+  if (rule.is_midpoint() || rule.is_end_point()) return std::make_unique<NtsContactTerm>(mesh, pair, rule);  // (4.2), (2.11)
   throw std::invalid_argument(pair_label(pair) + "no Lagrange contact element evaluates forces at θ = " +
                               std::to_string(rule.theta) + " with a t_n force (time.scheme " +
                               model::to_string(scheme) + ")");

@@ -9,9 +9,8 @@
 #include <stdexcept>
 
 #include "core/contact/contact.hpp"
-#include "core/contact/lagrange/elements/hht_term.hpp"
-#include "core/contact/lagrange/elements/midpoint_term.hpp"
 #include "core/contact/lagrange/elements/mixed_term.hpp"
+#include "core/contact/lagrange/elements/nts_term.hpp"
 #include "core/mesh/generators.hpp"
 #include "core/time/scheme.hpp"
 
@@ -220,7 +219,7 @@ TEST(ContactTerm, SwitchesFaceOnlyBeyondTheHysteresisWithTheClampedGapTarget) {
 TEST(ContactTerm, UnsupportedCombinationsAreRejectedByName) {
   const mesh::Mesh m = cube_over_plate();
   model::ContactPair p = pair();
-  EXPECT_NE(dynamic_cast<HhtContactTerm*>(lagrange_term(m, p, model::Scheme::hht).get()), nullptr);
+  EXPECT_NE(dynamic_cast<NtsContactTerm*>(lagrange_term(m, p, model::Scheme::hht).get()), nullptr);
   p.impact = model::ImpactMode::velocity_correction;
   EXPECT_THROW(lagrange_term(m, p, model::Scheme::midpoint), std::invalid_argument);
   EXPECT_THROW(lagrange_term(m, p, model::Scheme::hht), std::invalid_argument);
@@ -236,12 +235,36 @@ TEST(ContactTerm, UnsupportedCombinationsAreRejectedByName) {
   }
 }
 
-TEST(ContactTerm, EachSchemeGetsTheElementOfItsForceRule) {
+// A resumed run's end-point term must add the t_n force (2.11) of the step it resumes after, as the
+// term that ran that step does: restore_state rebuilds it although the replayed end_step has no rule.
+TEST(ContactTerm, RestoredEndPointTermAddsTheSameTnForce) {
+  Fixture f(model::Scheme::hht, 7);
+  for (int i = f.nx; i < f.z.size(); ++i) f.z[i] = 1.0 + 0.1 * (i - f.nx);  // λ_n > 0: a t_n force
+  f.term->end_step(*f.step, f.z);
+  const Eigen::VectorXd x_1 = f.z.head(f.nx), v_1 = f.v_n;
+  std::unique_ptr<LagrangeContactTerm> restored = lagrange_term(f.mesh, pair(), model::Scheme::hht);
+  restored->restore_state(f.term->save_state(), x_1, v_1);
+  const time::StepContext next{x_1, v_1, f.h, f.step->rule};
+  Eigen::VectorXd R_ran, R_restored;
+  for (auto [term, R] : {std::pair{f.term.get(), &R_ran}, std::pair{restored.get(), &R_restored}}) {
+    term->prepare_step(next);
+    term->set_auxiliary_offset(f.nx);
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(f.nx + term->auxiliary_count());
+    z.head(f.nx) = x_1;
+    term->initialize_auxiliaries(next, z);
+    *R = Eigen::VectorXd::Zero(z.size());
+    term->add(next, z, *R, nullptr);
+  }
+  ASSERT_EQ(R_ran.size(), R_restored.size());
+  EXPECT_GT(R_ran.head(f.nx).norm(), 0);
+  EXPECT_LE((R_ran - R_restored).norm(), 1e-12 * R_ran.norm());
+}
+
+TEST(ContactTerm, EachSchemeGetsTheTermOfItsForceRule) {
   const mesh::Mesh m = cube_over_plate();
   EXPECT_NE(dynamic_cast<MixedContactTerm*>(lagrange_term(m, pair(), model::Scheme::energy_momentum).get()), nullptr);
-  EXPECT_NE(dynamic_cast<MidpointContactTerm*>(lagrange_term(m, pair(), model::Scheme::midpoint).get()), nullptr);
-  EXPECT_EQ(dynamic_cast<HhtContactTerm*>(lagrange_term(m, pair(), model::Scheme::midpoint).get()), nullptr);
-  EXPECT_NE(dynamic_cast<HhtContactTerm*>(lagrange_term(m, pair(), model::Scheme::generalized_alpha).get()), nullptr);
+  for (const model::Scheme s : {model::Scheme::midpoint, model::Scheme::hht, model::Scheme::generalized_alpha})
+    EXPECT_NE(dynamic_cast<NtsContactTerm*>(lagrange_term(m, pair(), s).get()), nullptr) << model::to_string(s);
 }
 
 }  // namespace
