@@ -2,28 +2,22 @@
 
 #include <stdexcept>
 
-#include "core/contact/elements/hht_term.hpp"
-#include "core/contact/elements/midpoint_term.hpp"
-#include "core/contact/elements/mixed_term.hpp"
+#include "core/contact/lagrange/elements/mixed_term.hpp"
+#include "core/contact/lagrange/elements/nts_term.hpp"
 #include "core/contact/penalty/penalty_term.hpp"
 #include "core/time/scheme.hpp"
 
 namespace stoss::contact {
 namespace {
 
-/// The scheme rules of model::contact_scheme_conflict, and what make_contact_term cannot build.
-void check_supported(const model::ContactPair& pair, model::Scheme scheme) {
-  const std::string which = "contact pair " + pair.slave + " / " + pair.master + ": ";
-  if (pair.enforcement != model::Enforcement::lagrange || pair.friction > 0)
-    throw std::invalid_argument(which +
-                                "make_contact_term builds frictionless Lagrange terms only; friction > 0 "
-                                "needs enforcement \"penalty\" (make_pair_term)");
-  if (const auto conflict = model::contact_scheme_conflict(scheme, pair.enforcement, pair.impact))
-    throw std::invalid_argument(which + conflict->field + " " + conflict->reason);
-}
-
 std::string pair_label(const model::ContactPair& pair) {
   return "contact pair " + pair.slave + " / " + pair.master + ": ";
+}
+
+/// The scheme rules of model::contact_scheme_conflict.
+void check_scheme(const model::ContactPair& pair, model::Scheme scheme) {
+  if (const auto conflict = model::contact_scheme_conflict(scheme, pair.enforcement, pair.impact))
+    throw std::invalid_argument(pair_label(pair) + conflict->field + " " + conflict->reason);
 }
 
 /// Young's modulus of the body that owns the master surface ("body/surface").
@@ -34,25 +28,26 @@ double master_youngs_modulus(const model::Model& m, const model::ContactPair& pa
   throw std::invalid_argument(pair_label(pair) + "no body named \"" + body + "\"");
 }
 
-}  // namespace
-
-std::unique_ptr<ContactTerm> make_pair_term(const model::Model& m, const model::ContactPair& pair) {
-  if (pair.enforcement != model::Enforcement::penalty) return make_contact_term(m.mesh, pair, m.time.scheme);
-  if (const auto conflict = model::contact_scheme_conflict(m.time.scheme, pair.enforcement, pair.impact))
-    throw std::invalid_argument(pair_label(pair) + conflict->field + " " + conflict->reason);
-  return std::make_unique<PenaltyContactTerm>(m.mesh, pair, master_youngs_modulus(m, pair));
-}
-
-std::unique_ptr<LagrangeContactTerm> make_contact_term(const mesh::Mesh& mesh, const model::ContactPair& pair,
-                                                       model::Scheme scheme) {
-  check_supported(pair, scheme);
+/// The frictionless Lagrange term of the scheme's force rule (docs/theory.md §4).
+std::unique_ptr<ContactTerm> make_lagrange_term(const mesh::Mesh& mesh, const model::ContactPair& pair,
+                                                model::Scheme scheme) {
+  if (pair.friction > 0)
+    throw std::invalid_argument(pair_label(pair) +
+                                "enforcement \"lagrange\" is frictionless; friction > 0 needs enforcement \"penalty\"");
   const time::ForceRule rule = time::make_scheme(model::TimeSpec{scheme})->force_rule();
   if (rule.kind == time::ForceRule::Kind::discrete_gradient) return std::make_unique<MixedContactTerm>(mesh, pair);
-  if (rule.is_end_point()) return std::make_unique<HhtContactTerm>(mesh, pair);  // (2.11), (2.12)
-  if (rule.is_midpoint()) return std::make_unique<MidpointContactTerm>(mesh, pair);
+  if (rule.is_midpoint() || rule.is_end_point()) return std::make_unique<NtsContactTerm>(mesh, pair, rule);  // (4.2), (2.11)
   throw std::invalid_argument(pair_label(pair) + "no Lagrange contact element evaluates forces at θ = " +
                               std::to_string(rule.theta) + " with a t_n force (time.scheme " +
                               model::to_string(scheme) + ")");
+}
+
+}  // namespace
+
+std::unique_ptr<ContactTerm> make_pair_term(const model::Model& m, const model::ContactPair& pair) {
+  check_scheme(pair, m.time.scheme);
+  if (pair.enforcement != model::Enforcement::penalty) return make_lagrange_term(m.mesh, pair, m.time.scheme);
+  return std::make_unique<PenaltyContactTerm>(m.mesh, pair, master_youngs_modulus(m, pair));
 }
 
 }  // namespace stoss::contact

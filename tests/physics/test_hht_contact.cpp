@@ -1,4 +1,4 @@
-// The system shall, with the HHT-α scheme and frictionless Lagrange contact (hht_term.hpp, docs/theory.md
+// The system shall, with the HHT-α scheme and frictionless Lagrange contact (nts_term.hpp, docs/theory.md
 // (2.11)), keep the linear momentum of a free two-body system through impacts and releases (HHT keeps
 // L for balanced forces, §2.4) and the constraint at t_{n+1}. It need not keep angular momentum or
 // energy (§2.4): both are recorded, not asserted. Scene: §6.3 B7 (tumbling cube onto a free plate).

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/contact/elements/patch_nts_element.hpp"
 #include "core/contact/geometry/assignment.hpp"
 #include "core/contact/geometry/face_switch.hpp"
+#include "core/contact/geometry/local_patch.hpp"
 #include "core/contact/penalty/patch_penalty_element.hpp"
 
 namespace stoss::contact {

@@ -2,7 +2,7 @@
 // central differences through the CPP (§6.1 bound 1e-6), and the force structure that keeps L.
 #include <gtest/gtest.h>
 
-#include "core/contact/elements/hht_element.hpp"
+#include "core/contact/lagrange/elements/hht_element.hpp"
 #include "core/contact/geometry/variations.hpp"
 #include "tests/core/contact/contact_test_utils.hpp"
 

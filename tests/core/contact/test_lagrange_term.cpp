@@ -3,12 +3,14 @@
 // switch (§3.4) as specified. Scene: one hex8 cube over a 2 × 2 plate, its bottom nodes on different faces.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <random>
 #include <set>
+#include <stdexcept>
 
 #include "core/contact/contact.hpp"
-#include "core/contact/elements/midpoint_term.hpp"
-#include "core/contact/elements/mixed_term.hpp"
+#include "core/contact/lagrange/elements/mixed_term.hpp"
+#include "core/contact/lagrange/elements/nts_term.hpp"
 #include "core/mesh/generators.hpp"
 #include "core/time/scheme.hpp"
 
@@ -30,6 +32,17 @@ model::ContactPair pair(model::ImpactMode impact = model::ImpactMode::exact) {
   return p;
 }
 
+/// The Lagrange term the module's factory builds for `p` in a run of `scheme` on `mesh`.
+std::unique_ptr<LagrangeContactTerm> lagrange_term(const mesh::Mesh& mesh, const model::ContactPair& p,
+                                                   model::Scheme scheme) {
+  model::Model m;
+  m.mesh = mesh;
+  m.time.scheme = scheme;
+  std::unique_ptr<ContactTerm> term = make_pair_term(m, p);
+  if (!dynamic_cast<LagrangeContactTerm*>(term.get())) throw std::logic_error("not a Lagrange contact term");
+  return std::unique_ptr<LagrangeContactTerm>(static_cast<LagrangeContactTerm*>(term.release()));
+}
+
 /// A step of the cube falling onto the plate with every node jittered, and its contact elements.
 struct Fixture {
   mesh::Mesh mesh = cube_over_plate();
@@ -48,7 +61,7 @@ struct Fixture {
     v_n = Eigen::VectorXd::Zero(nx);
     for (int I = mesh.bodies[1].node_begin; I < mesh.bodies[1].node_end; ++I)
       v_n[3 * I + 2] = -5;  // −0.05 per step
-    term = make_contact_term(mesh, pair(), scheme);
+    term = lagrange_term(mesh, pair(), scheme);
     const time::ForceRule rule = time::make_scheme(model::TimeSpec{scheme})->force_rule();
     step = std::make_unique<time::StepContext>(time::StepContext{x_n, v_n, h, rule});
     term->prepare_step(*step);
@@ -206,18 +219,52 @@ TEST(ContactTerm, SwitchesFaceOnlyBeyondTheHysteresisWithTheClampedGapTarget) {
 TEST(ContactTerm, UnsupportedCombinationsAreRejectedByName) {
   const mesh::Mesh m = cube_over_plate();
   model::ContactPair p = pair();
-  EXPECT_NO_THROW(make_contact_term(m, p, model::Scheme::hht));
+  EXPECT_NE(dynamic_cast<NtsContactTerm*>(lagrange_term(m, p, model::Scheme::hht).get()), nullptr);
   p.impact = model::ImpactMode::velocity_correction;
-  EXPECT_THROW(make_contact_term(m, p, model::Scheme::midpoint), std::invalid_argument);
-  EXPECT_THROW(make_contact_term(m, p, model::Scheme::hht), std::invalid_argument);
+  EXPECT_THROW(lagrange_term(m, p, model::Scheme::midpoint), std::invalid_argument);
+  EXPECT_THROW(lagrange_term(m, p, model::Scheme::hht), std::invalid_argument);
   p = pair();
-  p.enforcement = model::Enforcement::penalty;
+  p.friction = 0.3;
   try {
-    make_contact_term(m, p, model::Scheme::energy_momentum);
-    FAIL() << "penalty is not implemented";
+    lagrange_term(m, p, model::Scheme::energy_momentum);
+    FAIL() << "frictional Lagrange contact is not implemented";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("cube/bottom"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()),
+              "contact pair cube/bottom / plate/top: enforcement \"lagrange\" is frictionless; friction > 0 "
+              "needs enforcement \"penalty\"");
   }
+}
+
+// A resumed run's end-point term must add the t_n force (2.11) of the step it resumes after, as the
+// term that ran that step does: restore_state rebuilds it although the replayed end_step has no rule.
+TEST(ContactTerm, RestoredEndPointTermAddsTheSameTnForce) {
+  Fixture f(model::Scheme::hht, 7);
+  for (int i = f.nx; i < f.z.size(); ++i) f.z[i] = 1.0 + 0.1 * (i - f.nx);  // λ_n > 0: a t_n force
+  f.term->end_step(*f.step, f.z);
+  const Eigen::VectorXd x_1 = f.z.head(f.nx), v_1 = f.v_n;
+  std::unique_ptr<LagrangeContactTerm> restored = lagrange_term(f.mesh, pair(), model::Scheme::hht);
+  restored->restore_state(f.term->save_state(), x_1, v_1);
+  const time::StepContext next{x_1, v_1, f.h, f.step->rule};
+  Eigen::VectorXd R_ran, R_restored;
+  for (auto [term, R] : {std::pair{f.term.get(), &R_ran}, std::pair{restored.get(), &R_restored}}) {
+    term->prepare_step(next);
+    term->set_auxiliary_offset(f.nx);
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(f.nx + term->auxiliary_count());
+    z.head(f.nx) = x_1;
+    term->initialize_auxiliaries(next, z);
+    *R = Eigen::VectorXd::Zero(z.size());
+    term->add(next, z, *R, nullptr);
+  }
+  ASSERT_EQ(R_ran.size(), R_restored.size());
+  EXPECT_GT(R_ran.head(f.nx).norm(), 0);
+  EXPECT_LE((R_ran - R_restored).norm(), 1e-12 * R_ran.norm());
+}
+
+TEST(ContactTerm, EachSchemeGetsTheTermOfItsForceRule) {
+  const mesh::Mesh m = cube_over_plate();
+  EXPECT_NE(dynamic_cast<MixedContactTerm*>(lagrange_term(m, pair(), model::Scheme::energy_momentum).get()), nullptr);
+  for (const model::Scheme s : {model::Scheme::midpoint, model::Scheme::hht, model::Scheme::generalized_alpha})
+    EXPECT_NE(dynamic_cast<NtsContactTerm*>(lagrange_term(m, pair(), s).get()), nullptr) << model::to_string(s);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "core/contact/elements/midpoint_element.hpp"
+#include "core/contact/lagrange/elements/midpoint_element.hpp"
 #include "tests/core/contact/contact_test_utils.hpp"
 
 namespace stoss::contact {

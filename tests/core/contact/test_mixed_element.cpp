@@ -2,7 +2,7 @@
 
 #include <tuple>
 
-#include "core/contact/elements/mixed_element.hpp"
+#include "core/contact/lagrange/elements/mixed_element.hpp"
 #include "tests/core/contact/contact_test_utils.hpp"
 
 namespace stoss::contact {

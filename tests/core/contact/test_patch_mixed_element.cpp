@@ -8,7 +8,7 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "core/contact/elements/patch_mixed_element.hpp"
+#include "core/contact/lagrange/elements/patch_mixed_element.hpp"
 #include "core/contact/geometry/patch_projection.hpp"
 #include "core/contact/geometry/smooth_surface.hpp"
 #include "smooth_test_utils.hpp"

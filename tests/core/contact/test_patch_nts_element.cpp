@@ -6,7 +6,7 @@
 
 #include <random>
 
-#include "core/contact/elements/patch_nts_element.hpp"
+#include "core/contact/lagrange/elements/patch_nts_element.hpp"
 #include "core/contact/geometry/patch_projection.hpp"
 #include "core/contact/geometry/smooth_surface.hpp"
 #include "smooth_test_utils.hpp"

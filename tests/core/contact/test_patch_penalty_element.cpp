@@ -11,7 +11,7 @@
 #include <string>
 #include <tuple>
 
-#include "core/contact/elements/patch_nts_element.hpp"
+#include "core/contact/geometry/local_patch.hpp"
 #include "core/contact/geometry/patch_projection.hpp"
 #include "core/contact/penalty/patch_penalty_element.hpp"
 #include "core/contact/penalty/penalty_element.hpp"

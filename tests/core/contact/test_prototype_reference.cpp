@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "core/contact/elements/midpoint_element.hpp"
-#include "core/contact/elements/mixed_element.hpp"
+#include "core/contact/lagrange/elements/midpoint_element.hpp"
+#include "core/contact/lagrange/elements/mixed_element.hpp"
 #include "core/contact/geometry/projection.hpp"
 #include "core/contact/geometry/variations.hpp"
 

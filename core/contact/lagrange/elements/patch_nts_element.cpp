@@ -1,6 +1,4 @@
-#include "core/contact/elements/patch_nts_element.hpp"
-
-#include <numeric>
+#include "core/contact/lagrange/elements/patch_nts_element.hpp"
 
 #include "core/contact/geometry/patch_projection.hpp"
 #include "core/contact/geometry/patch_variations.hpp"
@@ -11,19 +9,6 @@ Projection project(const TensorPatch& local, const Eigen::VectorXd& x, const Eig
   return patch_projection(x.head<3>(), local, x, xi_start);
 }
 }  // namespace
-
-TensorPatch local_patch(const TensorPatch& p) {
-  TensorPatch local = p;
-  std::iota(local.nodes.begin(), local.nodes.end(), 1);
-  return local;
-}
-
-Eigen::VectorXd local_positions(int slave, const TensorPatch& p, const Eigen::VectorXd& x) {
-  Eigen::VectorXd out(3 + 3 * p.size());
-  out.head<3>() = x.segment<3>(3 * slave);
-  for (int K = 0; K < p.size(); ++K) out.segment<3>(3 + 3 * K) = x.segment<3>(3 * p.nodes[K]);
-  return out;
-}
 
 PatchNtsResult patch_midpoint_element(const TensorPatch& local, const Eigen::VectorXd& x_n, const Eigen::VectorXd& x_1,
                                       double lambda, double f3, double h, const Eigen::Vector2d& xi_start) {

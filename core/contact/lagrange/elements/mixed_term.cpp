@@ -1,9 +1,9 @@
-#include "core/contact/elements/mixed_term.hpp"
+#include "core/contact/lagrange/elements/mixed_term.hpp"
 
 #include <algorithm>
 
-#include "core/contact/elements/mixed_element.hpp"
-#include "core/contact/elements/patch_mixed_element.hpp"
+#include "core/contact/lagrange/elements/mixed_element.hpp"
+#include "core/contact/lagrange/elements/patch_mixed_element.hpp"
 
 namespace stoss::contact {
 

@@ -1,4 +1,4 @@
-#include "core/contact/elements/midpoint_element.hpp"
+#include "core/contact/lagrange/elements/midpoint_element.hpp"
 
 #include "core/contact/geometry/variations.hpp"
 

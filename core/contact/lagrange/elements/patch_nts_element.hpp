@@ -4,10 +4,11 @@
 /// hht_element.hpp with M master nodes.
 ///
 /// Element vector [x_s; y_0 … y_{M−1}] (3M + 3 entries), on a local copy of the patch whose node K
-/// is entry K + 1 of the element's node list (local_patch, local_positions).
+/// is entry K + 1 of the element's node list (geometry/local_patch.hpp).
 
 #include <Eigen/Core>
 
+#include "core/contact/geometry/local_patch.hpp"
 #include "core/contact/geometry/projection.hpp"
 #include "core/contact/geometry/tensor_patch.hpp"
 
@@ -23,12 +24,6 @@ struct PatchNtsResult {
   Eigen::RowVectorXd Klx;  ///< N_s(x_{n+1})ᵀ
   Projection end;          ///< CPP of x_{n+1}
 };
-
-/// The patch with its nodes renumbered 1 … M (the slave is node 0 of the local element).
-TensorPatch local_patch(const TensorPatch& p);
-
-/// [x_s; y_0 … y_{M−1}] from stacked positions x.
-Eigen::VectorXd local_positions(int slave, const TensorPatch& p, const Eigen::VectorXd& x);
 
 /// Midpoint (4.2): h λ N_s(x_m), g_N(x_{n+1}) − f_3; both CPPs start from `xi_start`.
 PatchNtsResult patch_midpoint_element(const TensorPatch& local, const Eigen::VectorXd& x_n, const Eigen::VectorXd& x_1,

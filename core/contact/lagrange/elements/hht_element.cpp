@@ -1,4 +1,4 @@
-#include "core/contact/elements/hht_element.hpp"
+#include "core/contact/lagrange/elements/hht_element.hpp"
 
 #include "core/contact/geometry/variations.hpp"
 

@@ -1,4 +1,4 @@
-#include "core/contact/elements/patch_mixed_element.hpp"
+#include "core/contact/lagrange/elements/patch_mixed_element.hpp"
 
 #include <array>
 

@@ -3,7 +3,7 @@
 /// active element 11 auxiliary unknowns w = (d, ξ, λ) after x_{n+1} in z.
 
 #include "core/contact/lagrange/lagrange_term.hpp"
-#include "core/contact/elements/patch_mixed_element.hpp"
+#include "core/contact/lagrange/elements/patch_mixed_element.hpp"
 
 namespace stoss::contact {
 

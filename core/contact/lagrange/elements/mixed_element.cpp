@@ -1,4 +1,4 @@
-#include "core/contact/elements/mixed_element.hpp"
+#include "core/contact/lagrange/elements/mixed_element.hpp"
 
 namespace stoss::contact {
 namespace {

@@ -11,7 +11,7 @@ namespace stoss::contact {
 
 /// One element's contributions at the current iterate; element vectors are [x_s; y_1 … y_4].
 /// @note Only the t_{n+1} part of (2.11): the t_n part −α h λ_n N_s(x_n) does not depend on the
-///       unknowns and is added by HhtContactTerm from the last converged step (`hht_element_force`).
+///       unknowns and is added by NtsContactTerm from the last converged step (`hht_element_force`).
 ///       If the CPP failed (`converged` false) the blocks must not be used.
 struct HhtElementResult {
   bool converged = false;  ///< the CPP at x_{n+1} converged
