@@ -125,7 +125,8 @@ async function refreshList() {
   if (request !== listRequests) return;
   const rows = body.jobs.map((job) => {
     const row = el('tr', { 'data-id': job.id, 'data-status': job.status, class: job.id === shown.id ? 'selected' : '' },
-      el('td', { class: 'status ' + job.status }, job.status), el('td', {}, job.kind), el('td', {}, job.name || job.id),
+      el('td', { class: 'status ' + job.status + (suspectReasons(job.summary) ? ' suspect' : ''), title: suspectReasons(job.summary) },
+        job.status + (suspectReasons(job.summary) ? ' · suspect' : '')), el('td', {}, job.kind), el('td', {}, job.name || job.id),
       el('td', {}, progressText(job)), el('td', {}, duration(job.progress.eta_seconds)),
       el('td', { title: job.created }, job.created.slice(11, 19)));
     row.addEventListener('click', () => showJob(job.id));
@@ -341,9 +342,20 @@ async function pollSeries(job) {
   return series.completed !== false || FINAL.includes(job.status);
 }
 
+// The failed checks of a suspect run, in words (docs/results.md "Verdict"); '' for an ok run.
+function suspectReasons(summary) {
+  if (!summary || summary.verdict !== 'suspect') return '';
+  return 'suspect: ' + (summary.checks || []).filter((c) => !c.passed)
+    .map((c) => `${c.name} ${number(c.value)} exceeds ${number(c.bound)}`).join('; ');
+}
+
 function showSummary(summary, note) {
-  const rows = Object.entries(summary).map(([key, value]) =>
-    el('tr', {}, el('th', {}, key), el('td', {}, number(value)), el('td', { class: 'unit' }, unitOf(key))));
+  const rows = Object.entries(summary).filter(([key]) => key !== 'checks').map(([key, value]) =>
+    el('tr', { class: key === 'verdict' ? 'status ' + value : '' }, el('th', {}, key),
+      el('td', {}, typeof value === 'number' ? number(value) : String(value)), el('td', { class: 'unit' }, unitOf(key))));
+  for (const c of summary.checks || [])
+    rows.push(el('tr', { class: c.passed ? '' : 'status suspect' }, el('th', {}, 'check ' + c.name),
+      el('td', {}, number(c.value) + (c.passed ? ' ≤ ' : ' > ') + number(c.bound)), el('td', { class: 'unit' }, c.passed ? 'passed' : 'FAILED')));
   if (note) rows.unshift(el('tr', {}, el('th', { colspan: 3 }, 'summary ' + note)));
   document.getElementById('job-summary').replaceChildren(...rows);
 }
@@ -383,12 +395,13 @@ function showJobHeader(job) {
   document.getElementById('job-title').textContent = job.name || job.id;
   document.getElementById('job-kind').textContent = `${job.kind} ${job.id} · attempt ${job.attempt}`;
   const status = document.getElementById('job-status');
-  status.textContent = job.status;
-  status.className = 'status ' + job.status;
+  const reasons = suspectReasons(job.summary);  // a suspect run succeeded but is shown amber with its reasons
+  status.textContent = job.status + (reasons ? ' · suspect' : '');
+  status.className = 'status ' + job.status + (reasons ? ' suspect' : '');
   const eta = job.progress.eta_seconds;
   document.getElementById('job-progress').textContent = progressText(job, true) + (eta !== null ? ' · ETA ' + duration(eta) : '');
   document.getElementById('cancel-button').hidden = !job.links.cancel;
-  document.getElementById('job-error').textContent = job.error || '';
+  document.getElementById('job-error').textContent = job.error || reasons;
   showBeforeRun(document.getElementById('job-warnings'), { warnings: job.warnings });
   showDownloads(job);
   if (job.summary) showSummary(job.summary, '');
