@@ -62,7 +62,7 @@ struct Summary {
   /// linear_solver_seconds split: analysis and factorisations (petsc_gamg: preconditioner setups), solves.
   double linear_factorization_seconds = 0, linear_solve_seconds = 0;
   double output_seconds = 0;
-  /// Peak resident set of the process running the job (getrusage), so far at the end of the run.
+  /// Peak resident set of the process running the job (its VmHWM, run/timing.hpp), at the end of the run.
   double peak_memory_bytes = 0;
   /// With an iterative linear solver (solver.linear iterative or petsc_gamg): Krylov iterations per linear
   /// solve, and the solves that did not converge and fell back to LU. 0 with the direct solver.
