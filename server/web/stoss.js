@@ -277,7 +277,9 @@ const PLOTS = [
     row: (s, i) => [s.total_energy[i], s.kinetic_energy[i], s.strain_energy[i]] },
   { id: 'energy-error', title: 'Energy error |H − H₀| / |H₀|', needs: ['total_energy'], labels: ['energy error'], logscale: true,
     row: (s, i, first) => [positive(Math.abs(s.total_energy[i] - first.total_energy) / (Math.abs(first.total_energy) || 1))] },
-  { id: 'momentum-error', title: 'Momentum error ‖L − L₀‖, ‖J − J₀‖', needs: ['linear_momentum', 'angular_momentum'],
+  // Only where the system is free (no supports, no gravity: docs/results.md "Verdict"); elsewhere the
+  // momenta change by the supports' and gravity's impulse, which is no error.
+  { id: 'momentum-error', title: 'Momentum error ‖L − L₀‖, ‖J − J₀‖', needs: ['linear_momentum', 'angular_momentum'], freeOnly: true,
     labels: ['linear ‖L − L₀‖', 'angular ‖J − J₀‖'], logscale: true,
     row: (s, i, first) => [positive(norm(difference(s.linear_momentum[i], first.linear_momentum))),
                            positive(norm(difference(s.angular_momentum[i], first.angular_momentum)))] },
@@ -308,7 +310,7 @@ function plotRows(state, series) {
     for (const [name, values] of Object.entries(series)) if (Array.isArray(values)) state.first[name] = values[0];
   }
   for (const plot of PLOTS) {
-    if (!plot.needs.every((name) => name in series)) continue;
+    if (!plot.needs.every((name) => name in series) || (plot.freeOnly && !state.free)) continue;
     if (!state.graphs[plot.id]) {
       const box = el('div', { class: 'plot', id: 'plot-' + plot.id, 'data-points': '0' });
       const legend = el('div', { class: 'legend' });
@@ -333,6 +335,7 @@ function plotRows(state, series) {
 async function pollSeries(job) {
   if (job.kind !== 'simulation' || job.status === 'queued') return true;
   if (shown.attempt !== job.attempt) { resetPlots(shown); shown.attempt = job.attempt; }
+  shown.free = !job.effects.includes('dirichlet') && !job.effects.includes('gravity');
   const since = shown.since === null ? '' : '?since=' + shown.since;
   const response = await api(`/v1/jobs/${job.id}/series${since}`);
   if (response.status === 409) return false;              // no step recorded yet
