@@ -77,6 +77,13 @@ struct Summary {
   std::string verdict;        ///< "ok" or "suspect" (a check failed); empty until the run ends
 };
 
+/// Whether the run checked `name` (the momenta are checked only where the system is free, run/checks.hpp).
+inline bool has_check(const Summary& s, const std::string& name) {
+  for (const Check& c : s.checks)
+    if (c.name == name) return true;
+  return false;
+}
+
 /// The checks as JSON: [{name, value, bound, passed}] (the job JSON's `checks`, result.h5's `checks`).
 inline nlohmann::json checks_json(const std::vector<Check>& checks) {
   nlohmann::json out = nlohmann::json::array();

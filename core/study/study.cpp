@@ -59,9 +59,9 @@ Row row_of(const Outcome& o, const Run& run, const Eigen::VectorXd& reference) {
   r.energy_error = o.summary.energy_drift;
   // Only where the system is free (the run checked its momenta, docs/results.md "Verdict"): with
   // supports or gravity the momenta change by their impulse, which is no error.
-  const bool free = std::any_of(o.summary.checks.begin(), o.summary.checks.end(),
-                                [](const model::Check& c) { return c.name == "linear_momentum_drift"; });
-  r.momentum_error = free ? std::max(o.summary.linear_momentum_drift, o.summary.angular_momentum_drift) : NAN;
+  r.momentum_error = model::has_check(o.summary, "linear_momentum_drift")
+                         ? std::max(o.summary.linear_momentum_drift, o.summary.angular_momentum_drift)
+                         : NAN;
   r.wall_seconds = o.summary.wall_seconds;
   r.newton_iterations = o.summary.newton_iterations;
   r.newton_per_step = o.summary.newton_iterations_per_step;

@@ -34,9 +34,7 @@ std::string join(const std::vector<std::string>& items) {
 void print_summary(const model::Model& m, const model::Summary& s) {
   std::printf("steps %d, t = %.6g\n", s.steps, s.end_time);
   std::printf("energy drift %.3e (relative, max over steps)\n", s.energy_drift);
-  const bool free = std::any_of(s.checks.begin(), s.checks.end(),
-                                [](const model::Check& c) { return c.name == "linear_momentum_drift"; });
-  if (free)
+  if (model::has_check(s, "linear_momentum_drift"))  // the system is free
     std::printf("momentum drift: linear %.3e, angular %.3e\n", s.linear_momentum_drift, s.angular_momentum_drift);
   else
     std::printf("momentum drift: not reported (supports or gravity act: the system is not free)\n");
