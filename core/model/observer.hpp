@@ -27,6 +27,14 @@ struct Frame {
   Eigen::VectorXd von_mises;         ///< 1 per element, of cauchy_stress; empty with it
 };
 
+/// One named check of a finished run against its bound (docs/results.md, "Verdict").
+struct Check {
+  std::string name;
+  double value = 0;
+  double bound = 0;
+  bool passed = true;
+};
+
 /// What a finished (or stopped) run reports: the job summary of docs/api.md.
 struct Summary {
   bool completed = false;  ///< false when canceled or failed
@@ -54,13 +62,34 @@ struct Summary {
   /// linear_solver_seconds split: analysis and factorisations (petsc_gamg: preconditioner setups), solves.
   double linear_factorization_seconds = 0, linear_solve_seconds = 0;
   double output_seconds = 0;
-  /// Peak resident set of the process running the job (getrusage), so far at the end of the run.
+  /// Peak resident set of the process running the job (its VmHWM, run/timing.hpp), at the end of the run.
   double peak_memory_bytes = 0;
   /// With an iterative linear solver (solver.linear iterative or petsc_gamg): Krylov iterations per linear
   /// solve, and the solves that did not converge and fell back to LU. 0 with the direct solver.
   double krylov_iterations_per_solve = 0;
   int krylov_fallbacks = 0;
+  /// What the checks of the run measure (run/checks.hpp, docs/results.md "Verdict"): with E_n = H_n + D_n
+  /// − Σ contact_energy_jump, the largest |E_n − E_0| and E_n − E_0, the largest |H_n|, Σ jumps so far,
+  /// and the steps that needed a step reduction.
+  double energy_balance_error = 0, energy_balance_rise = 0, max_abs_energy = 0, contact_energy_jumps = 0;
+  int reduced_steps = 0;
+  std::vector<Check> checks;  ///< filled when the run ends
+  std::string verdict;        ///< "ok" or "suspect" (a check failed); empty until the run ends
 };
+
+/// Whether the run checked `name` (the momenta are checked only where the system is free, run/checks.hpp).
+inline bool has_check(const Summary& s, const std::string& name) {
+  for (const Check& c : s.checks)
+    if (c.name == name) return true;
+  return false;
+}
+
+/// The checks as JSON: [{name, value, bound, passed}] (the job JSON's `checks`, result.h5's `checks`).
+inline nlohmann::json checks_json(const std::vector<Check>& checks) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const Check& c : checks) out.push_back({{"name", c.name}, {"value", c.value}, {"bound", c.bound}, {"passed", c.passed}});
+  return out;
+}
 
 /// Receives a run as it happens. The HDF5 writer is one observer, a job's progress another.
 class Observer {

@@ -285,6 +285,8 @@ void ResultWriter::end(const model::Summary& summary) {
   run->flush_rows();
   run->file.write_attribute("/", "wall_seconds", summary.wall_seconds);
   run->file.write_attribute("/", "complete", summary.completed ? 1 : 0);
+  run->file.write_attribute("/", "verdict", summary.verdict);  // docs/results.md, "Verdict"
+  run->file.write_attribute("/", "checks", model::checks_json(summary.checks).dump());
   run->file.close();
   if (summary.completed) {
     write_text_file(directory_ / xdmf_file_name, xdmf_document(run->xdmf_layout()));

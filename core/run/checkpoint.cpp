@@ -51,12 +51,17 @@ constexpr SummaryField summary_fields[] = {
     {"max_penetration", &model::Summary::max_penetration},
     {"max_own_face_penetration", &model::Summary::max_own_face_penetration},
     {"max_faceted_penetration", &model::Summary::max_faceted_penetration},
+    {"energy_balance_error", &model::Summary::energy_balance_error},
+    {"energy_balance_rise", &model::Summary::energy_balance_rise},
+    {"max_abs_energy", &model::Summary::max_abs_energy},
+    {"contact_energy_jumps", &model::Summary::contact_energy_jumps},
 };
 
 void write_summary(const h5::File& file, const model::Summary& summary) {
   for (const SummaryField& f : summary_fields)
     file.write_attribute("/", std::string("summary_") + f.name, summary.*f.value);
   file.write_attribute("/", "summary_newton_iterations", summary.newton_iterations);
+  file.write_attribute("/", "summary_reduced_steps", summary.reduced_steps);
 }
 
 model::Summary read_summary(const h5::File& file) {
@@ -64,6 +69,7 @@ model::Summary read_summary(const h5::File& file) {
   for (const SummaryField& f : summary_fields)
     summary.*f.value = file.read_double_attribute("/", std::string("summary_") + f.name);
   summary.newton_iterations = static_cast<int>(file.read_double_attribute("/", "summary_newton_iterations"));
+  summary.reduced_steps = static_cast<int>(file.read_double_attribute("/", "summary_reduced_steps"));
   return summary;
 }
 

@@ -67,6 +67,12 @@ void update_summary(model::Summary& sum, const Balance& b0, const Balance& b, co
   sum.max_penetration = std::max(sum.max_penetration, c.max_penetration);
   sum.max_own_face_penetration = std::max(sum.max_own_face_penetration, c.own_face_penetration);
   sum.max_faceted_penetration = std::max(sum.max_faceted_penetration, c.faceted_penetration);
+  // E_n = H_n + D_n − Σ contact_energy_jump against E_0 (docs/results.md, "Verdict")
+  sum.contact_energy_jumps += c.energy_jump;
+  const double balance = b.total() + b.dissipated - sum.contact_energy_jumps - (b0.total() + b0.dissipated);
+  sum.energy_balance_error = std::max(sum.energy_balance_error, std::abs(balance));
+  sum.energy_balance_rise = std::max(sum.energy_balance_rise, balance);
+  sum.max_abs_energy = std::max({sum.max_abs_energy, std::abs(b.total()), std::abs(b0.total())});
 }
 
 }  // namespace stoss::run

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/run/checkpoint_schedule.hpp"
+#include "core/run/checks.hpp"
 #include "core/run/measures.hpp"
 #include "core/run/problem.hpp"
 #include "core/run/recorder.hpp"
@@ -93,6 +94,7 @@ class Run {
       throw SolverError(message);
     }
     sum_.newton_iterations += r.iterations;
+    if (r.substeps > 1) ++sum_.reduced_steps;
     const auto t_out = Clock::now();
     const Balance b = balance(problem_, s_);
     update_summary(sum_, b0_, b, c);
@@ -110,6 +112,7 @@ class Run {
     sum_.newton_iterations_per_step = s_.step > 0 ? double(sum_.newton_iterations) / s_.step : 0.0;
     add_timing();
     report_linear_solver();
+    add_verdict(m_, sum_);
     observer_.end(sum_);
     return sum_;
   }

@@ -11,7 +11,8 @@ inline double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-/// Peak resident set of this process so far (getrusage ru_maxrss, kB on Linux), in bytes.
+/// Peak resident set of this process so far, in bytes: /proc/self/status VmHWM (since exec), else
+/// getrusage ru_maxrss (which Linux carries across exec from the spawning process).
 double peak_resident_bytes();
 
 }  // namespace stoss::run

@@ -49,7 +49,7 @@ struct Row {
   std::string failure;              ///< why the run stopped, when it did not complete
   double displacement_error = 0;    ///< max over nodes |x(T) − x_ref(T)| at the end time T
   double energy_error = 0;          ///< max over steps |H_n − H_0| / |H_0|
-  double momentum_error = 0;        ///< max of the relative linear and angular momentum drifts
+  double momentum_error = 0;        ///< max of the relative linear and angular momentum drifts; NaN (null) where the system is not free
   double wall_seconds = 0;          ///< the median over Result::repeat runs
   int newton_iterations = 0;
   double newton_per_step = 0;

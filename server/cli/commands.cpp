@@ -34,7 +34,10 @@ std::string join(const std::vector<std::string>& items) {
 void print_summary(const model::Model& m, const model::Summary& s) {
   std::printf("steps %d, t = %.6g\n", s.steps, s.end_time);
   std::printf("energy drift %.3e (relative, max over steps)\n", s.energy_drift);
-  std::printf("momentum drift: linear %.3e, angular %.3e\n", s.linear_momentum_drift, s.angular_momentum_drift);
+  if (model::has_check(s, "linear_momentum_drift"))  // the system is free
+    std::printf("momentum drift: linear %.3e, angular %.3e\n", s.linear_momentum_drift, s.angular_momentum_drift);
+  else
+    std::printf("momentum drift: not reported (supports or gravity act: the system is not free)\n");
   if (!m.contact.empty())
     std::printf("max penetration %.3e (closest master face), %.3e (own face)\n", s.max_penetration,
                 s.max_own_face_penetration);
@@ -51,6 +54,17 @@ void print_summary(const model::Model& m, const model::Summary& s) {
   if (s.krylov_iterations_per_solve > 0)
     std::printf("krylov iterations %.1f per solve (%d fell back to LU)\n", s.krylov_iterations_per_solve,
                 s.krylov_fallbacks);
+}
+
+/// The verdict and, when a check failed, the warning block (docs/command_line.md, "stoss run").
+void print_verdict(const model::Summary& s) {
+  for (const model::Check& c : s.checks)
+    std::printf("check %s: %.3e (bound %.3e) %s\n", c.name.c_str(), c.value, c.bound, c.passed ? "passed" : "FAILED");
+  std::printf("verdict: %s\n", s.verdict.c_str());
+  if (s.verdict != "suspect") return;
+  std::printf("warning: the result is suspect; failed checks:\n");
+  for (const model::Check& c : s.checks)
+    if (!c.passed) std::printf("  %s = %.3e exceeds %.3e (docs/results.md, \"Verdict\")\n", c.name.c_str(), c.value, c.bound);
 }
 
 /// The scales, the choices loading made and the warnings of `stoss validate` (docs/command_line.md).
@@ -131,20 +145,22 @@ model::Model resumed_model(const fs::path& out_dir) {
 
 int run_command(const std::vector<std::string>& args) {
   constexpr const char* text =
-      "stoss run SCENE.json [-o DIR] | stoss run --resume DIR\n"
+      "stoss run SCENE.json [-o DIR] [--strict] | stoss run --resume DIR [--strict]\n"
       "  simulates the scene; writes DIR/result.h5 and DIR/result.xdmf (DIR defaults to out/, which must\n"
       "  then be absent or empty: pass -o DIR to write into, or over, an existing directory). While it runs\n"
       "  it keeps a checkpoint in DIR/checkpoint/ (every output.checkpoint_seconds, or checkpoint_every steps);\n"
       "  --resume DIR goes on from it after a crash and writes the result the run would have written.\n"
-      "  exit 0 success, 1 solver failure, 2 invalid scene or command line";
+      "  It ends with the checks and the verdict (ok or suspect); --strict exits 3 on a suspect result.\n"
+      "  exit 0 success, 1 solver failure, 2 invalid scene or command line, 3 suspect result with --strict";
   if (wants_help(args)) {
     std::cout << "usage: " << text << "\n";
     return success;
   }
   std::string scene_path, out_dir = "out", resume_dir;
-  bool out_given = false;
+  bool out_given = false, strict = false;
   for (size_t i = 0; i < args.size(); ++i) {
-    if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size()) out_dir = args[++i], out_given = true;
+    if (args[i] == "--strict") strict = true;
+    else if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size()) out_dir = args[++i], out_given = true;
     else if (args[i] == "--resume" && i + 1 < args.size()) resume_dir = args[++i];
     else if (scene_path.empty() && args[i].rfind("-", 0) != 0) scene_path = args[i];
     else return usage(text);
@@ -181,7 +197,8 @@ int run_command(const std::vector<std::string>& args) {
     fs::remove_all(checkpoint_dir, error);  // result.h5 has it all
     print_summary(model, summary);
     std::printf("result: %s/result.h5\n", out_dir.c_str());
-    return success;
+    print_verdict(summary);
+    return strict && summary.verdict == "suspect" ? suspect_result : success;
   } catch (const scene::SceneError& e) {
     print_scene_error(e);
     return invalid_scene;

@@ -7,7 +7,7 @@
 namespace stoss::cli {
 
 /// Exit codes of `stoss run` and `stoss validate`.
-enum ExitCode { success = 0, solver_failure = 1, invalid_scene = 2 };
+enum ExitCode { success = 0, solver_failure = 1, invalid_scene = 2, suspect_result = 3 };
 
 /// `stoss run SCENE.json -o DIR`: writes DIR/result.h5 and DIR/result.xdmf, progress on stderr.
 int run_command(const std::vector<std::string>& args);

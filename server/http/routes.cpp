@@ -225,10 +225,26 @@ std::optional<jobs::Status> list_status(const Request& req) {
   return status;
 }
 
+std::optional<std::string> list_verdict(const Request& req) {
+  if (!req.has_param("verdict")) return std::nullopt;
+  const std::string verdict = req.get_param_value("verdict");
+  if (verdict != "ok" && verdict != "suspect")
+    fail(400, "bad-parameter", "Bad parameter", "verdict must be one of ok, suspect");
+  return verdict;
+}
+
+bool has_verdict(const jobs::Job& job, const std::string& verdict) {
+  return job.summary && job.summary->is_object() && job.summary->value("verdict", "") == verdict;
+}
+
+/// ?verdict filters the store's page (the stores keep no verdict column): a page may hold fewer than
+/// `limit` jobs, and next_cursor goes on where the store's page ended.
 void list_jobs(App& app, const Request& req, Response& res) {
+  const std::optional<std::string> verdict = list_verdict(req);
   const jobs::Page page = app.store.list(list_status(req), list_limit(req), list_cursor(req));
   nlohmann::json body = {{"jobs", nlohmann::json::array()}, {"next_cursor", nullptr}};
-  for (const auto& job : page.jobs) body["jobs"].push_back(job_body(app, job));
+  for (const auto& job : page.jobs)
+    if (!verdict || has_verdict(job, *verdict)) body["jobs"].push_back(job_body(app, job));
   if (page.next_cursor) body["next_cursor"] = std::to_string(*page.next_cursor);
   send_json(res, 200, body);
 }

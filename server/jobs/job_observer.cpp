@@ -57,8 +57,10 @@ void LogObserver::log(const std::string& line) {
 void LogObserver::end(const model::Summary& s) {
   out_ << (s.completed ? "run completed: " : "run stopped: ") << s.steps << " steps, t = " << s.end_time
        << ", energy drift " << s.energy_drift << ", " << s.newton_iterations << " Newton iterations, "
-       << s.wall_seconds << " s\n"
-       << std::flush;
+       << s.wall_seconds << " s, verdict " << s.verdict << "\n";
+  for (const model::Check& c : s.checks)
+    if (!c.passed) out_ << "warning: check " << c.name << " failed: " << c.value << " > " << c.bound << "\n";
+  out_ << std::flush;
 }
 
 nlohmann::json summary_json(const model::Summary& s, const model::Model& model) {
@@ -78,7 +80,9 @@ nlohmann::json summary_json(const model::Summary& s, const model::Model& model) 
                       {"assembly_seconds", s.assembly_seconds},
                       {"contact_seconds", s.contact_seconds},
                       {"output_seconds", s.output_seconds},
-                      {"peak_memory_mb", s.peak_memory_bytes / 1e6}};
+                      {"peak_memory_mb", s.peak_memory_bytes / 1e6},
+                      {"verdict", s.verdict},
+                      {"checks", model::checks_json(s.checks)}};
   if (!model.contact.empty()) j["max_penetration"] = s.max_penetration;
   if (s.resumed_from_step > 0) j["resumed_from_step"] = s.resumed_from_step;
   if (s.krylov_iterations_per_solve > 0) {  // a Krylov path (solver.linear iterative, petsc_gamg) ran

@@ -125,7 +125,8 @@ async function refreshList() {
   if (request !== listRequests) return;
   const rows = body.jobs.map((job) => {
     const row = el('tr', { 'data-id': job.id, 'data-status': job.status, class: job.id === shown.id ? 'selected' : '' },
-      el('td', { class: 'status ' + job.status }, job.status), el('td', {}, job.kind), el('td', {}, job.name || job.id),
+      el('td', { class: 'status ' + job.status + (suspectReasons(job.summary) ? ' suspect' : ''), title: suspectReasons(job.summary) },
+        job.status + (suspectReasons(job.summary) ? ' · suspect' : '')), el('td', {}, job.kind), el('td', {}, job.name || job.id),
       el('td', {}, progressText(job)), el('td', {}, duration(job.progress.eta_seconds)),
       el('td', { title: job.created }, job.created.slice(11, 19)));
     row.addEventListener('click', () => showJob(job.id));
@@ -276,7 +277,9 @@ const PLOTS = [
     row: (s, i) => [s.total_energy[i], s.kinetic_energy[i], s.strain_energy[i]] },
   { id: 'energy-error', title: 'Energy error |H − H₀| / |H₀|', needs: ['total_energy'], labels: ['energy error'], logscale: true,
     row: (s, i, first) => [positive(Math.abs(s.total_energy[i] - first.total_energy) / (Math.abs(first.total_energy) || 1))] },
-  { id: 'momentum-error', title: 'Momentum error ‖L − L₀‖, ‖J − J₀‖', needs: ['linear_momentum', 'angular_momentum'],
+  // Only where the system is free (no supports, no gravity: docs/results.md "Verdict"); elsewhere the
+  // momenta change by the supports' and gravity's impulse, which is no error.
+  { id: 'momentum-error', title: 'Momentum error ‖L − L₀‖, ‖J − J₀‖', needs: ['linear_momentum', 'angular_momentum'], freeOnly: true,
     labels: ['linear ‖L − L₀‖', 'angular ‖J − J₀‖'], logscale: true,
     row: (s, i, first) => [positive(norm(difference(s.linear_momentum[i], first.linear_momentum))),
                            positive(norm(difference(s.angular_momentum[i], first.angular_momentum)))] },
@@ -307,7 +310,7 @@ function plotRows(state, series) {
     for (const [name, values] of Object.entries(series)) if (Array.isArray(values)) state.first[name] = values[0];
   }
   for (const plot of PLOTS) {
-    if (!plot.needs.every((name) => name in series)) continue;
+    if (!plot.needs.every((name) => name in series) || (plot.freeOnly && !state.free)) continue;
     if (!state.graphs[plot.id]) {
       const box = el('div', { class: 'plot', id: 'plot-' + plot.id, 'data-points': '0' });
       const legend = el('div', { class: 'legend' });
@@ -332,6 +335,7 @@ function plotRows(state, series) {
 async function pollSeries(job) {
   if (job.kind !== 'simulation' || job.status === 'queued') return true;
   if (shown.attempt !== job.attempt) { resetPlots(shown); shown.attempt = job.attempt; }
+  shown.free = !job.effects.includes('dirichlet') && !job.effects.includes('gravity');
   const since = shown.since === null ? '' : '?since=' + shown.since;
   const response = await api(`/v1/jobs/${job.id}/series${since}`);
   if (response.status === 409) return false;              // no step recorded yet
@@ -341,9 +345,20 @@ async function pollSeries(job) {
   return series.completed !== false || FINAL.includes(job.status);
 }
 
+// The failed checks of a suspect run, in words (docs/results.md "Verdict"); '' for an ok run.
+function suspectReasons(summary) {
+  if (!summary || summary.verdict !== 'suspect') return '';
+  return 'suspect: ' + (summary.checks || []).filter((c) => !c.passed)
+    .map((c) => `${c.name} ${number(c.value)} exceeds ${number(c.bound)}`).join('; ');
+}
+
 function showSummary(summary, note) {
-  const rows = Object.entries(summary).map(([key, value]) =>
-    el('tr', {}, el('th', {}, key), el('td', {}, number(value)), el('td', { class: 'unit' }, unitOf(key))));
+  const rows = Object.entries(summary).filter(([key]) => key !== 'checks').map(([key, value]) =>
+    el('tr', { class: key === 'verdict' ? 'status ' + value : '' }, el('th', {}, key),
+      el('td', {}, typeof value === 'number' ? number(value) : String(value)), el('td', { class: 'unit' }, unitOf(key))));
+  for (const c of summary.checks || [])
+    rows.push(el('tr', { class: c.passed ? '' : 'status suspect' }, el('th', {}, 'check ' + c.name),
+      el('td', {}, number(c.value) + (c.passed ? ' ≤ ' : ' > ') + number(c.bound)), el('td', { class: 'unit' }, c.passed ? 'passed' : 'FAILED')));
   if (note) rows.unshift(el('tr', {}, el('th', { colspan: 3 }, 'summary ' + note)));
   document.getElementById('job-summary').replaceChildren(...rows);
 }
@@ -383,12 +398,13 @@ function showJobHeader(job) {
   document.getElementById('job-title').textContent = job.name || job.id;
   document.getElementById('job-kind').textContent = `${job.kind} ${job.id} · attempt ${job.attempt}`;
   const status = document.getElementById('job-status');
-  status.textContent = job.status;
-  status.className = 'status ' + job.status;
+  const reasons = suspectReasons(job.summary);  // a suspect run succeeded but is shown amber with its reasons
+  status.textContent = job.status + (reasons ? ' · suspect' : '');
+  status.className = 'status ' + job.status + (reasons ? ' suspect' : '');
   const eta = job.progress.eta_seconds;
   document.getElementById('job-progress').textContent = progressText(job, true) + (eta !== null ? ' · ETA ' + duration(eta) : '');
   document.getElementById('cancel-button').hidden = !job.links.cancel;
-  document.getElementById('job-error').textContent = job.error || '';
+  document.getElementById('job-error').textContent = job.error || reasons;
   showBeforeRun(document.getElementById('job-warnings'), { warnings: job.warnings });
   showDownloads(job);
   if (job.summary) showSummary(job.summary, '');

@@ -77,6 +77,35 @@ TEST(Cli, RunWritesACompleteResultAndPrintsTheSummary) {
   EXPECT_EQ(result.series("time").rows(), 5) << "t0 and every step";
 }
 
+// A suspect run (docs/results.md "Verdict"): an iteration cap of 10 puts the Newton bound at
+// 0.6 · 10 = 6 iterations per step, and the tumbling bar takes 7. The result is kept either way; the
+// warning block names the failed check, result.h5 carries verdict and checks, and --strict exits 3.
+TEST(Cli, SuspectRunWarnsKeepsItsResultAndExits3WithStrict) {
+  test::TempDir dir;
+  nlohmann::json scene = bar_scene();
+  scene["solver"]["max_iterations"] = 10;
+  const std::string path = write(dir, scene), out = (dir.path() / "out").string();
+  const Command plain = stoss("run " + path + " -o " + out);
+  EXPECT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_NE(plain.output.find("verdict: suspect"), std::string::npos) << plain.output;
+  EXPECT_NE(plain.output.find("  newton_iterations_per_step = "), std::string::npos) << plain.output;
+  EXPECT_NE(plain.output.find("momentum drift: linear"), std::string::npos) << "the bar is free";
+  const output::ResultFile result = output::ResultFile::open(dir.path() / "out/result.h5");
+  EXPECT_EQ(result.attribute_string("verdict"), "suspect");
+  const nlohmann::json checks = nlohmann::json::parse(result.attribute_string("checks"));
+  ASSERT_TRUE(checks.is_array());
+  bool newton_failed = false;
+  for (const auto& c : checks)
+    if (c.at("name") == "newton_iterations_per_step") newton_failed = !c.at("passed").get<bool>();
+  EXPECT_TRUE(newton_failed) << checks.dump();
+  const Command strict = stoss("run " + path + " -o " + out + " --strict");
+  EXPECT_EQ(strict.exit_code, 3) << strict.output;
+  scene["solver"].erase("max_iterations");
+  const Command ok = stoss("run " + write(dir, scene) + " -o " + out + " --strict");
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_NE(ok.output.find("verdict: ok"), std::string::npos) << ok.output;
+}
+
 TEST(Cli, ContactRunsReportPenetration) {
   test::TempDir dir;
   const Command c = stoss("run " + std::string(STOSS_SOURCE_DIR) + "/api/examples/colliding_bars.json -o " +

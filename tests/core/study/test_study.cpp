@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "core/mesh/generators.hpp"
@@ -74,6 +75,26 @@ TEST(Study, EachPointRunsRepeatTimesAndShowsTheMedianWallTime) {
   }
   EXPECT_EQ(to_json(r)["timing"], "wall seconds: the median of 3 runs");
   EXPECT_EQ(to_markdown(r).rfind("wall seconds: the median of 3 runs of each scheme and step\n", 0), 0u);
+}
+
+// The momenta of a body under gravity change by its impulse: no momentum_error there (issue 25 §3),
+// while the free bar's is reported (docs/results.md "Verdict").
+TEST(Study, MomentumErrorOnlyWhereTheSystemIsFree) {
+  Options o;
+  o.schemes = {model::Scheme::energy_momentum};
+  o.steps = {0.08};
+  o.repeat = 1;
+  const Result free = run(spinning_bar(), o);
+  ASSERT_EQ(free.rows.size(), 1u);
+  EXPECT_TRUE(std::isfinite(free.rows[0].momentum_error));
+  EXPECT_LT(free.rows[0].momentum_error, 1e-8);
+  model::Model falling = spinning_bar();
+  falling.gravity = Eigen::Vector3d(0, 0, -9.81);
+  falling.effects = model::resolve_effects(falling);
+  const Result held = run(falling, o);
+  ASSERT_EQ(held.rows.size(), 1u);
+  EXPECT_TRUE(std::isnan(held.rows[0].momentum_error));
+  EXPECT_NE(to_json(held).dump().find("\"momentum_error\":null"), std::string::npos) << to_json(held).dump();
 }
 
 TEST(Study, TableFormatsListEveryRow) {
