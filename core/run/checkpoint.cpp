@@ -66,10 +66,15 @@ void write_summary(const h5::File& file, const model::Summary& summary) {
 
 model::Summary read_summary(const h5::File& file) {
   model::Summary summary;
+  // A checkpoint written before the verdict's accumulators existed lacks them: they then count from the
+  // resumed step on, rather than refusing to resume a job queued before an upgrade.
+  auto read = [&](const std::string& name, double fallback) {
+    return file.has_attribute("/", name) ? file.read_double_attribute("/", name) : fallback;
+  };
   for (const SummaryField& f : summary_fields)
-    summary.*f.value = file.read_double_attribute("/", std::string("summary_") + f.name);
+    summary.*f.value = read(std::string("summary_") + f.name, summary.*f.value);
   summary.newton_iterations = static_cast<int>(file.read_double_attribute("/", "summary_newton_iterations"));
-  summary.reduced_steps = static_cast<int>(file.read_double_attribute("/", "summary_reduced_steps"));
+  summary.reduced_steps = static_cast<int>(read("summary_reduced_steps", 0));
   return summary;
 }
 
