@@ -1,7 +1,5 @@
 #include "server/jobs/job_files.hpp"
 
-#include <signal.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <fstream>
@@ -208,7 +206,14 @@ bool attempt_process_alive(const fs::path& attempt_dir) {
   std::ifstream in(attempt_dir / "process.pid");  // ProcessExecutor's job_pid_file
   long pid = 0;
   if (!(in >> pid) || pid <= 0) return false;
-  return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;
+  // /proc/<pid>/stat: "pid (comm) S …"; a zombie (Z) or dead (X) process writes nothing any more. A job
+  // process whose serve was killed may linger as a zombie where nothing reaps it.
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return false;
+  const auto close = line.rfind(')');
+  const char state = close != std::string::npos && close + 2 < line.size() ? line[close + 2] : '?';
+  return state != 'Z' && state != 'X';
 }
 
 }  // namespace
