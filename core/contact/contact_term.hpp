@@ -34,6 +34,7 @@ struct ContactReport {
   int unassigned = 0;  ///< near slave nodes level with the surface that no face accepts (NTS blind spot)
   double max_faceted_penetration = 0;  ///< smooth master: near slave nodes against the mesh's own faces
   int slipping = 0;    ///< closed penalty contacts on the Coulomb cone (5.3) in the step; 0 if frictionless
+  double max_new_gap_target = 0;  ///< largest gap target f_3 of the elements activated or switched in the step
 };
 
 /// A contact pair as a time::Term, with what the run reports of it: the pair, its surfaces and broad
@@ -45,6 +46,8 @@ class ContactTerm : public time::Term {
   std::string name() const override { return "contact " + pair_.slave + " on " + pair_.master; }
   /// The last converged step's report.
   const ContactReport& report() const { return report_; }
+  /// The frozen gap of the step's new contacts (ContactReport::max_new_gap_target; Term::event_offset).
+  double event_offset() const override { return report_.max_new_gap_target; }
   /// Sets p_I (force per area: the node's normal contact force over its tributary area A_I,
   /// surface.hpp) at the slave nodes in contact in the last converged step; other entries untouched.
   void contact_pressure(Eigen::VectorXd& p) const;

@@ -141,6 +141,11 @@ class Term {
                                   double& energy_jump) const {}
   /// After a converged step: commit history (friction slip, active sets).
   virtual void end_step(const StepContext& step, const Eigen::VectorXd& z) {}
+  /// After end_step: the largest position offset the term's own model put in during the last converged
+  /// step, in length units, which no truncation-error estimate sees: a contact constraint that starts
+  /// with a frozen gap (persist, docs/theory.md §4.5) keeps the body that far off the face. A step
+  /// controller adds it to its error estimate. 0 for most terms.
+  virtual double event_offset() const { return 0; }
   /// Between two steps (after end_step): the history the next step needs (checkpoint). Empty for terms
   /// that keep none (elasticity, gravity: everything they use is recomputed from x_n).
   virtual TermState save_state() const { return {}; }

@@ -155,6 +155,7 @@ void LagrangeContactTerm::end_step(const time::StepContext& step, const Eigen::V
     ContactElement& e = elements_[k];
     read_auxiliaries(e, z, element_offset(static_cast<int>(k)));
     if (e.jump) report_.energy_jump += e.lambda.dot(e.g_n);  // (4.11); g(π_n) ≈ 0 for the others
+    if (e.jump) report_.max_new_gap_target = std::max(report_.max_new_gap_target, e.f3);
     add_pressure(e.slave, std::max(-e.lambda[0], 0.0));  // λ_1 ≤ 0 in compression (§0)
   }
   report_.active = static_cast<int>(elements_.size());
