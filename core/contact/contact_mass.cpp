@@ -49,17 +49,19 @@ std::vector<int> massless_nodes(const model::Model& m) {
   for (const model::ContactPair& pair : m.contact) {
     if (pair.enforcement != model::Enforcement::lagrange || pair.impact != model::ImpactMode::located)
       continue;
-    const std::vector<int> nodes = m.mesh.surface_nodes(pair.slave);
-    out.insert(out.end(), nodes.begin(), nodes.end());
+    for (const std::string& surface : {pair.slave, pair.master}) {  // both sides (§4.6.1)
+      const std::vector<int> nodes = m.mesh.surface_nodes(surface);
+      out.insert(out.end(), nodes.begin(), nodes.end());
+    }
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 
-solve::SparseMatrix contact_mass(const model::Model& m, const solve::SparseMatrix& M) {
+solve::SparseMatrix massless_velocity_map(const model::Model& m) {
   const std::vector<int> nodes = massless_nodes(m);
-  if (nodes.empty()) return M;
+  if (nodes.empty()) return {};
   std::vector<char> massless(m.mesh.node_count(), 0);
   for (int s : nodes) massless[s] = 1;
   const std::vector<std::vector<int>> neighbours = element_neighbours(m.mesh);
@@ -71,14 +73,20 @@ solve::SparseMatrix contact_mass(const model::Model& m, const solve::SparseMatri
     }
     const std::vector<int> from = donors(m.mesh, I, neighbours[I], massless);
     if (from.empty())
-      throw std::invalid_argument("impact \"located\": slave node " + std::to_string(I) +
-                                  " shares no element with a node off the slave surfaces, so its mass has "
+      throw std::invalid_argument("impact \"located\": contact surface node " + std::to_string(I) +
+                                  " shares no element with a node off the contact surfaces, so its mass has "
                                   "nowhere to go; use impact \"persist\" for this pair");
     for (int j : from)
       for (int k = 0; k < 3; ++k) p.emplace_back(3 * I + k, 3 * j + k, 1.0 / from.size());  // P (§4.6.1)
   }
-  solve::SparseMatrix P(M.rows(), M.cols());
+  solve::SparseMatrix P(3 * m.mesh.node_count(), 3 * m.mesh.node_count());
   P.setFromTriplets(p.begin(), p.end());
+  return P;
+}
+
+solve::SparseMatrix contact_mass(const model::Model& m, const solve::SparseMatrix& M) {
+  const solve::SparseMatrix P = massless_velocity_map(m);
+  if (P.size() == 0) return M;
   solve::SparseMatrix modified = P.transpose() * M * P;  // M' = Pᵀ M P (§4.6.1)
   modified.prune(0.0);
   return modified;

@@ -89,7 +89,14 @@ void Integrator::rebuild_pattern(int n) {
   for (const Term* t : terms_) structure_generations_.push_back(t->structure_generation());
 }
 
+void Integrator::map_velocity(State& s) const {
+  if (velocity_map_.size() == 0) return;
+  s.v = velocity_map_ * s.v;  // docs/theory.md §4.6.1
+  if (s.a.size() == s.v.size()) s.a = velocity_map_ * s.a;
+}
+
 void Integrator::initialize(State& s) {
+  map_velocity(s);
   if (!scheme_->needs_initial_acceleration()) return;
   // M a_0 = f_ext − f_int(x_0): the terms' midpoint force at x_1 = x_n, divided by h = 1.
   const StepContext at_rest{s.x, s.v, 1.0, ForceRule::midpoint()};
@@ -275,6 +282,7 @@ void Integrator::finish(State& s, const StepEquations& equations, const Eigen::V
   // The step's context refers to s.x and s.v: nothing reads it once s advances.
   scheme_->advance(s, h, z.head(s.x.size()));
   if (impulse.squaredNorm() > 0) correct_velocity(s, std::move(impulse), jump);
+  map_velocity(s);
   s.t += h;
   s.step += 1;
 }

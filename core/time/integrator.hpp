@@ -27,6 +27,9 @@ class Integrator {
              std::unique_ptr<Scheme> scheme, solve::NewtonOptions options, double length_scale,
              double total_mass);
 
+  /// After each step (and in initialize) v ← P v: the velocity of the massless nodes of docs/theory.md
+  /// §4.6.1 follows their donors. An empty P (the default) leaves v alone.
+  void set_velocity_map(solve::SparseMatrix P) { velocity_map_ = std::move(P); }
   /// Completes the initial state (HHT: M a_0 = f_ext − f_int(x_0)).
   void initialize(State& s);
   /// Most times one step is solved again, shortened to a term's located contact event (§4.6.2).
@@ -85,6 +88,8 @@ class Integrator {
   void finish(State& s, const StepEquations& equations, const Eigen::VectorXd& z);
   /// (4.12): v_{n+1} += γ M⁻¹b for the terms' impact impulse b, restoring their energy jump.
   void correct_velocity(State& s, Eigen::VectorXd impulse, double energy_jump);
+  /// v ← P v and a ← P a (set_velocity_map), when P is set.
+  void map_velocity(State& s) const;
 
   const solve::SparseMatrix& mass_;
   std::vector<Term*> terms_;
@@ -103,6 +108,7 @@ class Integrator {
 
   int passes_ = 0;
   double advanced_ = 0;
+  solve::SparseMatrix velocity_map_;  ///< set_velocity_map
   double correction_energy_ = 0;
 
   // Timing hooks (wall clock, for the summary's split of the run time).
