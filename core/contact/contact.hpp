@@ -3,6 +3,7 @@
 
 #include <memory>
 
+#include "core/contact/contact_mass.hpp"
 #include "core/contact/contact_term.hpp"
 #include "core/mesh/mesh.hpp"
 #include "core/model/model.hpp"

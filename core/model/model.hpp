@@ -46,7 +46,10 @@ struct Boundary {
 };
 
 enum class Enforcement { lagrange, penalty };
-enum class ImpactMode { persist, exact, velocity_correction };
+/// Energy treatment of Lagrange contact at impacts (docs/theory.md §4.5). `located` (experimental, §4.6):
+/// each slave node's activation and release end a sub-step at their located time, with a massless slave
+/// surface under the midpoint-type schemes; energy exact, its order and cost not yet established.
+enum class ImpactMode { persist, exact, velocity_correction, located };
 enum class NormalTraction { discrete_derivative, midpoint };
 /// Gap target of an active element that moves to another master face (docs/theory.md §3.4).
 enum class SwitchGap {

@@ -73,7 +73,8 @@ Problem build_problem(const model::Model& m) {
     density.push_back(m.bodies[body].material.density);
     material.push_back(body_material[body]);
   }
-  p.mass = fem::assemble_mass(m.mesh, p.geometry, density);
+  p.mass = contact::contact_mass(m, fem::assemble_mass(m.mesh, p.geometry, density));  // theory.md §4.6.1
+  p.velocity_map = contact::massless_velocity_map(m);
   p.elasticity = std::make_unique<fem::ElasticityTerm>(m.mesh, p.geometry, std::move(material));
   if (m.has_effect(model::effect::gravity))
     p.gravity = std::make_unique<fem::GravityTerm>(p.mass, *m.gravity);

@@ -18,6 +18,7 @@ namespace stoss::run {
 struct Problem {
   std::vector<fem::ElementGeometry> geometry;
   solve::SparseMatrix mass;
+  solve::SparseMatrix velocity_map;  ///< P of docs/theory.md (4.13), empty unless a node is massless
   std::unique_ptr<fem::ElasticityTerm> elasticity;
   std::unique_ptr<fem::GravityTerm> gravity;
   std::vector<std::unique_ptr<contact::ContactTerm>> contact;  ///< one per pair; none without contact

@@ -51,6 +51,7 @@ class Run {
         recorder_(observer, store_ ? &*store_ : nullptr, problem_),
         series_(m),
         schedule_(m.output) {
+    integrator_.set_velocity_map(problem_.velocity_map);
     integrator_.initialize(s_);
     if (store_ && checkpoints.resume && store_->exists()) resumed_ = load_checkpoint(*store_, m, terms_);
   }

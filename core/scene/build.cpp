@@ -65,6 +65,7 @@ model::ContactPair contact_pair(const json& e, mesh::Mesh& mesh) {
   pair.friction = e["friction"].get<double>();
   pair.impact = e["impact"] == "exact"                 ? model::ImpactMode::exact
                 : e["impact"] == "velocity_correction" ? model::ImpactMode::velocity_correction
+                : e["impact"] == "located"             ? model::ImpactMode::located
                                                        : model::ImpactMode::persist;
   pair.switch_hysteresis = e["switch_hysteresis"].get<double>();
   pair.switch_gap = e.value("switch_gap", "") == "keep" ? model::SwitchGap::keep : model::SwitchGap::clamp;

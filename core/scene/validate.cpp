@@ -304,8 +304,8 @@ void check_contact_pair(json& e, const std::string& p, const SurfaceIndex& index
                    {"lagrange", "penalty"}, c);
   if (frictional && enforcement == "lagrange")
     c.fail(child(p, "enforcement"), "friction > 0 requires enforcement \"penalty\"");
-  choice_field(e, "impact", p, Presence::or_default("persist"), {"persist", "exact", "velocity_correction"},
-               c);
+  choice_field(e, "impact", p, Presence::or_default("persist"),
+               {"persist", "exact", "velocity_correction", "located"}, c);
   number_field(e, "switch_hysteresis", p, Presence::or_default(0.05), at_least(0), c);
   // Both resolved once the mesh exists (master_surface.hpp): the defaults depend on the surface.
   choice_field(e, "switch_gap", p, Presence::may(), {"clamp", "keep"}, c);

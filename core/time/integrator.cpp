@@ -89,7 +89,14 @@ void Integrator::rebuild_pattern(int n) {
   for (const Term* t : terms_) structure_generations_.push_back(t->structure_generation());
 }
 
+void Integrator::map_velocity(State& s) const {
+  if (velocity_map_.size() == 0) return;
+  s.v = velocity_map_ * s.v;  // docs/theory.md §4.6.1
+  if (s.a.size() == s.v.size()) s.a = velocity_map_ * s.a;
+}
+
 void Integrator::initialize(State& s) {
+  map_velocity(s);
   if (!scheme_->needs_initial_acceleration()) return;
   // M a_0 = f_ext − f_int(x_0): the terms' midpoint force at x_1 = x_n, divided by h = 1.
   const StepContext at_rest{s.x, s.v, 1.0, ForceRule::midpoint()};
@@ -121,10 +128,10 @@ void Integrator::initialize(State& s) {
 /// §2.1. Made by Integrator::step for one step; h and the state are its own, never the integrator's.
 class Integrator::StepEquations final : public solve::NonlinearSystem {
  public:
-  StepEquations(Integrator& owner, const State& s, double h, const LogFunction* log)
+  StepEquations(Integrator& owner, const State& s, double h, const LogFunction* log, bool may_cut)
       : owner_(owner),
         state_(s),
-        context_{s.x, s.v, h, owner.scheme_->force_rule(), log, owner.scheme_->force_factor(h)} {}
+        context_{s.x, s.v, h, owner.scheme_->force_rule(), log, owner.scheme_->force_factor(h), may_cut} {}
   const StepContext& context() const { return context_; }
   /// The residual scale starts at ‖2 M v_n‖; the first evaluation raises it to the predictor's residual.
   void reset_scale() {
@@ -203,7 +210,7 @@ solve::NewtonResult Integrator::solve_with_active_set(StepEquations& equations, 
       Stopwatch term(term_seconds_[k]);
       changed = terms_[k]->update_active_set(equations.context(), z) || changed;
     }
-    if (!changed) return total;
+    if (!changed || requested_cut() < 1) return total;  // a cut: the step is solved again, shorter (§4.6.2)
     if (passes_ == max_active_set_passes) {
       total.converged = false;
       total.failure = "the contact active set did not settle in " + std::to_string(passes_) + " passes";
@@ -213,17 +220,21 @@ solve::NewtonResult Integrator::solve_with_active_set(StepEquations& equations, 
   }
 }
 
-solve::NewtonResult Integrator::step(State& s, double h, const LogFunction& log) {
-  StepEquations equations(*this, s, h, log ? &log : nullptr);
+double Integrator::requested_cut() const {
+  double cut = 1;
+  for (const Term* t : terms_) cut = std::min(cut, t->requested_cut());
+  return cut;
+}
+
+solve::NewtonResult Integrator::attempt(const State& s, StepEquations& equations, Eigen::VectorXd& z,
+                                        const LogFunction& log) {
   const StepContext& step = equations.context();
-  correction_energy_ = 0;
   for (size_t k = 0; k < terms_.size(); ++k) {
     Stopwatch term(term_seconds_[k]);
     terms_[k]->prepare_step(step);
   }
-  const int n = prepare_unknowns();
-  Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
-  z.head(s.x.size()) = scheme_->predict(s, h);
+  z = Eigen::VectorXd::Zero(prepare_unknowns());
+  z.head(s.x.size()) = scheme_->predict(s, step.h);
   for (Eigen::Index i = 0; i < s.x.size(); ++i)
     if (fixed_[i]) z[i] = s.x[i];
   for (size_t k = 0; k < terms_.size(); ++k) {
@@ -232,8 +243,35 @@ solve::NewtonResult Integrator::step(State& s, double h, const LogFunction& log)
   }
   equations.reset_scale();
   solver_.set_coordinates(s.x);  // rigid-body modes for an AMG linear solver
-  solve::NewtonResult result = solve_with_active_set(equations, z, log);
-  if (!result.converged) return result;
+  return solve_with_active_set(equations, z, log);
+}
+
+solve::NewtonResult Integrator::step(State& s, double h, const LogFunction& log) {
+  correction_energy_ = 0;
+  solve::NewtonResult total;
+  for (int cuts = 0;; ++cuts) {
+    StepEquations equations(*this, s, h, log ? &log : nullptr, cuts < max_event_cuts);
+    Eigen::VectorXd z;
+    const solve::NewtonResult pass = attempt(s, equations, z, log);
+    if (cuts == 0)
+      total = pass;
+    else
+      merge(total, pass);
+    if (!total.converged) return total;
+    const double cut = requested_cut();
+    if (cut < 1 && equations.context().may_cut) {  // §4.6.2: end the step at the located event
+      h *= cut;
+      continue;
+    }
+    finish(s, equations, z);
+    advanced_ = h;
+    return total;
+  }
+}
+
+void Integrator::finish(State& s, const StepEquations& equations, const Eigen::VectorXd& z) {
+  const StepContext& step = equations.context();
+  const double h = step.h;
   Eigen::VectorXd impulse = Eigen::VectorXd::Zero(s.x.size());
   double jump = 0;
   for (size_t k = 0; k < terms_.size(); ++k) {
@@ -244,9 +282,9 @@ solve::NewtonResult Integrator::step(State& s, double h, const LogFunction& log)
   // The step's context refers to s.x and s.v: nothing reads it once s advances.
   scheme_->advance(s, h, z.head(s.x.size()));
   if (impulse.squaredNorm() > 0) correct_velocity(s, std::move(impulse), jump);
+  map_velocity(s);
   s.t += h;
   s.step += 1;
-  return result;
 }
 
 void Integrator::correct_velocity(State& s, Eigen::VectorXd b, double energy_jump) {

@@ -27,14 +27,24 @@ class Integrator {
              std::unique_ptr<Scheme> scheme, solve::NewtonOptions options, double length_scale,
              double total_mass);
 
+  /// After each step (and in initialize) v ← P v: the velocity of the massless nodes of docs/theory.md
+  /// §4.6.1 follows their donors. An empty P (the default) leaves v alone.
+  void set_velocity_map(solve::SparseMatrix P) { velocity_map_ = std::move(P); }
   /// Completes the initial state (HHT: M a_0 = f_ext − f_int(x_0)).
   void initialize(State& s);
+  /// Most times one step is solved again, shortened to a term's located contact event (§4.6.2).
+  static constexpr int max_event_cuts = 6;
+
   /// Solves the step t → t + h: Newton, repeated while a term changes its active set (at most
-  /// max_active_set_passes solves), then the velocity correction (4.12) if a term asks for it. On
-  /// convergence advances s and calls every term's end_step; otherwise leaves s as it was (a term
-  /// forgets the abandoned step at its next prepare_step). The result sums iterations and backtracks
-  /// over the solves and lists every residual. `log` receives solver events.
+  /// max_active_set_passes solves), then the velocity correction (4.12) if a term asks for it. A term
+  /// that locates a contact event inside the step (Term::requested_cut) has the step solved again,
+  /// ending there (§4.6.2): the step then advances s by advanced() < h only. On convergence advances s
+  /// and calls every term's end_step; otherwise leaves s as it was (a term forgets the abandoned step
+  /// at its next prepare_step). The result sums iterations and backtracks over the solves and lists
+  /// every residual. `log` receives solver events.
   solve::NewtonResult step(State& s, double h, const LogFunction& log = {});
+  /// The size of the last converged step: h, or less when it ended at a located contact event.
+  double advanced() const { return advanced_; }
 
   /// The next step starts with a fresh Jacobian pattern and factorisation, as a new integrator would: after a
   /// checkpoint, the run that goes on and a run resumed from it solve the next step alike.
@@ -70,8 +80,16 @@ class Integrator {
   Eigen::VectorXd relayout(const StepContext& step, const Eigen::VectorXd& positions);
   /// Newton passes with active-set updates; false result if a solve fails or the set never settles.
   solve::NewtonResult solve_with_active_set(StepEquations& equations, Eigen::VectorXd& z, const LogFunction& log);
+  /// One solve of the step of `equations` from s (prepare, predict, Newton with active-set updates) into z.
+  solve::NewtonResult attempt(const State& s, StepEquations& equations, Eigen::VectorXd& z, const LogFunction& log);
+  /// The smallest step fraction the terms ask to cut the step to (Term::requested_cut), or 1.
+  double requested_cut() const;
+  /// After a converged step: the impact impulse and end_step of every term, the scheme's advance of s by h.
+  void finish(State& s, const StepEquations& equations, const Eigen::VectorXd& z);
   /// (4.12): v_{n+1} += γ M⁻¹b for the terms' impact impulse b, restoring their energy jump.
   void correct_velocity(State& s, Eigen::VectorXd impulse, double energy_jump);
+  /// v ← P v and a ← P a (set_velocity_map), when P is set.
+  void map_velocity(State& s) const;
 
   const solve::SparseMatrix& mass_;
   std::vector<Term*> terms_;
@@ -89,6 +107,8 @@ class Integrator {
       mass_solver_;  ///< for (4.12), built on first use
 
   int passes_ = 0;
+  double advanced_ = 0;
+  solve::SparseMatrix velocity_map_;  ///< set_velocity_map
   double correction_energy_ = 0;
 
   // Timing hooks (wall clock, for the summary's split of the run time).

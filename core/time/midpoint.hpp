@@ -11,12 +11,13 @@ class MidpointKinematics : public Scheme {
   void add_inertia(const State& s, double h, const solve::SparseMatrix& M, const Eigen::VectorXd& x_1,
                    Eigen::VectorXd& R) const override;
   double inertia_jacobian_factor(double h) const override { return 2.0 / h; }
-  /// The secant predictor x_n + (h/2)(v_n + v_{n−1}) = x_n + h v_n − (h²/2) a_n: for a stiff mode
-  /// (ωh ≫ 1) the midpoint rule flips v every step, so x_n + h v_n is off by ~h v_n where the secant
-  /// is right, and on a smooth motion both are off by O(h² a). On the two balls it halved Newton's
-  /// iterations (docs/measurements.md, "Newton on hard impacts").
+  /// The secant predictor x_n + (h/2)(v_n + v_{n−1}) = x_n + h v_n − (h h_{n−1}/2) a_n: for a stiff
+  /// mode (ωh ≫ 1) the midpoint rule flips v every step, so x_n + h v_n is off by ~h v_n where the
+  /// secant is right, and on a smooth motion both are off by O(h² a). On the two balls it halved Newton's
+  /// iterations (docs/measurements.md, "Newton on hard impacts"). With h_{n−1} = s.last_step it holds
+  /// for steps of any size (a step cut at a contact event, docs/theory.md §4.6.2, or a step controller's).
   Eigen::VectorXd predict(const State& s, double h) const override;
-  /// Also sets s.a to the step's mean acceleration (v_{n+1} − v_n) / h, for the predictor.
+  /// Also sets s.a to the step's mean acceleration (v_{n+1} − v_n)/h and s.last_step to h, for the predictor.
   void advance(State& s, double h, const Eigen::VectorXd& x_1) const override;
 };
 

@@ -17,6 +17,9 @@ namespace stoss::time {
 struct State {
   Eigen::VectorXd x, v, a;
   double t = 0;
+  /// h of the step that ended here (midpoint-type schemes, for the predictor); 0 before the first step
+  /// and in a state restored without it, where the next step's h stands in.
+  double last_step = 0;
   int step = 0;
 };
 

@@ -14,16 +14,32 @@ struct Reducer {
   int step0;  ///< the step's number before it started
   ReducedStep out;
 
-  /// Solves t → t + h at reduction depth `depth` (h = full step / 2^depth).
+  /// Solves t → t + h at reduction depth `depth` (h = full step / 2^depth); an integrator step that ends at
+  /// a located contact event (§4.6.2) is followed by the rest of h.
   bool solve(double h, int depth) {
+    for (double left = h; left > 1e-10 * h;) {
+      double covered = 0;
+      if (!solve_once(left, depth, covered)) return false;
+      left -= covered;
+    }
+    return true;
+  }
+
+  /// One integrator step of at most h, or its halves when it fails; `covered` gets the time advanced.
+  bool solve_once(double h, int depth, double& covered) {
     const solve::NewtonResult r = integrator.step(s, h, log);
     out.iterations += r.iterations;
     out.residuals = r.residuals;
     if (r.converged) {
-      ++out.substeps;
+      covered = integrator.advanced();
+      if (covered < h)
+        ++out.event_substeps;  // ended at a located contact event (§4.6.2)
+      else
+        ++out.substeps;
       if (after_substep) after_substep();
       return true;
     }
+    covered = h;
     if (depth == 0) out.failure = r.failure;
     if (depth == max_halvings) {
       if (depth > 0) out.failure += "; with automatic step reduction it still failed at t = " + time_text(s.t) +

@@ -12,6 +12,9 @@ namespace stoss::time {
 struct ReducedStep {
   bool converged = false;
   int substeps = 0;  ///< converged integrator steps that make up the step: 1 without reduction
+  /// Converged integrator steps that ended early, at a located contact event (docs/theory.md §4.6.2); each is
+  /// followed by the rest of its (sub)step, which substeps counts.
+  int event_substeps = 0;
   int iterations = 0;                 ///< Newton iterations over every solve tried, failed ones included
   std::vector<double> residuals;      ///< the last solve's residual history (converged or failed)
   std::string failure;                ///< why it stopped, when not converged

@@ -54,6 +54,9 @@ struct StepContext {
   /// The factor the scheme puts on every algorithmic force in the momentum rows of (2.3) (Scheme::
   /// force_factor): terms add force_factor · f_alg, so that they never multiply by h themselves.
   double force_factor = h;
+  /// Whether a term may still ask to cut this step at a located contact event (Term::requested_cut);
+  /// false once the integrator's cuts are spent: a term then handles the event inside the step.
+  bool may_cut = false;
 };
 
 /// What a term carries from one converged step to the next (active set, multipliers, friction history), as
@@ -125,6 +128,10 @@ class Term {
   /// After Newton converged with the current auxiliary set: updates the set from the solution z
   /// (the contact active set, docs/theory.md §3.5). Returns true if it changed.
   virtual bool update_active_set(const StepContext& step, const Eigen::VectorXd& z) { return false; }
+  /// After update_active_set: the fraction of the step at whose end the term's earliest located contact
+  /// event lies (docs/theory.md §4.6.2), or 1 when the step may run to its end. A fraction < 1 makes the
+  /// integrator solve the step again, shortened to it.
+  virtual double requested_cut() const { return 1; }
   /// Dimensionless size of the term's auxiliary rows in R (the largest over its groups of rows of
   /// like units). Terms that own auxiliaries override it; converged when ≤ the Newton tolerance.
   virtual double auxiliary_residual_measure(const Eigen::VectorXd& R, const MeasureScales& s) const {

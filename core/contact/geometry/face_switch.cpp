@@ -6,7 +6,8 @@ namespace stoss::contact {
 
 double switched_gap_target(model::SwitchGap rule, model::ImpactMode impact, double new_gap, double target) {
   if (rule == model::SwitchGap::keep) return new_gap;  // §3.4: keep is energy-exact
-  return impact == model::ImpactMode::persist ? std::min(std::max(new_gap, 0.0), target) : 0.0;
+  const bool frozen = impact == model::ImpactMode::persist || impact == model::ImpactMode::located;
+  return frozen ? std::min(std::max(new_gap, 0.0), target) : 0.0;
 }
 
 double switched_gap_offset(model::SwitchGap rule, double kept, double new_gap) {

@@ -25,7 +25,7 @@ inline bool leaves_face(const Eigen::Vector2d& xi, double hysteresis) {
 
 /// Lagrange: the gap target f_3 on the new face, whose true gap at x_n is `new_gap`; `target` is the
 /// target on the old face. keep: the new gap. clamp: with impact persist, the new gap clamped to
-/// [0, target] (a penetration is never frozen in); else 0.
+/// [0, target] (a penetration is never frozen in), with located too; else 0.
 double switched_gap_target(model::SwitchGap rule, model::ImpactMode impact, double new_gap, double target);
 
 /// Penalty: the offset subtracted from the new face's gap so that the penalty law continues with the

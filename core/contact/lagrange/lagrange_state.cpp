@@ -35,6 +35,10 @@ time::TermState LagrangeContactTerm::save_state() const {
     append<2>(xi, e.xi);
     append<6>(lambda, e.lambda);
   }
+  auto& armed = s.integers["armed"];  // §4.6.2: nodes whose located event the last step ended at
+  for (size_t i = 0; i < armed_.size(); ++i)
+    if (armed_[i]) armed.push_back(static_cast<std::int64_t>(i));
+  s.reals["previous_step"] = {previous_step_};
   return s;
 }
 
@@ -79,6 +83,15 @@ void LagrangeContactTerm::restore_state(const time::TermState& state, const Eige
   elements_ = std::move(elements);
   committed_ = elements_;
   in_step_ = false;
+  std::fill(armed_.begin(), armed_.end(), 0);
+  if (const auto armed = state.integers.find("armed"); armed != state.integers.end())
+    for (std::int64_t i : armed->second) {
+      if (i < 0 || i >= static_cast<std::int64_t>(armed_.size()))
+        throw std::invalid_argument("term state of " + name() + ": armed slave " + std::to_string(i) +
+                                    " is not a slave node of the pair");
+      armed_[i] = 1;
+    }
+  previous_step_ = state.reals.count("previous_step") ? state.real("previous_step", 1)[0] : 0.0;
   reindex();
   ++generation_;
 }

@@ -10,6 +10,10 @@ namespace {
 
 /// Activation threshold of §3.5: tol_g = 1e-10 × face size.
 constexpr double activation_gap = 1e-10;
+/// impact located (§4.6.2): an event closer than this fraction of the step to t_n toggles without a cut.
+constexpr double least_cut = 1e-3;
+/// impact located: events within this fraction of the step after the earliest one share its cut.
+constexpr double event_window = 1e-6;
 
 }  // namespace
 
@@ -19,6 +23,7 @@ LagrangeContactTerm::LagrangeContactTerm(const mesh::Mesh& mesh, const model::Co
   start_of_ = element_of_;
   toggles_.assign(surfaces_.slave_nodes.size(), 0);
   released_now_.assign(surfaces_.slave_nodes.size(), 0);
+  pending_ = armed_ = released_now_;
 }
 
 void LagrangeContactTerm::register_blocks(solve::BlockPattern& pattern) {
@@ -56,6 +61,7 @@ void LagrangeContactTerm::prepare_step(const time::StepContext& step) {
   in_step_ = true;
   broad_.update(surfaces_, step.x_n, step.x_n + step.h * step.v_n);
   std::fill(toggles_.begin(), toggles_.end(), 0);
+  cut_ = 1;
   report_ = ContactReport{};
   for (ContactElement& e : elements_) {
     e.d_n = e.d;  // converged values of the last step (§4.3.7): never re-projected
@@ -92,10 +98,53 @@ ContactElement LagrangeContactTerm::new_element(int slave, const FaceProjection&
   e.xi_n = at_start.projection.xi;
   e.d = at_end.projection.frame.normal;
   e.xi = at_end.projection.xi;
-  e.f3 = impact() == model::ImpactMode::persist ? std::max(at_start.projection.gap, 0.0) : 0.0;  // §4.5 R1
+  const bool frozen = impact() == model::ImpactMode::persist || impact() == model::ImpactMode::located;
+  e.f3 = frozen ? std::max(at_start.projection.gap, 0.0) : 0.0;  // §4.5 R1, §4.6.2
   e.jump = true;
   e.g_n = start_residual(e, step.x_n);
   return e;
+}
+
+bool LagrangeContactTerm::locates(int slave, const time::StepContext& step) const {
+  return impact() == model::ImpactMode::located && step.may_cut && !armed_[slave];
+}
+
+LocatedEvent LagrangeContactTerm::located(int slave, double t0, double v0, double t1, double v1,
+                                          const time::StepContext& step) const {
+  if (secant_.slave == slave && secant_.time != t1) {  // secant through the last cut's solve (§4.6.2)
+    t0 = secant_.time;
+    v0 = secant_.value;
+  }
+  const double zero = v1 == v0 ? step.h : t1 - v1 * (t1 - t0) / (v1 - v0);  // (4.14), (4.15)
+  return {slave, t1, v1, zero / step.h};
+}
+
+LocatedEvent LagrangeContactTerm::release_event(const ContactElement& e,
+                                                const time::StepContext& step) const {
+  const int k = start_of_[e.slave];
+  if (k < 0 || start_[k].face != e.face || !(start_[k].lambda[0] < 0)) return {e.slave, 0, 0, 0};
+  // λ_1 of a midpoint-type step belongs to its middle, of an end-point step to its end (4.15).
+  const double at = step.rule.is_end_point() ? 1.0 : 0.5;
+  return located(e.slave, -at * previous_step_, start_[k].lambda[0], at * step.h, e.lambda[0], step);
+}
+
+double LagrangeContactTerm::start_gap(int slave, int face, const time::StepContext& step,
+                                      const Eigen::Vector2d& xi) const {
+  const Eigen::Vector3d x_s = step.x_n.segment<3>(3 * surfaces_.slave_nodes[slave]);
+  return project_on(x_s, face, surfaces_, step.x_n, xi).projection.gap;
+}
+
+void LagrangeContactTerm::request_cut(const time::StepContext& step) {
+  if (events_.empty()) return;
+  const LocatedEvent earliest =
+      *std::min_element(events_.begin(), events_.end(),
+                        [](const LocatedEvent& a, const LocatedEvent& b) { return a.fraction < b.fraction; });
+  std::fill(pending_.begin(), pending_.end(), 0);
+  for (const LocatedEvent& e : events_)
+    if (e.fraction <= earliest.fraction + event_window) pending_[e.slave] = 1;
+  pending_time_ = earliest.fraction * step.h;
+  cut_ = earliest.fraction;
+  secant_ = earliest;
 }
 
 bool LagrangeContactTerm::release_tensile(const time::StepContext& step, const Eigen::VectorXd& z) {
@@ -104,8 +153,13 @@ bool LagrangeContactTerm::release_tensile(const time::StepContext& step, const E
   for (size_t k = 0; k < elements_.size(); ++k) {
     ContactElement& e = elements_[k];
     read_auxiliaries(e, z, element_offset(static_cast<int>(k)));
+    const LocatedEvent release =
+        e.lambda[0] > 0 && locates(e.slave, step) ? release_event(e, step) : LocatedEvent{e.slave, 0, 0, 0};
     if (!(e.lambda[0] > 0)) {
       kept.push_back(e);
+    } else if (release.fraction >= least_cut && release.fraction < 1) {
+      kept.push_back(e);  // §4.6.2: the step ends where λ_1 crosses zero; the release follows then
+      events_.push_back(release);
     } else if (toggles_[e.slave] > 0) {
       kept.push_back(e);  // anti-cycling (§3.5): a second change in this step is refused
       log(step, "slave node " + std::to_string(slave_node(e)) + " kept active with tensile λ_1 = " +
@@ -128,6 +182,14 @@ bool LagrangeContactTerm::activate_penetrating(const time::StepContext& step, co
     const Eigen::Vector3d x_s = z.segment<3>(3 * surfaces_.slave_nodes[i]);
     const FaceProjection f = best_face(x_s, broad_.candidates(i), surfaces_, z);
     if (!f.found() || !(f.projection.gap < -activation_gap * surfaces_.face_size[f.face])) continue;
+    if (locates(i, step)) {
+      const double g_n = start_gap(i, f.face, step, f.projection.xi);
+      const LocatedEvent event = located(i, 0, g_n, step.h, f.projection.gap, step);  // (4.14)
+      if (g_n > 0 && event.fraction >= least_cut && event.fraction < 1) {
+        events_.push_back(event);
+        continue;
+      }
+    }
     elements_.push_back(new_element(i, f, step));
     ++toggles_[i];
     ++report_.activations;
@@ -138,11 +200,13 @@ bool LagrangeContactTerm::activate_penetrating(const time::StepContext& step, co
 
 bool LagrangeContactTerm::update_active_set(const time::StepContext& step, const Eigen::VectorXd& z) {
   std::fill(released_now_.begin(), released_now_.end(), 0);
+  events_.clear();
   bool changed = release_tensile(step, z);
   reindex();
   broad_.refresh(surfaces_, z.head(step.x_n.size()));
   changed = activate_penetrating(step, z) || changed;
   reindex();
+  request_cut(step);  // §4.6.2: a located event ends the step there; the step is solved again
   if (changed) ++generation_;
   return changed;
 }
@@ -161,12 +225,17 @@ void LagrangeContactTerm::end_step(const time::StepContext& step, const Eigen::V
   report_.active = static_cast<int>(elements_.size());
   committed_ = elements_;
   in_step_ = false;
+  // §4.6.2: the step ended at the located events of pending_: those nodes toggle in the next step.
+  const bool at_events = std::abs(pending_time_ - step.h) <= 1e-9 * step.h;
+  for (size_t i = 0; i < armed_.size(); ++i) armed_[i] = at_events && pending_[i];
+  std::fill(pending_.begin(), pending_.end(), 0);
+  previous_step_ = step.h;
+  secant_ = LocatedEvent{};
   for (const ContactElement& e : elements_) {  // §3.4: stays at the Newton tolerance
     const FaceProjection own = project_on(position(e, x), e.face, surfaces_, x, e.xi);
     report_.max_own_face_penetration = std::max(report_.max_own_face_penetration, -own.projection.gap);
   }
   measure_closest_penetration(step, x);
 }
-
 
 }  // namespace stoss::contact

@@ -32,6 +32,14 @@ struct ContactElement {
   int block = -1;                    ///< Jacobian block id
 };
 
+/// impact located: an activation or release found inside a step (docs/theory.md §4.6.2).
+struct LocatedEvent {
+  int slave = -1;   ///< index into PairSurfaces::slave_nodes
+  double time = 0;  ///< after t_n, where `value` belongs (the step's end for a gap, λ_1's time for a release)
+  double value = 0;     ///< the gap (activation) or λ_1 (release) of this solve
+  double fraction = 1;  ///< the step fraction of the zero of `value` (4.14), (4.15)
+};
+
 /// The active-set bookkeeping of §3.5 and the search of §3.4 around an element kernel.
 /// @note A step that is abandoned (prepare_step again without end_step) is forgotten: the next
 ///       prepare_step starts from the elements of the last converged step.
@@ -50,6 +58,9 @@ class LagrangeContactTerm : public ContactTerm {
   int structure_generation() const override { return generation_; }
   void initialize_auxiliaries(const time::StepContext& step, Eigen::VectorXd& z) override;
   bool update_active_set(const time::StepContext& step, const Eigen::VectorXd& z) override;
+  /// impact located: the step fraction of the earliest activation or release located in the last
+  /// update_active_set (§4.6.2), or 1.
+  double requested_cut() const override { return cut_; }
   void end_step(const time::StepContext& step, const Eigen::VectorXd& z) override;
   /// The active elements after the last converged step: slave, face, f3, d, ξ, λ (lagrange_state.cpp).
   time::TermState save_state() const override;
@@ -87,6 +98,19 @@ class LagrangeContactTerm : public ContactTerm {
   bool release_tensile(const time::StepContext& step, const Eigen::VectorXd& z);
   bool activate_penetrating(const time::StepContext& step, const Eigen::VectorXd& z);
   void reindex();
+  /// impact located: whether slave i's event must start a step of its own (§4.6.2).
+  bool locates(int slave, const time::StepContext& step) const;
+  /// The release event of element e with tensile λ_1 (4.15); fraction 0 when it has no compressive past
+  /// value.
+  LocatedEvent release_event(const ContactElement& e, const time::StepContext& step) const;
+  /// The event of `slave` whose value is v1 at t1 and v0 at t0, or at the last cut's solve when that located
+  /// the same slave (a secant step, §4.6.2).
+  LocatedEvent located(int slave, double t0, double v0, double t1, double v1,
+                       const time::StepContext& step) const;
+  /// The slave's gap at x_n on `face` (the start of the step).
+  double start_gap(int slave, int face, const time::StepContext& step, const Eigen::Vector2d& xi) const;
+  /// Turns the earliest of the pass's events into a cut and marks the events it ends at (§4.6.2).
+  void request_cut(const time::StepContext& step);
 
   std::vector<ContactElement> start_;      ///< elements at the start of the step (after switches)
   std::vector<ContactElement> committed_;  ///< elements at the end of the last converged step
@@ -97,6 +121,15 @@ class LagrangeContactTerm : public ContactTerm {
   std::vector<char> released_now_;         ///< per slave: released in the current pass
   int offset_ = 0;
   int generation_ = 0;
+
+  // impact located (§4.6.2)
+  std::vector<LocatedEvent> events_;  ///< located in this pass
+  LocatedEvent secant_;               ///< the earliest event of the last cut in this step
+  double cut_ = 1;                    ///< the cut asked for by the last update_active_set
+  std::vector<char> pending_;         ///< per slave: its event is the one the cut asked for targets
+  double pending_time_ = 0;           ///< the cut's time after t_n
+  std::vector<char> armed_;           ///< per slave: the last step ended at its event; it toggles now
+  double previous_step_ = 0;  ///< h of the last converged step (λ_1 of a midpoint form sits at its middle)
 };
 
 }  // namespace stoss::contact

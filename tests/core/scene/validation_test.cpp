@@ -206,7 +206,7 @@ INSTANTIATE_TEST_SUITE_P(Rules, SceneRule, ::testing::Values(
             {{"/contact/0/impact", "velocity_correction"}, {"/time/scheme", "midpoint"}}, "/contact/0/impact",
             R"("velocity_correction" needs time.scheme "energy_momentum", got "midpoint")"},
   Violation{"impact mode", {{"/contact/0/impact", "bounce"}}, "/contact/0/impact",
-            R"(must be one of persist, exact, velocity_correction, got "bounce")"},
+            R"(must be one of persist, exact, velocity_correction, located, got "bounce")"},
   Violation{"switch hysteresis", {{"/contact/0/switch_hysteresis", -0.05}}, "/contact/0/switch_hysteresis",
             "must be >= 0, got -0.05"},
   Violation{"switch gap rule", {{"/contact/0/switch_gap", "snap"}}, "/contact/0/switch_gap",
