@@ -1,6 +1,8 @@
 #include "core/mesh/generators.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -60,7 +62,8 @@ class NodeMerger {
   /// the ±1 neighbours never overflow; the distance test in index_of still decides a match.
   static long long cell_index(double s) {
     constexpr double limit = 1e18;
-    if (!(std::abs(s) < limit)) return s > 0 ? 1'000'000'000'000'000'000LL : s < 0 ? -1'000'000'000'000'000'000LL : 0;
+    if (!(std::abs(s) < limit))
+      return s > 0 ? 1'000'000'000'000'000'000LL : s < 0 ? -1'000'000'000'000'000'000LL : 0;
     return static_cast<long long>(std::floor(s));
   }
 
@@ -91,16 +94,18 @@ Eigen::Vector3d patch_direction(const Patch& patch, int i, int j, int divisions)
   return p.normalized();
 }
 
-void add_patch(BodyMesh& m, NodeMerger& merger, const Patch& patch, const Eigen::Vector3d& center,
-               double outer, double inner, int d, int layers) {
+/// The node of cell corner (i, j, k) of a patch: i, j across the patch, k from the inner to the outer layer.
+using PatchNode = std::function<Eigen::Vector3d(int i, int j, int k)>;
+
+/// The d × d × layers hexahedra of one patch, ζ pointing outwards; the faces of layer 0 go to `inner`
+/// (when named) and those of the last layer to `outer`.
+void add_patch(BodyMesh& m, NodeMerger& merger, const Patch& patch, const PatchNode& position, int d,
+               int layers, const char* inner, const char* outer) {
   auto id = [&](int i, int j, int k) { return (i * (d + 1) + j) * (layers + 1) + k; };
   std::vector<int> node((d + 1) * (d + 1) * (layers + 1));
   for (int i = 0; i <= d; ++i)
-    for (int j = 0; j <= d; ++j) {
-      const Eigen::Vector3d p = patch_direction(patch, i, j, d);
-      for (int k = 0; k <= layers; ++k)
-        node[id(i, j, k)] = merger.index_of(center + (inner + k * (outer - inner) / layers) * p);
-    }
+    for (int j = 0; j <= d; ++j)
+      for (int k = 0; k <= layers; ++k) node[id(i, j, k)] = merger.index_of(position(i, j, k));
   for (int i = 0; i < d; ++i)
     for (int j = 0; j < d; ++j)
       for (int k = 0; k < layers; ++k) {
@@ -116,9 +121,31 @@ void add_patch(BodyMesh& m, NodeMerger& merger, const Patch& patch, const Eigen:
                     node[id(i + 1, j + 1, k + 1)],
                     node[id(i3, j3, k + 1)]};
         m.hex8.push_back(h);
-        if (k == 0) add_face(m, "inner", h, zeta_minus);
-        if (k == layers - 1) add_face(m, "outer", h, zeta_plus);
+        if (inner && k == 0) add_face(m, inner, h, zeta_minus);
+        if (k == layers - 1) add_face(m, outer, h, zeta_plus);
       }
+}
+
+/// The point (i, j) of the uniform d × d grid on the cube face x_a = σ of [−1, 1]³.
+Eigen::Vector3d cube_face_point(const Patch& patch, int i, int j, int d) {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  p[patch.a] = patch.sigma;
+  p[(patch.a + 1) % 3] = -1 + 2.0 * i / d;
+  p[(patch.a + 2) % 3] = -1 + 2.0 * j / d;
+  return p;
+}
+
+/// The hexahedra of the core cube [c − h, c + h]³ (box's node and element order), merged into m.
+void add_core_cube(BodyMesh& m, NodeMerger& merger, const Eigen::Vector3d& center, double half_width, int d) {
+  const BodyMesh core = box(center.array() - half_width, center.array() + half_width, {d, d, d});
+  std::vector<int> node;
+  node.reserve(core.nodes.size());
+  for (const Eigen::Vector3d& x : core.nodes) node.push_back(merger.index_of(x));
+  for (const Hex& h : core.hex8) {
+    Hex g;
+    for (int I = 0; I < 8; ++I) g[I] = node[h[I]];
+    m.hex8.push_back(g);
+  }
 }
 
 }  // namespace
@@ -153,8 +180,40 @@ BodyMesh hollow_sphere(const Eigen::Vector3d& center, double outer_radius, doubl
   BodyMesh m;
   NodeMerger merger(m.nodes, center, 1e-9 * outer_radius);
   for (int a = 0; a < 3; ++a)
-    for (double sigma : {1.0, -1.0})
-      add_patch(m, merger, {a, sigma}, center, outer_radius, inner_radius, divisions, layers);
+    for (double sigma : {1.0, -1.0}) {
+      const Patch patch{a, sigma};
+      const PatchNode position = [&](int i, int j, int k) -> Eigen::Vector3d {
+        const double r = inner_radius + k * (outer_radius - inner_radius) / layers;
+        return center + r * patch_direction(patch, i, j, divisions);
+      };
+      add_patch(m, merger, patch, position, divisions, layers, "inner", "outer");
+    }
+  return m;
+}
+
+int sphere_layers(int divisions) {
+  return std::max(1, (3 * divisions + 2) / 4);
+}
+
+BodyMesh sphere(const Eigen::Vector3d& center, double radius, int divisions) {
+  if (!(radius > 0) || !std::isfinite(radius)) throw std::invalid_argument("sphere: radius must be > 0");
+  if (divisions < 1) throw std::invalid_argument("sphere: divisions must be >= 1");
+  const double core = sphere_core_fraction * radius;
+  const int layers = sphere_layers(divisions);
+  BodyMesh m;
+  NodeMerger merger(m.nodes, center, 1e-9 * radius);
+  add_core_cube(m, merger, center, core, divisions);
+  for (int a = 0; a < 3; ++a)
+    for (double sigma : {1.0, -1.0}) {
+      const Patch patch{a, sigma};
+      // A cap: straight lines from the core cube's face to the sphere (docs/theory.md §7).
+      const PatchNode position = [&](int i, int j, int k) -> Eigen::Vector3d {
+        const double s = double(k) / layers;
+        return center + (1 - s) * core * cube_face_point(patch, i, j, divisions) +
+               s * radius * patch_direction(patch, i, j, divisions);
+      };
+      add_patch(m, merger, patch, position, divisions, layers, nullptr, "outer");
+    }
   return m;
 }
 

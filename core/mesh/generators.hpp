@@ -26,4 +26,18 @@ BodyMesh box(const Eigen::Vector3d& min, const Eigen::Vector3d& max, const std::
 BodyMesh hollow_sphere(const Eigen::Vector3d& center, double outer_radius, double inner_radius, int divisions,
                        int layers);
 
+/// Half the edge of the solid sphere's core cube, as a fraction of its radius.
+inline constexpr double sphere_core_fraction = 0.4;
+/// Element layers of each of the solid sphere's caps: about as thick as the core's elements are wide.
+int sphere_layers(int divisions);
+
+/// Solid sphere of hexahedra (docs/theory.md §7): a core cube of half edge 0.4 R (sphere_core_fraction) in
+/// divisions³ elements, and on each of its six faces a cap of divisions × divisions ×
+/// sphere_layers(divisions) elements along straight lines from the cube's uniform face grid to the
+/// equiangular cube-sphere grid on the sphere (the `outer` grid of hollow_sphere). Nodes shared by the parts
+/// are merged (tolerance 1e-9 R).
+/// @note Surface `outer` (normals away from the centre), quads in outward order.
+/// @throws std::invalid_argument unless radius > 0 and divisions >= 1.
+BodyMesh sphere(const Eigen::Vector3d& center, double radius, int divisions);
+
 }  // namespace stoss::mesh
