@@ -37,7 +37,7 @@ Eigen::Matrix<double, 3, 4> face_positions(const mesh::Quad& face, const Eigen::
 Eigen::Vector3d area_normal(const FacePoint& g, const Eigen::Matrix<double, 3, 4>& x) {
   const Eigen::Vector3d x_xi = x * Eigen::Vector4d(g.dN_dxi.data());
   const Eigen::Vector3d x_eta = x * Eigen::Vector4d(g.dN_deta.data());
-  return x_xi.cross(x_eta);  // (5b.3)
+  return x_xi.cross(x_eta);  // (5b.2)
 }
 
 }  // namespace stoss::loads

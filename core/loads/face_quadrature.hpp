@@ -20,7 +20,7 @@ const std::array<FacePoint, 4>& face_gauss_points();
 /// The face's four node positions as columns, from stacked positions x.
 Eigen::Matrix<double, 3, 4> face_positions(const mesh::Quad& face, const Eigen::VectorXd& x);
 
-/// x_ξ × x_η at a Gauss point: the outward normal times the area per unit parent area (5b.3).
+/// x_ξ × x_η at a Gauss point: the outward normal times the area per unit parent area (5b.2).
 Eigen::Vector3d area_normal(const FacePoint& g, const Eigen::Matrix<double, 3, 4>& x);
 
 }  // namespace stoss::loads

@@ -206,7 +206,7 @@ BodyMesh sphere(const Eigen::Vector3d& center, double radius, int divisions) {
   for (int a = 0; a < 3; ++a)
     for (double sigma : {1.0, -1.0}) {
       const Patch patch{a, sigma};
-      // A cap: straight lines from the core cube's face to the sphere (docs/theory.md §7).
+      // A cap: straight lines from the core cube's face to the sphere (docs/theory.md (5b.8)).
       const PatchNode position = [&](int i, int j, int k) -> Eigen::Vector3d {
         const double s = double(k) / layers;
         return center + (1 - s) * core * cube_face_point(patch, i, j, divisions) +

@@ -31,7 +31,7 @@ inline constexpr double sphere_core_fraction = 0.4;
 /// Element layers of each of the solid sphere's caps: about as thick as the core's elements are wide.
 int sphere_layers(int divisions);
 
-/// Solid sphere of hexahedra (docs/theory.md §7): a core cube of half edge 0.4 R (sphere_core_fraction) in
+/// Solid sphere of hexahedra (docs/theory.md §5b.7): a core cube of half edge 0.4 R (sphere_core_fraction) in
 /// divisions³ elements, and on each of its six faces a cap of divisions × divisions ×
 /// sphere_layers(divisions) elements along straight lines from the cube's uniform face grid to the
 /// equiangular cube-sphere grid on the sphere (the `outer` grid of hollow_sphere). Nodes shared by the parts

@@ -6,7 +6,7 @@
 
 namespace stoss::time {
 
-/// h f(x_{n+1}) = 0 with every term at the step's end (f = f_int − f_ext, (5b.6)): no mass rows, no
+/// h f(x_{n+1}) = 0 with every term at the step's end (f = f_int − f_ext, (5b.7)): no mass rows, no
 /// velocities. The residual keeps the factor h of the dynamic schemes so that the integrator's measures
 /// (momentum units, §2.1) apply unchanged.
 class Static : public Scheme {
