@@ -1,12 +1,13 @@
-// Static load steps (docs/theory.md §5b.6) under a dead traction: a block on rollers pulled on its top
-// face. The homogeneous deformation is what trilinear elements represent exactly, so the result must match
-// St. Venant–Kirchhoff's exact uniaxial answer to the Newton tolerance and the small-strain u = σL/E to
-// O(σ/E).
+// Static load steps (docs/theory.md §5b.6) on homogeneous deformations, which trilinear elements represent
+// exactly: a block on rollers pulled on its top face by a dead traction must match St. Venant–Kirchhoff's
+// exact uniaxial answer to the Newton tolerance and the small-strain u = σL/E to O(σ/E); a cube under a
+// follower pressure must match SVK's exact compression, in Newton iterations that show the tangent (5b.3).
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "core/loads/pressure_load.hpp"
 #include "core/loads/traction_load.hpp"
 #include "core/time/integrator.hpp"
 #include "core/time/static_scheme.hpp"
@@ -72,6 +73,37 @@ TEST(StaticScheme, BlockUnderADeadTractionMatchesTheUniaxialAnswer) {
     // Small strain: u = σL/E and the lateral −ν σ/E, to a relative O(σ/E) (SVK's ε² terms, (1.4)).
     EXPECT_NEAR(u_top, load * L / E, 3 * (load / E) * (load * L / E));
     EXPECT_NEAR(u_side, -nu * load / E, 3 * (load / E) * (nu * load / E));
+  }
+}
+
+/// A cube under a follower pressure on its three free faces, on rollers on the other three (symmetry
+/// planes): the homogeneous compression x = λ X with Cauchy stress −p 1. For SVK, σ = F S Fᵀ / J = S / λ and
+/// S = 3κ E with κ = λ_L + 2μ/3 and E = (λ² − 1)/2, so 3κ (λ² − 1) + 2 p λ = 0 (docs/theory.md (1.4)).
+TEST(StaticScheme, CubeUnderAFollowerPressureMatchesTheExactCompression) {
+  const double E = 100, nu = 0.25, p = 4;  // p/κ ≈ 0.06: large enough that the follower term matters
+  Block b({1, 1, 1}, {2, 2, 2}, E, nu, 1.0);
+  std::vector<mesh::Quad> free_faces;
+  for (const char* name : {"xmax", "ymax", "top"})
+    free_faces.insert(free_faces.end(), b.surface(name).begin(), b.surface(name).end());
+  PressureLoad pressure(free_faces, p, Amplitude({{0, 0}, {1, 1}}));
+  solve::NewtonOptions options;
+  options.tolerance = 1e-12;
+  options.reuse_factorization = false;  // every iteration a fresh Newton step: its rate shows the tangent
+  time::Integrator integrator(b.mass, {b.elasticity.get(), &pressure}, rollers(b),
+                              std::make_unique<time::Static>(), options, b.length, b.total_mass);
+  time::State s{b.mesh.reference_positions(), Eigen::VectorXd::Zero(b.mass.rows()),
+                Eigen::VectorXd::Zero(b.mass.rows())};
+  const double lambda_lame = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+  const double kappa = lambda_lame + 2 * mu / 3;
+  for (int n = 1; n <= 2; ++n) {
+    const solve::NewtonResult r = integrator.step(s, 0.5);
+    ASSERT_TRUE(r.converged) << "load step " << n << ": " << r.failure;
+    EXPECT_LE(r.iterations, 4) << "quadratic convergence: residuals " << solve::format_history(r.residuals);
+    const double q = p * 0.5 * n;
+    const double stretch = (-2 * q + std::sqrt(4 * q * q + 36 * kappa * kappa)) / (6 * kappa);
+    const Eigen::VectorXd X = b.mesh.reference_positions();
+    EXPECT_LT((s.x - stretch * X).lpNorm<Eigen::Infinity>(), 1e-10 * (1 - stretch))
+        << "x = λ X at load step " << n << ", λ = " << stretch;
   }
 }
 
