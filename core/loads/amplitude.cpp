@@ -15,7 +15,9 @@ std::string number(double x) {
 }
 
 std::string pointer(size_t i, int component) {
-  return "/" + std::to_string(i) + "/" + std::to_string(component);
+  char text[48];
+  std::snprintf(text, sizeof text, "/%zu/%d", i, component);
+  return text;
 }
 
 }  // namespace

@@ -96,7 +96,9 @@ std::string number(double x) {
 }
 
 std::string point(const Eigen::Vector3d& p) {
-  return "(" + number(p[0]) + ", " + number(p[1]) + ", " + number(p[2]) + ")";
+  std::string out = "(";
+  for (int k = 0; k < 3; ++k) out.append(k ? ", " : "").append(number(p[k]));
+  return out.append(")");
 }
 
 /// "x", "y", "z" for a coordinate axis, else the unit vector.
