@@ -84,14 +84,31 @@ struct Patch {
   double sigma;
 };
 
-Eigen::Vector3d patch_direction(const Patch& patch, int i, int j, int divisions) {
-  const double quarter = std::numbers::pi / 4, step = std::numbers::pi / (2 * divisions);
-  const double u = std::tan(-quarter + i * step), v = std::tan(-quarter + j * step);
+/// The direction at angles (α, β) ∈ [−π/4, π/4]² across a patch: normalize(σ e_a + tan α e_b + tan β e_c).
+Eigen::Vector3d patch_direction(const Patch& patch, double alpha, double beta) {
+  const double u = std::tan(alpha), v = std::tan(beta);
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
   p[patch.a] = patch.sigma;  // p = σ e_a + u e_b + v e_c, (a, b, c) cyclic
   p[(patch.a + 1) % 3] = u;
   p[(patch.a + 2) % 3] = v;
   return p.normalized();
+}
+
+/// The equiangular direction of grid point (i, j) of d × d.
+Eigen::Vector3d patch_direction(const Patch& patch, int i, int j, int divisions) {
+  const double quarter = std::numbers::pi / 4, step = std::numbers::pi / (2 * divisions);
+  return patch_direction(patch, -quarter + i * step, -quarter + j * step);
+}
+
+/// The solid sphere's grading g(s) = sinh(κ s)/sinh(κ) of a grid parameter s ∈ [−1, 1] (docs/theory.md
+/// (5b.8)): odd and increasing, g(±1) = ±1, the identity for κ = 0, denser towards s = 0 for κ > 0.
+double graded(double s, double kappa) {
+  return kappa > 0 ? std::sinh(kappa * s) / std::sinh(kappa) : s;
+}
+
+/// The grid parameter −1 + 2i/d.
+double grid_parameter(int i, int d) {
+  return -1 + 2.0 * i / d;
 }
 
 /// The node of cell corner (i, j, k) of a patch: i, j across the patch, k from the inner to the outer layer.
@@ -126,26 +143,63 @@ void add_patch(BodyMesh& m, NodeMerger& merger, const Patch& patch, const PatchN
       }
 }
 
-/// The point (i, j) of the uniform d × d grid on the cube face x_a = σ of [−1, 1]³.
-Eigen::Vector3d cube_face_point(const Patch& patch, int i, int j, int d) {
+/// The point (i, j) of the graded d × d grid on the cube face x_a = σ of [−1, 1]³.
+Eigen::Vector3d cube_face_point(const Patch& patch, int i, int j, int d, double kappa) {
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
   p[patch.a] = patch.sigma;
-  p[(patch.a + 1) % 3] = -1 + 2.0 * i / d;
-  p[(patch.a + 2) % 3] = -1 + 2.0 * j / d;
+  p[(patch.a + 1) % 3] = graded(grid_parameter(i, d), kappa);
+  p[(patch.a + 2) % 3] = graded(grid_parameter(j, d), kappa);
   return p;
 }
 
-/// The hexahedra of the core cube [c − h, c + h]³ (box's node and element order), merged into m.
-void add_core_cube(BodyMesh& m, NodeMerger& merger, const Eigen::Vector3d& center, double half_width, int d) {
-  const BodyMesh core = box(center.array() - half_width, center.array() + half_width, {d, d, d});
+/// The sphere's direction of grid point (i, j): angles π/4 · g(s) (5b.8).
+Eigen::Vector3d sphere_direction(const Patch& patch, int i, int j, int d, double kappa) {
+  const double quarter = std::numbers::pi / 4;
+  return patch_direction(patch, quarter * graded(grid_parameter(i, d), kappa),
+                         quarter * graded(grid_parameter(j, d), kappa));
+}
+
+/// The hexahedra of the core cube c + h·g([−1, 1]³) (box's node and element order, coordinates graded),
+/// merged into m.
+void add_core_cube(BodyMesh& m, NodeMerger& merger, const Eigen::Vector3d& center, double half_width, int d,
+                   double kappa) {
+  const BodyMesh core = box(Eigen::Vector3d::Constant(-1), Eigen::Vector3d::Constant(1), {d, d, d});
   std::vector<int> node;
   node.reserve(core.nodes.size());
-  for (const Eigen::Vector3d& x : core.nodes) node.push_back(merger.index_of(x));
+  for (const Eigen::Vector3d& s : core.nodes)
+    node.push_back(
+        merger.index_of(center + half_width * s.unaryExpr([&](double c) { return graded(c, kappa); })));
   for (const Hex& h : core.hex8) {
     Hex g;
     for (int I = 0; I < 8; ++I) g[I] = node[h[I]];
     m.hex8.push_back(g);
   }
+}
+
+/// The elements of m with centroid x > c_x and y > c_y, nodes renumbered in their order; surfaces: the
+/// boundary faces on the plane x = c_x (`xmin`), on y = c_y (`ymin`), and the rest (`outer`).
+BodyMesh quarter_of(const BodyMesh& m, const Eigen::Vector3d& center, double tolerance) {
+  BodyMesh out;
+  std::vector<int> renumbered(m.nodes.size(), -1);
+  for (const Hex& h : m.hex8) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (int n : h) centroid += m.nodes[n] / 8;
+    if (!(centroid.x() > center.x() && centroid.y() > center.y())) continue;
+    out.hex8.push_back(h);
+    for (int& n : out.hex8.back()) {
+      if (renumbered[n] < 0)
+        renumbered[n] = static_cast<int>(out.nodes.size()), out.nodes.push_back(m.nodes[n]);
+      n = renumbered[n];
+    }
+  }
+  auto on_plane = [&](const Quad& q, int axis) {
+    for (int n : q)
+      if (std::abs(out.nodes[n][axis] - center[axis]) > tolerance) return false;
+    return true;
+  };
+  for (const Quad& q : boundary_faces(out.hex8))
+    out.surfaces[on_plane(q, 0) ? "xmin" : on_plane(q, 1) ? "ymin" : "outer"].push_back(q);
+  return out;
 }
 
 }  // namespace
@@ -195,26 +249,32 @@ int sphere_layers(int divisions) {
   return std::max(1, (3 * divisions + 2) / 4);
 }
 
-BodyMesh sphere(const Eigen::Vector3d& center, double radius, int divisions) {
+BodyMesh sphere(const Eigen::Vector3d& center, double radius, int divisions, const SphereOptions& options) {
   if (!(radius > 0) || !std::isfinite(radius)) throw std::invalid_argument("sphere: radius must be > 0");
   if (divisions < 1) throw std::invalid_argument("sphere: divisions must be >= 1");
+  const double kappa = options.grading;
+  if (!(kappa >= 0 && kappa <= 10)) throw std::invalid_argument("sphere: grading must be in [0, 10]");
+  if (!(options.radial_grading >= 0 && options.radial_grading <= 10))
+    throw std::invalid_argument("sphere: radial_grading must be in [0, 10]");
+  if (options.quarter && divisions % 2 != 0)
+    throw std::invalid_argument("sphere: a quarter needs even divisions (its cut planes are element faces)");
   const double core = sphere_core_fraction * radius;
-  const int layers = sphere_layers(divisions);
+  const int d = divisions, layers = sphere_layers(divisions);
   BodyMesh m;
   NodeMerger merger(m.nodes, center, 1e-9 * radius);
-  add_core_cube(m, merger, center, core, divisions);
+  add_core_cube(m, merger, center, core, d, kappa);
   for (int a = 0; a < 3; ++a)
     for (double sigma : {1.0, -1.0}) {
       const Patch patch{a, sigma};
       // A cap: straight lines from the core cube's face to the sphere (docs/theory.md (5b.8)).
       const PatchNode position = [&](int i, int j, int k) -> Eigen::Vector3d {
-        const double s = double(k) / layers;
-        return center + (1 - s) * core * cube_face_point(patch, i, j, divisions) +
-               s * radius * patch_direction(patch, i, j, divisions);
+        const double s = 1 - graded(1 - double(k) / layers, options.radial_grading);  // denser outwards
+        return center + (1 - s) * core * cube_face_point(patch, i, j, d, kappa) +
+               s * radius * sphere_direction(patch, i, j, d, kappa);
       };
-      add_patch(m, merger, patch, position, divisions, layers, nullptr, "outer");
+      add_patch(m, merger, patch, position, d, layers, nullptr, "outer");
     }
-  return m;
+  return options.quarter ? quarter_of(m, center, 1e-9 * radius) : m;
 }
 
 }  // namespace stoss::mesh
