@@ -69,7 +69,9 @@ std::vector<RigidMode> null_modes(const Matrix6& G, const BodyFrame& f) {
   return out;
 }
 
+/// The body a surface belongs to. @throws std::out_of_range naming the surface or body the mesh lacks.
 int body_of(const mesh::Mesh& mesh, const std::string& body_slash_surface) {
+  mesh.surface(body_slash_surface);
   return mesh.find_body(body_slash_surface.substr(0, body_slash_surface.find('/')));
 }
 

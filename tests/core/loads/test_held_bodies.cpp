@@ -104,6 +104,16 @@ TEST(HeldBodies, TheMasterSideIsHeldThroughAHeldSlave) {
   EXPECT_TRUE(free_rigid_modes(b.mesh, b.fixed, {{"upper/bottom", {"lower/top"}}})[0].held());
 }
 
+TEST(HeldBodies, AnUnknownContactSurfaceIsNamed) {
+  TwoBlocks b;
+  try {
+    free_rigid_modes(b.mesh, b.fixed, {{"upper/bottom", {"lower/roof"}}});
+    FAIL() << "an unknown surface accepted";
+  } catch (const std::out_of_range& e) {
+    EXPECT_NE(std::string(e.what()).find("no surface 'roof'"), std::string::npos) << e.what();
+  }
+}
+
 TEST(HeldBodies, ARotatedAxisIsNamedByItsDirection) {
   const RigidMode slide{{0.6, 0.8, 0}, {0, 0, 0}};
   EXPECT_EQ(describe(slide, {0, 0, 0}), "translation along (0.6, 0.8, 0)");
