@@ -1,6 +1,8 @@
 #include "core/mesh/generators.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -60,7 +62,8 @@ class NodeMerger {
   /// the ±1 neighbours never overflow; the distance test in index_of still decides a match.
   static long long cell_index(double s) {
     constexpr double limit = 1e18;
-    if (!(std::abs(s) < limit)) return s > 0 ? 1'000'000'000'000'000'000LL : s < 0 ? -1'000'000'000'000'000'000LL : 0;
+    if (!(std::abs(s) < limit))
+      return s > 0 ? 1'000'000'000'000'000'000LL : s < 0 ? -1'000'000'000'000'000'000LL : 0;
     return static_cast<long long>(std::floor(s));
   }
 
@@ -81,9 +84,9 @@ struct Patch {
   double sigma;
 };
 
-Eigen::Vector3d patch_direction(const Patch& patch, int i, int j, int divisions) {
-  const double quarter = std::numbers::pi / 4, step = std::numbers::pi / (2 * divisions);
-  const double u = std::tan(-quarter + i * step), v = std::tan(-quarter + j * step);
+/// The direction at angles (α, β) ∈ [−π/4, π/4]² across a patch: normalize(σ e_a + tan α e_b + tan β e_c).
+Eigen::Vector3d patch_direction(const Patch& patch, double alpha, double beta) {
+  const double u = std::tan(alpha), v = std::tan(beta);
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
   p[patch.a] = patch.sigma;  // p = σ e_a + u e_b + v e_c, (a, b, c) cyclic
   p[(patch.a + 1) % 3] = u;
@@ -91,16 +94,35 @@ Eigen::Vector3d patch_direction(const Patch& patch, int i, int j, int divisions)
   return p.normalized();
 }
 
-void add_patch(BodyMesh& m, NodeMerger& merger, const Patch& patch, const Eigen::Vector3d& center,
-               double outer, double inner, int d, int layers) {
+/// The equiangular direction of grid point (i, j) of d × d.
+Eigen::Vector3d patch_direction(const Patch& patch, int i, int j, int divisions) {
+  const double quarter = std::numbers::pi / 4, step = std::numbers::pi / (2 * divisions);
+  return patch_direction(patch, -quarter + i * step, -quarter + j * step);
+}
+
+/// The solid sphere's grading g(s) = sinh(κ s)/sinh(κ) of a grid parameter s ∈ [−1, 1] (docs/theory.md
+/// (5b.8)): odd and increasing, g(±1) = ±1, the identity for κ = 0, denser towards s = 0 for κ > 0.
+double graded(double s, double kappa) {
+  return kappa > 0 ? std::sinh(kappa * s) / std::sinh(kappa) : s;
+}
+
+/// The grid parameter −1 + 2i/d.
+double grid_parameter(int i, int d) {
+  return -1 + 2.0 * i / d;
+}
+
+/// The node of cell corner (i, j, k) of a patch: i, j across the patch, k from the inner to the outer layer.
+using PatchNode = std::function<Eigen::Vector3d(int i, int j, int k)>;
+
+/// The d × d × layers hexahedra of one patch, ζ pointing outwards; the faces of layer 0 go to `inner`
+/// (when named) and those of the last layer to `outer`.
+void add_patch(BodyMesh& m, NodeMerger& merger, const Patch& patch, const PatchNode& position, int d,
+               int layers, const char* inner, const char* outer) {
   auto id = [&](int i, int j, int k) { return (i * (d + 1) + j) * (layers + 1) + k; };
   std::vector<int> node((d + 1) * (d + 1) * (layers + 1));
   for (int i = 0; i <= d; ++i)
-    for (int j = 0; j <= d; ++j) {
-      const Eigen::Vector3d p = patch_direction(patch, i, j, d);
-      for (int k = 0; k <= layers; ++k)
-        node[id(i, j, k)] = merger.index_of(center + (inner + k * (outer - inner) / layers) * p);
-    }
+    for (int j = 0; j <= d; ++j)
+      for (int k = 0; k <= layers; ++k) node[id(i, j, k)] = merger.index_of(position(i, j, k));
   for (int i = 0; i < d; ++i)
     for (int j = 0; j < d; ++j)
       for (int k = 0; k < layers; ++k) {
@@ -116,9 +138,68 @@ void add_patch(BodyMesh& m, NodeMerger& merger, const Patch& patch, const Eigen:
                     node[id(i + 1, j + 1, k + 1)],
                     node[id(i3, j3, k + 1)]};
         m.hex8.push_back(h);
-        if (k == 0) add_face(m, "inner", h, zeta_minus);
-        if (k == layers - 1) add_face(m, "outer", h, zeta_plus);
+        if (inner && k == 0) add_face(m, inner, h, zeta_minus);
+        if (k == layers - 1) add_face(m, outer, h, zeta_plus);
       }
+}
+
+/// The point (i, j) of the graded d × d grid on the cube face x_a = σ of [−1, 1]³.
+Eigen::Vector3d cube_face_point(const Patch& patch, int i, int j, int d, double kappa) {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  p[patch.a] = patch.sigma;
+  p[(patch.a + 1) % 3] = graded(grid_parameter(i, d), kappa);
+  p[(patch.a + 2) % 3] = graded(grid_parameter(j, d), kappa);
+  return p;
+}
+
+/// The sphere's direction of grid point (i, j): angles π/4 · g(s) (5b.8).
+Eigen::Vector3d sphere_direction(const Patch& patch, int i, int j, int d, double kappa) {
+  const double quarter = std::numbers::pi / 4;
+  return patch_direction(patch, quarter * graded(grid_parameter(i, d), kappa),
+                         quarter * graded(grid_parameter(j, d), kappa));
+}
+
+/// The hexahedra of the core cube c + h·g([−1, 1]³) (box's node and element order, coordinates graded),
+/// merged into m.
+void add_core_cube(BodyMesh& m, NodeMerger& merger, const Eigen::Vector3d& center, double half_width, int d,
+                   double kappa) {
+  const BodyMesh core = box(Eigen::Vector3d::Constant(-1), Eigen::Vector3d::Constant(1), {d, d, d});
+  std::vector<int> node;
+  node.reserve(core.nodes.size());
+  for (const Eigen::Vector3d& s : core.nodes)
+    node.push_back(
+        merger.index_of(center + half_width * s.unaryExpr([&](double c) { return graded(c, kappa); })));
+  for (const Hex& h : core.hex8) {
+    Hex g;
+    for (int I = 0; I < 8; ++I) g[I] = node[h[I]];
+    m.hex8.push_back(g);
+  }
+}
+
+/// The elements of m with centroid x > c_x and y > c_y, nodes renumbered in their order; surfaces: the
+/// boundary faces on the plane x = c_x (`xmin`), on y = c_y (`ymin`), and the rest (`outer`).
+BodyMesh quarter_of(const BodyMesh& m, const Eigen::Vector3d& center, double tolerance) {
+  BodyMesh out;
+  std::vector<int> renumbered(m.nodes.size(), -1);
+  for (const Hex& h : m.hex8) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (int n : h) centroid += m.nodes[n] / 8;
+    if (!(centroid.x() > center.x() && centroid.y() > center.y())) continue;
+    out.hex8.push_back(h);
+    for (int& n : out.hex8.back()) {
+      if (renumbered[n] < 0)
+        renumbered[n] = static_cast<int>(out.nodes.size()), out.nodes.push_back(m.nodes[n]);
+      n = renumbered[n];
+    }
+  }
+  auto on_plane = [&](const Quad& q, int axis) {
+    for (int n : q)
+      if (std::abs(out.nodes[n][axis] - center[axis]) > tolerance) return false;
+    return true;
+  };
+  for (const Quad& q : boundary_faces(out.hex8))
+    out.surfaces[on_plane(q, 0) ? "xmin" : on_plane(q, 1) ? "ymin" : "outer"].push_back(q);
+  return out;
 }
 
 }  // namespace
@@ -153,9 +234,47 @@ BodyMesh hollow_sphere(const Eigen::Vector3d& center, double outer_radius, doubl
   BodyMesh m;
   NodeMerger merger(m.nodes, center, 1e-9 * outer_radius);
   for (int a = 0; a < 3; ++a)
-    for (double sigma : {1.0, -1.0})
-      add_patch(m, merger, {a, sigma}, center, outer_radius, inner_radius, divisions, layers);
+    for (double sigma : {1.0, -1.0}) {
+      const Patch patch{a, sigma};
+      const PatchNode position = [&](int i, int j, int k) -> Eigen::Vector3d {
+        const double r = inner_radius + k * (outer_radius - inner_radius) / layers;
+        return center + r * patch_direction(patch, i, j, divisions);
+      };
+      add_patch(m, merger, patch, position, divisions, layers, "inner", "outer");
+    }
   return m;
+}
+
+int sphere_layers(int divisions) {
+  return std::max(1, (3 * divisions + 2) / 4);
+}
+
+BodyMesh sphere(const Eigen::Vector3d& center, double radius, int divisions, const SphereOptions& options) {
+  if (!(radius > 0) || !std::isfinite(radius)) throw std::invalid_argument("sphere: radius must be > 0");
+  if (divisions < 1) throw std::invalid_argument("sphere: divisions must be >= 1");
+  const double kappa = options.grading;
+  if (!(kappa >= 0 && kappa <= 10)) throw std::invalid_argument("sphere: grading must be in [0, 10]");
+  if (!(options.radial_grading >= 0 && options.radial_grading <= 10))
+    throw std::invalid_argument("sphere: radial_grading must be in [0, 10]");
+  if (options.quarter && divisions % 2 != 0)
+    throw std::invalid_argument("sphere: a quarter needs even divisions (its cut planes are element faces)");
+  const double core = sphere_core_fraction * radius;
+  const int d = divisions, layers = sphere_layers(divisions);
+  BodyMesh m;
+  NodeMerger merger(m.nodes, center, 1e-9 * radius);
+  add_core_cube(m, merger, center, core, d, kappa);
+  for (int a = 0; a < 3; ++a)
+    for (double sigma : {1.0, -1.0}) {
+      const Patch patch{a, sigma};
+      // A cap: straight lines from the core cube's face to the sphere (docs/theory.md (5b.8)).
+      const PatchNode position = [&](int i, int j, int k) -> Eigen::Vector3d {
+        const double s = 1 - graded(1 - double(k) / layers, options.radial_grading);  // denser outwards
+        return center + (1 - s) * core * cube_face_point(patch, i, j, d, kappa) +
+               s * radius * sphere_direction(patch, i, j, d, kappa);
+      };
+      add_patch(m, merger, patch, position, d, layers, nullptr, "outer");
+    }
+  return options.quarter ? quarter_of(m, center, 1e-9 * radius) : m;
 }
 
 }  // namespace stoss::mesh
