@@ -140,6 +140,21 @@ std::vector<model::StepRow> read_series(const h5::File& file) {
   return rows;
 }
 
+void write_controller(const h5::File& file, const StepControllerState& controller) {
+  file.create_group("/controller");
+  file.write_attribute("/controller", "next_step", controller.next_step);
+  file.write_attribute("/controller", "previous_step", controller.previous_step);
+  file.write_attribute("/controller", "has_history", controller.has_history ? 1 : 0);
+}
+
+StepControllerState read_controller(const h5::File& file) {
+  StepControllerState controller;
+  controller.next_step = file.read_double_attribute("/controller", "next_step");
+  controller.previous_step = file.read_double_attribute("/controller", "previous_step");
+  controller.has_history = file.read_double_attribute("/controller", "has_history") != 0;
+  return controller;
+}
+
 }  // namespace
 
 bool CheckpointStore::exists() const {
@@ -202,6 +217,7 @@ void CheckpointStore::write(const Checkpoint& c) {
     file.create_group("/frames");
     write_integers(file, "/frames/step",
                    std::vector<std::int64_t>(c.frame_steps.begin(), c.frame_steps.end()));
+    if (c.controller) write_controller(file, *c.controller);
     file.close();
   }
   for (const fs::path& frame : unsynced_) sync_to_disk(frame);
@@ -229,6 +245,7 @@ Checkpoint CheckpointStore::read() const {
   c.rows = read_series(file);
   for (std::int64_t step : read_integers(file, "/frames/step"))
     c.frame_steps.push_back(static_cast<int>(step));
+  if (file.exists("/controller")) c.controller = read_controller(file);
   return c;
 }
 

@@ -1,0 +1,98 @@
+#include "core/run/step_control.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/time/generalized_alpha.hpp"
+
+namespace stoss::run {
+namespace {
+
+/// Of the step proposal (2.19): safety factor and the bounds of one change.
+constexpr double safety = 0.9, least_factor = 0.2, most_factor = 2;
+/// Share of time.tolerance one contact event may use (2.18): the events' errors persist, they do not
+/// shrink with later steps.
+constexpr double event_share = 0.1;
+
+std::string short_number(double x) {
+  std::ostringstream out;
+  out.precision(3);
+  out << x;
+  return out.str();
+}
+
+}  // namespace
+
+double largest_nodal_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  double largest = 0;
+  for (Eigen::Index i = 0; i + 2 < a.size(); i += 3) largest = std::max(largest, (a.segment<3>(i) - b.segment<3>(i)).norm());
+  return largest;
+}
+
+StepController::StepController(const model::TimeSpec& time, const time::Scheme& scheme) : time_(time) {
+  const auto* newmark = dynamic_cast<const time::GeneralizedAlpha*>(&scheme);
+  midpoint_type_ = newmark == nullptr;
+  if (newmark) beta_ = newmark->beta();
+  state_.next_step = time.step;
+  state_.has_history = !midpoint_type_;  // Newmark's a_0 is the initial acceleration (2.10); s.a of the
+                                         // midpoint schemes is 0 before their first step
+}
+
+double StepController::step_to(double t, double landing) const {
+  const double remaining = landing - t, proposal = state_.next_step;
+  if (remaining <= proposal * (1 + 1e-9)) return remaining;
+  if (remaining < 2 * proposal) return remaining / 2;  // two like steps rather than a sliver
+  return proposal;
+}
+
+double StepController::truncation_estimate(double h, const time::State& before, const time::State& after) const {
+  const double jump = largest_nodal_distance(after.a, before.a);
+  if (midpoint_type_) return h * h * h / 12 * jump / ((h + state_.previous_step) / 2);  // (2.16)
+  return std::abs(beta_ - 1.0 / 6) * h * h * jump;                                    // (2.17)
+}
+
+StepVerdict StepController::judge(double h, const time::State& before, const time::State& after,
+                                  const ContactEvents& events) {
+  const bool event = events.changed_nodes > 0 || events.offset > 0 || events.active > 0;
+  const double tolerance = *time_.tolerance;
+  StepVerdict v;
+  double order = 2;  // of error / target in h: h³ / h (2.18) in free motion, h / 1 at an event
+  if (event) {
+    v.error = std::max(events.offset, state_.has_history ? truncation_estimate(h, before, after) : 0.0);
+    v.target = event_share * tolerance;
+    order = 1;
+  } else if (state_.has_history) {
+    v.error = truncation_estimate(h, before, after);
+    v.target = tolerance * h / time_.end;  // (2.18)
+  }
+  v.accepted = v.error <= v.target;
+  const double factor =
+      v.error > 0 ? std::clamp(safety * std::pow(v.target / v.error, 1 / order), least_factor, most_factor)
+                  : (state_.has_history || event ? most_factor : 1.0);  // (2.19)
+  if (!v.accepted) {
+    state_.next_step = std::min(h * factor, std::min(state_.next_step, h) * 0.9);
+    v.reason = event ? "contact: " + (events.pair.empty() ? std::string("a contact term") : events.pair) + ", " +
+                           std::to_string(events.changed_nodes) + " nodes changed state, estimate " +
+                           short_number(v.error) + " > " + short_number(v.target) + " (event share of time.tolerance)"
+                     : "error: estimate " + short_number(v.error) + " > " + short_number(v.target) +
+                           " (time.tolerance × h / end)";
+    return v;
+  }
+  const bool clipped = h < state_.next_step;  // landed on a frame time or the end: keep the proposal
+  double next = h * factor;
+  if (clipped && factor >= 1) next = std::max(next, state_.next_step);
+  state_.next_step = std::clamp(next, time_.min_step, time_.max_step);
+  state_.previous_step = h;
+  state_.has_history = !event;  // an event's acceleration jump is no truncation error of the next step
+  return v;
+}
+
+bool StepController::can_retry(double rejected_h) {
+  if (state_.next_step >= time_.min_step) return true;
+  if (rejected_h <= time_.min_step) return false;
+  state_.next_step = time_.min_step;
+  return true;
+}
+
+}  // namespace stoss::run
