@@ -10,10 +10,10 @@ namespace stoss::run {
 namespace {
 
 /// Of the step proposal (2.19): safety factor and the bounds of one change.
-constexpr double safety = 0.9, least_factor = 0.2, most_factor = 2;
-/// Share of time.tolerance one contact event may use (2.18): the events' errors persist, they do not
-/// shrink with later steps.
-constexpr double event_share = 0.1;
+constexpr double safety = 0.8, least_factor = 0.2, most_factor = 2;
+/// Shares of time.tolerance (2.18): of one step's truncation estimate, and of the frozen gap a new contact
+/// keeps (Term::event_offset: the largest nodal error it leaves, not summed over the nodes).
+constexpr double step_share = 0.05, offset_share = 0.5;
 
 std::string short_number(double x) {
   std::ostringstream out;
@@ -54,29 +54,26 @@ double StepController::truncation_estimate(double h, const time::State& before, 
 
 StepVerdict StepController::judge(double h, const time::State& before, const time::State& after,
                                   const ContactEvents& events) {
-  const bool event = events.changed_nodes > 0 || events.offset > 0 || events.active > 0;
-  const double tolerance = *time_.tolerance;
+  const bool event = events.changed_nodes > 0 || events.offset > 0;
+  // At a contact event the acceleration jump is the impact's impulse, no truncation error; what the
+  // event leaves is the frozen gap (2.18).
+  const bool estimate = state_.has_history && !event;
   StepVerdict v;
-  double order = 2;  // of error / target in h: h³ / h (2.18) in free motion, h / 1 at an event
-  if (event) {
-    v.error = std::max(events.offset, state_.has_history ? truncation_estimate(h, before, after) : 0.0);
-    v.target = event_share * tolerance;
-    order = 1;
-  } else if (state_.has_history) {
-    v.error = truncation_estimate(h, before, after);
-    v.target = tolerance * h / time_.end;  // (2.18)
-  }
+  v.error = estimate ? truncation_estimate(h, before, after) : events.offset * step_share / offset_share;
+  v.target = step_share * *time_.tolerance;
   v.accepted = v.error <= v.target;
+  // error / target goes like h³ in smooth motion, like h at a contact event (gap ≤ h |ġ|)
+  const double order = event ? 1 : 3;
   const double factor =
       v.error > 0 ? std::clamp(safety * std::pow(v.target / v.error, 1 / order), least_factor, most_factor)
-                  : (state_.has_history || event ? most_factor : 1.0);  // (2.19)
+                  : (state_.has_history ? most_factor : 1.0);  // (2.19)
   if (!v.accepted) {
     state_.next_step = std::min(h * factor, std::min(state_.next_step, h) * 0.9);
-    v.reason = event ? "contact: " + (events.pair.empty() ? std::string("a contact term") : events.pair) + ", " +
-                           std::to_string(events.changed_nodes) + " nodes changed state, estimate " +
-                           short_number(v.error) + " > " + short_number(v.target) + " (event share of time.tolerance)"
-                     : "error: estimate " + short_number(v.error) + " > " + short_number(v.target) +
-                           " (time.tolerance × h / end)";
+    v.reason = (event ? "contact: " + (events.pair.empty() ? std::string("a contact term") : events.pair) + ", " +
+                            std::to_string(events.changed_nodes) + " nodes changed state, "
+                      : std::string("error: ")) +
+               "estimate " + short_number(v.error) + " > " + short_number(v.target) +
+               (events.offset > 0 ? " (frozen gap " + short_number(events.offset) + ")" : std::string());
     return v;
   }
   const bool clipped = h < state_.next_step;  // landed on a frame time or the end: keep the proposal

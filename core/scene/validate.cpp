@@ -361,7 +361,7 @@ void check_step_control(json& t, const std::string& p, std::optional<double> ste
   if (*low >= *end) c.fail(child(p, "min_step"), "must be < end (" + shown(t["end"]) + "), got " + shown(t["min_step"]));
   else if (*end / *low > 1e9)
     c.fail(child(p, "min_step"), "must give at most 1e9 steps, got end / min_step = " + number_text(*end / *low));
-  if (*step < *low || *step > *high)
+  if (c.mark() == start && (*step < *low || *step > *high))
     c.fail(child(p, "step"), "must be in [min_step, max_step] = [" + shown(t["min_step"]) + ", " +
                                  shown(t["max_step"]) + "] (the first step), got " + shown(t["step"]));
 }
