@@ -83,7 +83,7 @@ class Run {
         schedule_(m.output),
         end_(run_end(m)) {
     integrator_.initialize(s_);
-    if (m.time.adaptive()) controller_.emplace(m.time, integrator_.scheme());
+    if (m.time.adaptive()) controller_.emplace(m.time, integrator_.scheme(), initial_acceleration());
     if (store_ && checkpoints.resume && store_->exists()) resumed_ = load_checkpoint(*store_, m, terms_);
   }
 
@@ -166,6 +166,15 @@ class Run {
   };
 
   bool by_time() const { return controller_ || m_.output.interval; }
+
+  /// a(0) of a run that starts stress-free: gravity on every free dof (problem.cpp), else 0.
+  Eigen::VectorXd initial_acceleration() const {
+    Eigen::VectorXd a = Eigen::VectorXd::Zero(s_.x.size());
+    if (!m_.gravity) return a;
+    for (Eigen::Index i = 0; i < a.size(); ++i)
+      if (!problem_.fixed[static_cast<size_t>(i)]) a[i] = (*m_.gravity)[i % 3];
+    return a;
+  }
 
   /// Where a run steps by time ends: time.end, or the last frame time of output.interval when time.end is
   /// that within round-off (so that frames/time[k] = k·interval holds for the last frame too).

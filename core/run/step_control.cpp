@@ -30,13 +30,16 @@ double largest_nodal_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b
   return largest;
 }
 
-StepController::StepController(const model::TimeSpec& time, const time::Scheme& scheme) : time_(time) {
+StepController::StepController(const model::TimeSpec& time, const time::Scheme& scheme,
+                               Eigen::VectorXd initial_acceleration)
+    : time_(time), initial_acceleration_(std::move(initial_acceleration)) {
   const auto* newmark = dynamic_cast<const time::GeneralizedAlpha*>(&scheme);
   midpoint_type_ = newmark == nullptr;
   if (newmark) beta_ = newmark->beta();
   state_.next_step = time.step;
-  state_.has_history = !midpoint_type_;  // Newmark's a_0 is the initial acceleration (2.10); s.a of the
-                                         // midpoint schemes is 0 before their first step
+  // Newmark's a_0 is the initial acceleration (2.10); the midpoint schemes' s.a is 0 before their first
+  // step, where a(0) stands in for ā_{−½} at h_{−1} = 0.
+  state_.has_history = !midpoint_type_ || initial_acceleration_.size() > 0;
 }
 
 double StepController::step_to(double t, double landing) const {
@@ -47,7 +50,8 @@ double StepController::step_to(double t, double landing) const {
 }
 
 double StepController::truncation_estimate(double h, const time::State& before, const time::State& after) const {
-  const double jump = largest_nodal_distance(after.a, before.a);
+  const bool first = midpoint_type_ && state_.previous_step == 0 && initial_acceleration_.size() == after.a.size();
+  const double jump = largest_nodal_distance(after.a, first ? initial_acceleration_ : before.a);
   if (midpoint_type_) return h * h * h / 12 * jump / ((h + state_.previous_step) / 2);  // (2.16)
   return std::abs(beta_ - 1.0 / 6) * h * h * jump;                                    // (2.17)
 }
@@ -64,9 +68,10 @@ StepVerdict StepController::judge(double h, const time::State& before, const tim
   v.accepted = v.error <= v.target;
   // error / target goes like h³ in smooth motion, like h at a contact event (gap ≤ h |ġ|)
   const double order = event ? 1 : 3;
+  // (2.19); a step at or right after a contact event, which (2.16) does not see, does not grow
+  const double most = event || !state_.has_history ? 1.0 : most_factor;
   const double factor =
-      v.error > 0 ? std::clamp(safety * std::pow(v.target / v.error, 1 / order), least_factor, most_factor)
-                  : (state_.has_history ? most_factor : 1.0);  // (2.19)
+      v.error > 0 ? std::clamp(safety * std::pow(v.target / v.error, 1 / order), least_factor, most) : most;
   if (!v.accepted) {
     state_.next_step = std::min(h * factor, std::min(state_.next_step, h) * 0.9);
     v.reason = (event ? "contact: " + (events.pair.empty() ? std::string("a contact term") : events.pair) + ", " +

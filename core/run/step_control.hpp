@@ -15,8 +15,8 @@ namespace stoss::run {
 struct StepControllerState {
   double next_step = 0;      ///< the step the controller proposes next (before a clip to a frame time)
   double previous_step = 0;  ///< h of the last accepted step; 0 before the first
-  /// Whether s.a before the next step is the previous step's (2.16)/(2.17) acceleration, so that the
-  /// estimate has its two accelerations: not at the start of a midpoint-type run, nor after a contact event.
+  /// Whether s.a before the next step is the previous step's (2.16)/(2.17) acceleration (at the start: the
+  /// initial acceleration), so that the estimate has its two accelerations: not after a contact event.
   bool has_history = false;
 };
 
@@ -40,7 +40,9 @@ struct StepVerdict {
 /// the step update (2.19), clamped to [min_step, max_step].
 class StepController {
  public:
-  StepController(const model::TimeSpec& time, const time::Scheme& scheme);
+  /// `initial_acceleration`: a(0) per dof, for (2.16) at the first step of the midpoint-type schemes
+  /// (a run starts stress-free: gravity on the free dofs, else 0).
+  StepController(const model::TimeSpec& time, const time::Scheme& scheme, Eigen::VectorXd initial_acceleration = {});
 
   const StepControllerState& state() const { return state_; }
   void restore(const StepControllerState& state) { state_ = state; }
@@ -62,6 +64,7 @@ class StepController {
   model::TimeSpec time_;
   bool midpoint_type_;  ///< energy-momentum and midpoint: (2.16); else Newmark's (2.17) with beta_
   double beta_ = 0;
+  Eigen::VectorXd initial_acceleration_;  ///< a(0), in place of ā_{−½} at the first step (2.16)
   StepControllerState state_;
 };
 

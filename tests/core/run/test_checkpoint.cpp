@@ -166,6 +166,9 @@ TEST(Checkpoint, AResumedRunWithAToleranceTakesTheSameStepsBitForBit) {
   const std::vector<double> h = uncrashed.series("step_size"), rejected = uncrashed.series("rejected_steps");
   ASSERT_GT(*std::max_element(h.begin() + 1, h.end()), 1.5 * *std::min_element(h.begin() + 1, h.end()))
       << "the steps do not vary: no test";
+  std::printf("ball on plate, TOL 1e-3: %d steps, h %.2e…%.2e, %.0f rejected\n", reference.steps,
+              *std::min_element(h.begin() + 1, h.end()), *std::max_element(h.begin() + 1, h.end()),
+              std::accumulate(rejected.begin(), rejected.end(), 0.0));
   ASSERT_GT(std::accumulate(rejected.begin(), rejected.end(), 0.0), 0) << "no step rejected: no test";
   for (int crash_at : {reference.steps / 3, 2 * reference.steps / 3 + 1}) {
     SCOPED_TRACE("crash at step " + std::to_string(crash_at));

@@ -58,6 +58,17 @@ TEST(StepControl, AStepBeyondItsShareIsRejectedWithItsReasonAndASmallerProposal)
   EXPECT_EQ(c.state().previous_step, 0.01) << "a rejected try is no previous step";
 }
 
+// The first step has no previous step: a(0) stands in for ā_{−½} at h_{−1} = 0, so a first step far
+// above what the tolerance needs is rejected too.
+TEST(StepControl, TheFirstStepIsJudgedAgainstTheInitialAcceleration) {
+  const model::TimeSpec t = adaptive_time();
+  const std::unique_ptr<time::Scheme> scheme = time::make_scheme(t);
+  StepController c(t, *scheme, Eigen::VectorXd::Zero(3));
+  const StepVerdict v = c.judge(0.01, with_acceleration(0), with_acceleration(240), {});
+  EXPECT_NEAR(v.error, 1e-6 / 12 * 240 / 0.005, 1e-15);  // (2.16) with h_avg = h/2
+  EXPECT_FALSE(v.accepted);
+}
+
 TEST(StepControl, NewmarkSchemesUseTheZienkiewiczXieEstimate) {
   const model::TimeSpec t = adaptive_time(model::Scheme::hht);
   const std::unique_ptr<time::Scheme> scheme = time::make_scheme(t);
