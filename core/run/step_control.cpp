@@ -26,7 +26,8 @@ std::string short_number(double x) {
 
 double largest_nodal_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   double largest = 0;
-  for (Eigen::Index i = 0; i + 2 < a.size(); i += 3) largest = std::max(largest, (a.segment<3>(i) - b.segment<3>(i)).norm());
+  for (Eigen::Index i = 0; i + 2 < a.size(); i += 3)
+    largest = std::max(largest, (a.segment<3>(i) - b.segment<3>(i)).norm());
   return largest;
 }
 
@@ -49,11 +50,13 @@ double StepController::step_to(double t, double landing) const {
   return proposal;
 }
 
-double StepController::truncation_estimate(double h, const time::State& before, const time::State& after) const {
-  const bool first = midpoint_type_ && state_.previous_step == 0 && initial_acceleration_.size() == after.a.size();
+double StepController::truncation_estimate(double h, const time::State& before,
+                                           const time::State& after) const {
+  const bool first =
+      midpoint_type_ && state_.previous_step == 0 && initial_acceleration_.size() == after.a.size();
   const double jump = largest_nodal_distance(after.a, first ? initial_acceleration_ : before.a);
   if (midpoint_type_) return h * h * h / 12 * jump / ((h + state_.previous_step) / 2);  // (2.16)
-  return std::abs(beta_ - 1.0 / 6) * h * h * jump;                                    // (2.17)
+  return std::abs(beta_ - 1.0 / 6) * h * h * jump;                                      // (2.17)
 }
 
 StepVerdict StepController::judge(double h, const time::State& before, const time::State& after,
@@ -74,8 +77,8 @@ StepVerdict StepController::judge(double h, const time::State& before, const tim
       v.error > 0 ? std::clamp(safety * std::pow(v.target / v.error, 1 / order), least_factor, most) : most;
   if (!v.accepted) {
     state_.next_step = std::min(h * factor, std::min(state_.next_step, h) * 0.9);
-    v.reason = (event ? "contact: " + (events.pair.empty() ? std::string("a contact term") : events.pair) + ", " +
-                            std::to_string(events.changed_nodes) + " nodes changed state, "
+    v.reason = (event ? "contact: " + (events.pair.empty() ? std::string("a contact term") : events.pair) +
+                            ", " + std::to_string(events.changed_nodes) + " nodes changed state, "
                       : std::string("error: ")) +
                "estimate " + short_number(v.error) + " > " + short_number(v.target) +
                (events.offset > 0 ? " (frozen gap " + short_number(events.offset) + ")" : std::string());

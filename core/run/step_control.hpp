@@ -25,7 +25,7 @@ struct StepControllerState {
 struct ContactEvents {
   double offset = 0;
   int changed_nodes = 0;
-  int active = 0;  ///< slave nodes in contact at the end of the step, over the pairs
+  int active = 0;    ///< slave nodes in contact at the end of the step, over the pairs
   std::string pair;  ///< the term name of that pair; empty without changes
 };
 
@@ -42,7 +42,8 @@ class StepController {
  public:
   /// `initial_acceleration`: a(0) per dof, for (2.16) at the first step of the midpoint-type schemes
   /// (a run starts stress-free: gravity on the free dofs, else 0).
-  StepController(const model::TimeSpec& time, const time::Scheme& scheme, Eigen::VectorXd initial_acceleration = {});
+  StepController(const model::TimeSpec& time, const time::Scheme& scheme,
+                 Eigen::VectorXd initial_acceleration = {});
 
   const StepControllerState& state() const { return state_; }
   void restore(const StepControllerState& state) { state_ = state; }
@@ -52,7 +53,8 @@ class StepController {
 
   /// Judges the converged step of size h from the state `before` to `after` (their accelerations a).
   /// Accepting or rejecting also sets the next proposal.
-  StepVerdict judge(double h, const time::State& before, const time::State& after, const ContactEvents& events);
+  StepVerdict judge(double h, const time::State& before, const time::State& after,
+                    const ContactEvents& events);
   /// A Newton failure at h: the next proposal is h/4.
   void newton_failed(double h) { state_.next_step = h / 4; }
   /// Whether the proposal after a rejection is still at least min_step; the last try is at min_step itself.

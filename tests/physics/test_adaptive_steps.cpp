@@ -24,9 +24,13 @@ nlohmann::json tumbling_bar(const nlohmann::json& time, const nlohmann::json& ou
           {"name", "tumbling bar, adaptive steps"},
           {"bodies",
            {{{"name", "bar"},
-             {"mesh", {{"box", {{"min", {-1.5, -0.5, -0.5}}, {"max", {1.5, 0.5, 0.5}}, {"divisions", {3, 1, 1}}}}}},
+             {"mesh",
+              {{"box", {{"min", {-1.5, -0.5, -0.5}}, {"max", {1.5, 0.5, 0.5}}, {"divisions", {3, 1, 1}}}}}},
              {"material",
-              {{"model", "saint_venant_kirchhoff"}, {"youngs_modulus", 200}, {"poisson_ratio", 0.3}, {"density", 1}}},
+              {{"model", "saint_venant_kirchhoff"},
+               {"youngs_modulus", 200},
+               {"poisson_ratio", 0.3},
+               {"density", 1}}},
              {"initial_velocity", {0.3, 0, 0}},
              {"initial_angular_velocity", {0.5, 1.5, 4}}}}},
           {"time", time},
@@ -34,8 +38,12 @@ nlohmann::json tumbling_bar(const nlohmann::json& time, const nlohmann::json& ou
           {"output", output}};
 }
 
-double largest(const std::vector<double>& v) { return *std::max_element(v.begin() + 1, v.end()); }
-double smallest(const std::vector<double>& v) { return *std::min_element(v.begin() + 1, v.end()); }
+double largest(const std::vector<double>& v) {
+  return *std::max_element(v.begin() + 1, v.end());
+}
+double smallest(const std::vector<double>& v) {
+  return *std::min_element(v.begin() + 1, v.end());
+}
 
 TEST(AdaptiveSteps, EnergyMomentumKeepsEnergyAndMomentaWhileTheStepChanges) {
   const model::Model m = scene::load(tumbling_bar({{"step", 0.02}, {"end", 1.0}, {"tolerance", 1e-4}}));
@@ -56,18 +64,20 @@ TEST(AdaptiveSteps, EnergyMomentumKeepsEnergyAndMomentaWhileTheStepChanges) {
   // Every rejection is logged with its reason.
   const auto rejections = std::count_if(r.logs.begin(), r.logs.end(), [](const std::string& line) {
     return line.rfind("rejected step at t = ", 0) == 0 && line.find(", h = ") != std::string::npos &&
-           (line.find(": error: estimate ") != std::string::npos || line.find(": newton: ") != std::string::npos);
+           (line.find(": error: estimate ") != std::string::npos ||
+            line.find(": newton: ") != std::string::npos);
   });
   const std::vector<double> rejected = r.series("rejected_steps");
   EXPECT_EQ(rejections, std::accumulate(rejected.begin(), rejected.end(), 0.0));
-  std::printf("tumbling bar, TOL 1e-4: %d steps, h %.2e…%.2e, %ld rejected, energy %.1e\n", s.steps, smallest(h),
-              largest(h), long(rejections), s.energy_drift);
+  std::printf("tumbling bar, TOL 1e-4: %d steps, h %.2e…%.2e, %ld rejected, energy %.1e\n", s.steps,
+              smallest(h), largest(h), long(rejections), s.energy_drift);
 }
 
 TEST(AdaptiveSteps, AToleranceTenTimesSmallerTakesMoreSteps) {
   const auto steps = [](double tolerance) {
     testing::RecordingObserver r;
-    return simulate(scene::load(tumbling_bar({{"step", 0.02}, {"end", 0.5}, {"tolerance", tolerance}})), r).steps;
+    return simulate(scene::load(tumbling_bar({{"step", 0.02}, {"end", 0.5}, {"tolerance", tolerance}})), r)
+        .steps;
   };
   EXPECT_GT(steps(1e-5), 1.5 * steps(1e-4)) << "ê ∝ h³ (2.16): 10× the tolerance, about 2.2× the steps";
 }
@@ -75,8 +85,8 @@ TEST(AdaptiveSteps, AToleranceTenTimesSmallerTakesMoreSteps) {
 // frames/time[k] = k·interval exactly, whatever the steps: fixed steps that do not divide the interval,
 // and steps chosen by a tolerance.
 TEST(AdaptiveSteps, FramesAtAnIntervalLandOnItsMultiplesExactly) {
-  for (const nlohmann::json& time :
-       {nlohmann::json{{"step", 0.03}, {"end", 0.6}}, nlohmann::json{{"step", 0.02}, {"end", 0.6}, {"tolerance", 1e-4}}}) {
+  for (const nlohmann::json& time : {nlohmann::json{{"step", 0.03}, {"end", 0.6}},
+                                     nlohmann::json{{"step", 0.02}, {"end", 0.6}, {"tolerance", 1e-4}}}) {
     SCOPED_TRACE(time.dump());
     testing::RecordingObserver r;
     ASSERT_TRUE(simulate(scene::load(tumbling_bar(time, {{"interval", 0.1}})), r).completed);

@@ -85,7 +85,8 @@ TEST(StepControl, AContactsFrozenGapBeyondItsShareRejectsTheStepNamingThePair) {
   ContactEvents events{6e-4, 3, 5, "contact ball/outer on plate/top"};  // above 0.5 × TOL
   const StepVerdict v = c.judge(0.01, with_acceleration(0), with_acceleration(1e3), events);
   EXPECT_FALSE(v.accepted);
-  EXPECT_EQ(v.reason.rfind("contact: contact ball/outer on plate/top, 3 nodes changed state", 0), 0u) << v.reason;
+  EXPECT_EQ(v.reason.rfind("contact: contact ball/outer on plate/top, 3 nodes changed state", 0), 0u)
+      << v.reason;
   EXPECT_LT(c.state().next_step, 0.01 * 0.5 / 0.6);  // first order in h: h · 0.8 · (share / gap)
   events.offset = 4e-4;                              // within it: accepted, whatever the acceleration jump
   EXPECT_TRUE(c.judge(0.005, with_acceleration(0), with_acceleration(1e3), events).accepted);
@@ -106,8 +107,8 @@ TEST(StepControl, ProposalsStayWithinMinAndMaxStepAndTheLastTryIsAtMinStep) {
 TEST(StepControl, AStepLandsOnTheNextFrameTimeWithoutLeavingASliver) {
   StepController c = after_first_step(adaptive_time(), 0.01);  // proposal 0.01
   EXPECT_EQ(c.step_to(0.0, 0.5), 0.01);
-  EXPECT_EQ(c.step_to(0.0, 0.015), 0.0075);      // within two proposals: two like steps
-  EXPECT_EQ(c.step_to(0.0, 0.01), 0.01);         // exactly the rest
+  EXPECT_EQ(c.step_to(0.0, 0.015), 0.0075);       // within two proposals: two like steps
+  EXPECT_EQ(c.step_to(0.0, 0.01), 0.01);          // exactly the rest
   EXPECT_EQ(c.step_to(0.492, 0.5), 0.5 - 0.492);  // the rest, when shorter
 }
 
