@@ -62,10 +62,9 @@ long long step_count(double end, double step) {
 }
 
 long long step_bound(double end, double step, std::optional<double> min_step, std::optional<double> interval) {
-  if (min_step && *min_step > 0) return step_count(end, *min_step);
-  const long long fixed = step_count(end, step);
-  if (!interval || !(*interval > 0)) return fixed;
-  return std::min(max_step_count, fixed + step_count(end, *interval));  // a clipped step per frame at most
+  const long long steps = min_step && *min_step > 0 ? step_count(end, *min_step) : step_count(end, step);
+  if (!interval || !(*interval > 0)) return steps;
+  return std::min(max_step_count, steps + step_count(end, *interval));  // a clipped step per frame at most
 }
 
 long long OutputSpec::frame_count(long long steps, double end) const {

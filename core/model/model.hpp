@@ -95,9 +95,9 @@ long long step_count(double end, double step);
 /// The largest count step_count returns (a quotient beyond it saturates here).
 inline constexpr long long max_step_count = 1'000'000'000'000'000'000;
 
-/// The most steps a run can take (the server's limits, the dry run's count): with a tolerance
-/// end/min_step; with fixed steps and frames at an interval, end/step plus one clipped step per frame;
-/// else step_count(end, step). Arguments that are not positive count as absent.
+/// The most steps a run can take (the server's limits, the dry run's count): end/min_step with a
+/// tolerance, else end/step; with frames at an interval plus one clipped step per frame. Arguments that
+/// are not positive count as absent.
 long long step_bound(double end, double step, std::optional<double> min_step, std::optional<double> interval);
 
 struct TimeSpec {

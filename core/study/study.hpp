@@ -47,8 +47,7 @@ struct Options {
 /// One run of the sweep.
 struct Row {
   std::string scheme;
-  double step = 0;
-  double tolerance = 0;  ///< > 0: a run with steps chosen by this time.tolerance (step: its first step)
+  double step = 0;       ///< the fixed step, or with a tolerance the first step
   int steps = 0;
   bool completed = false;
   std::string failure;              ///< why the run stopped, when it did not complete
@@ -58,6 +57,7 @@ struct Row {
   double wall_seconds = 0;          ///< the median over Result::repeat runs
   int newton_iterations = 0;
   double newton_per_step = 0;
+  double tolerance = 0;  ///< > 0: a run with steps chosen by this time.tolerance (step: its first step)
 };
 
 struct Result {

@@ -299,7 +299,7 @@ TEST(SceneValidation, ATolerancesStepBoundsAndAnIntervalsFramesAreResolved) {
   ASSERT_TRUE(m.output.interval.has_value());
   EXPECT_EQ(*m.output.interval, 0.25);
   const Summary s = summarize(m);
-  EXPECT_EQ(s.steps, 102400);
+  EXPECT_EQ(s.steps, 102404) << "end/min_step, and a landing step per frame";
   EXPECT_EQ(s.frames, 5);
   // Without a tolerance the scene gets neither bound.
   const model::Model fixed = load(full_scene());
