@@ -272,7 +272,6 @@ class Run {
     for (const auto& pair : problem_.contact) {
       const contact::ContactReport& r = pair->report();
       const int changed = r.activations + r.releases + r.switches;
-      events.active += r.active;
       if (changed > events.changed_nodes) {
         events.changed_nodes = changed;
         events.pair = pair->name();

@@ -25,7 +25,6 @@ struct StepControllerState {
 struct ContactEvents {
   double offset = 0;
   int changed_nodes = 0;
-  int active = 0;    ///< slave nodes in contact at the end of the step, over the pairs
   std::string pair;  ///< the term name of that pair; empty without changes
 };
 
