@@ -1,12 +1,17 @@
 // What accuracy costs in time (docs/measurements.md, "Accuracy against time"): each scheme at h, h/2, h/4, h/8
 // (h = 0.04) against an energy_momentum reference at h/32, on a contact-free case and on the paper's
 // example. Writes bench/results/accuracy_<case>.{csv,md,png} (the PNG needs gnuplot).
-// Run: ./build/bench_accuracy [--quick]   (--quick: h and h/2 only, for a smoke check)
+// Run: ./build/bench_accuracy [--quick] [--tol T1,T2,...]   (--quick: h and h/2 only, for a smoke check;
+//      --tol: also each scheme with steps chosen by time.tolerance = T, first step the scene's time.step,
+//      drawn as the lines "adaptive <scheme>")
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "core/scene/scene.hpp"
 #include "core/study/study.hpp"
@@ -21,17 +26,24 @@ void write(const fs::path& path, const std::string& text) { std::ofstream(path) 
 
 /// Two panels, log-log: displacement error and energy error against wall seconds, one colour per
 /// scheme, the legend inside each panel.
-void plot(const std::string& name, const stoss::study::Result& r) {
+void plot(const std::string& name, const stoss::study::Result& r, bool tolerances) {
   const fs::path csv = results_dir / ("accuracy_" + name + ".csv"), png = results_dir / ("accuracy_" + name + ".png");
   const fs::path script = results_dir / ("accuracy_" + name + ".gnuplot");
   const std::pair<const char*, const char*> schemes[] = {
       {"energy_momentum", "#1f77b4"}, {"midpoint", "#d62728"}, {"hht", "#2ca02c"}, {"generalized_alpha", "#9467bd"}};
   const auto panel = [&](const char* column, const char* label, const char* key) {
     std::string lines;
-    for (const auto& [scheme, colour] : schemes)
+    // Column 11 (tolerance) is there only when a row has one: empty for the fixed steps.
+    const std::string fixed = tolerances ? " && strcol(11) eq ''" : "", adaptive = " && strcol(11) ne ''";
+    for (const auto& [scheme, colour] : schemes) {
       lines += std::string(lines.empty() ? "" : ", ") + "'" + csv.string() + "' using (strcol(1) eq '" + scheme +
-               "' && $4 == 1 ? $8 : 1/0):" + column + " with linespoints lw 2 pt 7 lc rgb '" + colour + "' title '" +
-               scheme + "'";
+               "' && $4 == 1" + fixed + " ? $8 : 1/0):" + column + " with linespoints lw 2 pt 7 lc rgb '" + colour +
+               "' title '" + scheme + "'";
+      if (tolerances)
+        lines += ", '" + csv.string() + "' using (strcol(1) eq '" + scheme + "' && $4 == 1" + adaptive +
+                 " ? $8 : 1/0):" + column + " with linespoints lw 2 dt 2 pt 5 lc rgb '" + colour +
+                 "' title 'adaptive " + scheme + "'";
+    }
     return std::string("set title '") + label + "'\nset ylabel '" + label + "'\nset key inside " + key +
            " box opaque\nplot " + lines + "\n";
   };
@@ -44,15 +56,16 @@ void plot(const std::string& name, const stoss::study::Result& r) {
     std::cerr << "gnuplot not available: " << png << " not written\n";
 }
 
-void run_case(const std::string& name, stoss::model::Model m, bool quick) {
+void run_case(const std::string& name, stoss::model::Model m, bool quick, const std::vector<double>& tolerances) {
   stoss::study::Options o;
+  o.tolerances = tolerances;
   o.steps = quick ? std::vector<double>{0.04, 0.02} : std::vector<double>{0.04, 0.02, 0.01, 0.005};
   o.reference_step = 0.04 / 32;
   o.schemes.assign(std::begin(stoss::model::all_schemes), std::end(stoss::model::all_schemes));
   const stoss::study::Result r = stoss::study::run(m, o);
   write(results_dir / ("accuracy_" + name + ".csv"), stoss::study::to_csv(r));
   write(results_dir / ("accuracy_" + name + ".md"), stoss::study::to_markdown(r));
-  plot(name, r);
+  plot(name, r, !tolerances.empty());
   std::cout << "## " << name << " (reference energy_momentum h = " << r.reference_step << ", "
             << r.reference_wall_seconds << " s)\n\n"
             << stoss::study::to_markdown(r) << std::endl;
@@ -60,17 +73,30 @@ void run_case(const std::string& name, stoss::model::Model m, bool quick) {
 
 }  // namespace
 
+/// The values of "--tol T1,T2,...".
+std::vector<double> tolerances_of(int argc, char** argv) {
+  std::vector<double> out;
+  for (int k = 1; k + 1 < argc; ++k)
+    if (std::string(argv[k]) == "--tol") {
+      std::stringstream list(argv[k + 1]);
+      for (std::string item; std::getline(list, item, ',');) out.push_back(std::stod(item));
+    }
+  return out;
+}
+
 int main(int argc, char** argv) {
-  const bool quick = argc > 1 && std::string(argv[1]) == "--quick";
+  bool quick = false;
+  for (int k = 1; k < argc; ++k) quick = quick || std::string(argv[k]) == "--quick";
+  const std::vector<double> tolerances = tolerances_of(argc, argv);
   fs::create_directories(results_dir);
   // Contact-free: the B4 bar. (The 432-element sphere is no convergence case at these steps: its
   // through-thickness modes, ω ≈ 2000 rad/s, stay unresolved even at h/32, so every scheme's error
   // plateaus at the amplitude of those vibrations, ~3e-4.)
-  run_case("tumbling_bar", stoss::scene::load_file(source_dir / "api/examples/tumbling_bar.json"), quick);
+  run_case("tumbling_bar", stoss::scene::load_file(source_dir / "api/examples/tumbling_bar.json"), quick, tolerances);
   const fs::path paper = source_dir / "api/examples/hollow_ball_plate.json";
   if (!fs::exists(paper)) return 0;
   try {
-    run_case("hollow_ball_plate", stoss::scene::load_file(paper), quick);
+    run_case("hollow_ball_plate", stoss::scene::load_file(paper), quick, tolerances);
   } catch (const std::exception& e) {
     std::cerr << "hollow_ball_plate: " << e.what() << "\n";
     return 1;

@@ -61,6 +61,18 @@ long long step_count(double end, double step) {
   return std::max(1LL, static_cast<long long>(std::ceil(quotient - tolerance)));
 }
 
+long long step_bound(double end, double step, std::optional<double> min_step, std::optional<double> interval) {
+  const long long steps = min_step && *min_step > 0 ? step_count(end, *min_step) : step_count(end, step);
+  if (!interval || !(*interval > 0)) return steps;
+  return std::min(max_step_count, steps + step_count(end, *interval));  // a clipped step per frame at most
+}
+
+long long OutputSpec::frame_count(long long steps, double end) const {
+  if (interval) return step_count(end, *interval) + 1;
+  const long long e = std::max(every, 1);
+  return steps / e + 1 + (steps % e != 0 ? 1 : 0);
+}
+
 int TimeSpec::steps() const {
   return static_cast<int>(std::min<long long>(step_count(end, step), std::numeric_limits<int>::max()));
 }

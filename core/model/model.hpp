@@ -98,12 +98,22 @@ long long step_count(double end, double step);
 /// The largest count step_count returns (a quotient beyond it saturates here).
 inline constexpr long long max_step_count = 1'000'000'000'000'000'000;
 
+/// The most steps a run can take (the server's limits, the dry run's count): end/min_step with a
+/// tolerance, else end/step; with frames at an interval plus one clipped step per frame. Arguments that
+/// are not positive count as absent.
+long long step_bound(double end, double step, std::optional<double> min_step, std::optional<double> interval);
+
 struct TimeSpec {
   Scheme scheme = Scheme::energy_momentum;
-  double step = 0;
+  double step = 0;                     ///< the fixed step, or with a tolerance the first step
   double end = 0;
   double alpha = -0.05;                ///< HHT-α only
   double rho_infinity = 0.9;           ///< generalized-α only: spectral radius at infinite frequency
+  /// time.tolerance: the final largest nodal position error the step controller aims at (a length,
+  /// docs/scene.md "Time"); unset: fixed steps.
+  std::optional<double> tolerance;
+  double min_step = 0, max_step = 0;   ///< with a tolerance: the steps the controller may choose
+  bool adaptive() const { return tolerance.has_value(); }
   int steps() const;                   ///< step_count(end, step); a validated scene has at most 1e9
 };
 
@@ -129,15 +139,16 @@ struct SolverSpec {
 
 struct OutputSpec {
   int every = 1;                       ///< a frame every this many steps (plus the first and last)
+  /// output.interval: frames at t = k·interval exactly (steps are clipped to land there) and at the end;
+  /// unset: frames by `every`.
+  std::optional<double> interval;
   double checkpoint_seconds = 60;      ///< a checkpoint this often (wall time) when checkpoint_every is 0
   int checkpoint_every = 0;            ///< a checkpoint every this many steps; 0: by checkpoint_seconds
   /// Whether step `step` of `steps` writes a frame: step 0, every `every`-th step and the last.
   bool frame_due(int step, int steps) const { return step % std::max(every, 1) == 0 || step == steps; }
-  /// Frames a run of `steps` steps writes (frame_due counted).
-  long long frame_count(long long steps) const {
-    const long long e = std::max(every, 1);
-    return steps / e + 1 + (steps % e != 0 ? 1 : 0);
-  }
+  /// Frames a run of `steps` steps to `end` writes: frame_due counted, or with an interval
+  /// step_count(end, interval) + 1 (the frames at k·interval and the end).
+  long long frame_count(long long steps, double end = 0) const;
 };
 
 /// The effects a scene calls for, in a fixed vocabulary reported back to users.

@@ -140,6 +140,21 @@ std::vector<model::StepRow> read_series(const h5::File& file) {
   return rows;
 }
 
+void write_controller(const h5::File& file, const StepControllerState& controller) {
+  file.create_group("/controller");
+  file.write_attribute("/controller", "next_step", controller.next_step);
+  file.write_attribute("/controller", "previous_step", controller.previous_step);
+  file.write_attribute("/controller", "has_history", controller.has_history ? 1 : 0);
+}
+
+StepControllerState read_controller(const h5::File& file) {
+  StepControllerState controller;
+  controller.next_step = file.read_double_attribute("/controller", "next_step");
+  controller.previous_step = file.read_double_attribute("/controller", "previous_step");
+  controller.has_history = file.read_double_attribute("/controller", "has_history") != 0;
+  return controller;
+}
+
 }  // namespace
 
 bool CheckpointStore::exists() const {
@@ -197,11 +212,13 @@ void CheckpointStore::write(const Checkpoint& c) {
     write_reals(file, "/state/x", c.state.x.data(), c.state.x.size());
     write_reals(file, "/state/v", c.state.v.data(), c.state.v.size());
     write_reals(file, "/state/a", c.state.a.data(), c.state.a.size());
+    file.write_attribute("/state", "last_step", c.state.last_step);  // the predictor's h_{n−1} (midpoint.hpp)
     write_terms(file, c.terms);
     write_series(file, c.rows);
     file.create_group("/frames");
     write_integers(file, "/frames/step",
                    std::vector<std::int64_t>(c.frame_steps.begin(), c.frame_steps.end()));
+    if (c.controller) write_controller(file, *c.controller);
     file.close();
   }
   for (const fs::path& frame : unsynced_) sync_to_disk(frame);
@@ -225,10 +242,13 @@ Checkpoint CheckpointStore::read() const {
   c.state.x = read_vector(file, "/state/x");
   c.state.v = read_vector(file, "/state/v");
   c.state.a = read_vector(file, "/state/a");
+  // A checkpoint written before last_step existed: 0, the next step's h stands in (scheme.hpp).
+  c.state.last_step = file.has_attribute("/state", "last_step") ? file.read_double_attribute("/state", "last_step") : 0;
   c.terms = read_terms(file);
   c.rows = read_series(file);
   for (std::int64_t step : read_integers(file, "/frames/step"))
     c.frame_steps.push_back(static_cast<int>(step));
+  if (file.exists("/controller")) c.controller = read_controller(file);
   return c;
 }
 

@@ -13,15 +13,19 @@
 ///   /terms/<k>    attribute name; reals/<array> float64, integers/<array> int64 (time::TermState)
 ///   /series/step [S] int64, /series/time [S], /series/values [S, row size]: every row so far, step 0 too
 ///   /frames/step [K] int64: the step of each frame so far
+///   /controller   with time.tolerance only: attributes next_step, previous_step, has_history
+///                 (StepControllerState)
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/model/observer.hpp"
 #include "core/output/result_writer.hpp"
+#include "core/run/step_control.hpp"
 #include "core/time/scheme.hpp"
 #include "core/time/term.hpp"
 
@@ -39,6 +43,7 @@ struct Checkpoint {
   model::Summary summary;            ///< accumulators so far: Newton iterations, drifts, penetrations
   std::vector<model::StepRow> rows;  ///< the series so far, step 0 included
   std::vector<int> frame_steps;      ///< the step of every frame so far (frame k in frame_<k>.h5)
+  std::optional<StepControllerState> controller;  ///< with time.tolerance: the step controller's state
 };
 
 /// A run's checkpoint directory.

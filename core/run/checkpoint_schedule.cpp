@@ -36,13 +36,15 @@ Checkpoint load_checkpoint(const CheckpointStore& store, const model::Model& m,
       c.state.a.size() != m.dof_count())
     refuse("its state does not have " + std::to_string(m.dof_count()) + " dofs");
   if (c.rows.empty() || c.rows.back().step != c.state.step) refuse("its series does not end at its step");
+  if (m.time.adaptive() && !c.controller) refuse("it holds no step controller state (time.tolerance)");
   for (size_t k = 0; k < c.frame_steps.size(); ++k)
     if (!store.has_frame(static_cast<int>(k))) refuse("frame " + std::to_string(k) + " is missing");
   return c;
 }
 
 Checkpoint checkpoint_of(const model::Model& m, const time::State& s, const std::vector<time::Term*>& terms,
-                         const model::Summary& sum, const Recorder& recorder) {
+                         const model::Summary& sum, const Recorder& recorder,
+                         const StepControllerState* controller) {
   Checkpoint c;
   c.scene = m.scene.dump();
   c.state = s;
@@ -51,6 +53,7 @@ Checkpoint checkpoint_of(const model::Model& m, const time::State& s, const std:
   c.summary = sum;
   c.rows = recorder.rows();
   c.frame_steps = recorder.frame_steps();
+  if (controller) c.controller = *controller;
   return c;
 }
 

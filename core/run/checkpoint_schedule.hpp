@@ -37,6 +37,7 @@ Checkpoint load_checkpoint(const CheckpointStore& store, const model::Model& m,
 
 /// The checkpoint of the run at the end of step s.step.
 Checkpoint checkpoint_of(const model::Model& m, const time::State& s, const std::vector<time::Term*>& terms,
-                         const model::Summary& sum, const Recorder& recorder);
+                         const model::Summary& sum, const Recorder& recorder,
+                         const StepControllerState* controller = nullptr);
 
 }  // namespace stoss::run

@@ -50,6 +50,10 @@ const SeriesColumn table[] = {
     {"step_seconds", Shape::scalar, false, Presence::always, [](S s, int, double* v) { v[0] = s.seconds; }},
     {"substeps", Shape::scalar, true, Presence::always,  // automatic step reduction: 1, or the substeps taken
      [](S s, int, double* v) { v[0] = s.newton ? s.newton->substeps : 1; }},
+    {"step_size", Shape::scalar, false, Presence::always,  // h of the step: time.step, or the controller's
+     [](S s, int, double* v) { v[0] = s.step_size; }},
+    {"rejected_steps", Shape::scalar, true, Presence::always,  // tries the step controller rejected (§2.7)
+     [](S s, int, double* v) { v[0] = s.rejections; }},
 };
 
 bool any_smooth_master(const model::Model& m) {

@@ -17,12 +17,15 @@
 namespace stoss::run {
 
 /// What one step gives the table: its energies and momenta, its contact report, its Newton solve (null for
-/// row 0, the initial state) and its wall seconds.
+/// row 0, the initial state), its wall seconds, its h and the tries the step controller rejected before it
+/// (both 0 in row 0).
 struct StepMeasures {
   const Balance& balance;
   const ContactRow& contact;
   const time::ReducedStep* newton;
   double seconds;
+  double step_size = 0;
+  int rejections = 0;
 };
 
 /// The shape of one row of a series; k (the items) is taken from the scene.

@@ -83,6 +83,11 @@ model::TimeSpec time_spec(const json& t) {
   spec.end = t["end"].get<double>();
   if (t.contains("alpha")) spec.alpha = t["alpha"].get<double>();
   if (t.contains("rho_infinity")) spec.rho_infinity = t["rho_infinity"].get<double>();
+  if (t.contains("tolerance")) {  // validation filled in min_step and max_step
+    spec.tolerance = t["tolerance"].get<double>();
+    spec.min_step = t["min_step"].get<double>();
+    spec.max_step = t["max_step"].get<double>();
+  }
   return spec;
 }
 
@@ -147,7 +152,10 @@ model::Model build_model(const json& scene, const MeshFiles& mesh_files) {
   m.solver = {scene["solver"]["tolerance"].get<double>(), scene["solver"]["max_iterations"].get<int>(),
               model::linear_solver_from_string(scene["solver"]["linear"].get<std::string>()).value()};
   const json& output = scene["output"];
-  m.output = {output["every"].get<int>(), output.value("checkpoint_seconds", 60.0), output.value("checkpoint_every", 0)};
+  m.output.every = output.value("every", 1);
+  if (output.contains("interval")) m.output.interval = output["interval"].get<double>();
+  m.output.checkpoint_seconds = output.value("checkpoint_seconds", 60.0);
+  m.output.checkpoint_every = output.value("checkpoint_every", 0);
   m.effects = model::resolve_effects(m);
   return m;
 }

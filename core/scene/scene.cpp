@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <limits>
 
 #include "core/scene/build.hpp"
 #include "core/scene/master_surface.hpp"
@@ -82,8 +83,11 @@ Summary summarize(const model::Model& model) {
   s.nodes = model.mesh.node_count();
   s.elements = model.mesh.element_count();
   s.dofs = model.dof_count();
-  s.steps = model.time.steps();
-  s.frames = model.output.frame_count(s.steps);
+  const model::TimeSpec& t = model.time;
+  s.steps = static_cast<int>(std::min<long long>(
+      model::step_bound(t.end, t.step, t.adaptive() ? std::optional(t.min_step) : std::nullopt, model.output.interval),
+      std::numeric_limits<int>::max()));
+  s.frames = static_cast<int>(std::min<long long>(model.output.frame_count(s.steps, t.end), std::numeric_limits<int>::max()));
   s.estimates = estimate(model);
   s.warnings = warnings(model, s.estimates);
   s.choices = resolved_choices(model);

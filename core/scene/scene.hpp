@@ -94,8 +94,8 @@ struct Summary {
   int nodes = 0;
   int elements = 0;
   int dofs = 0;
-  int steps = 0;
-  int frames = 0;  ///< frames written: step 0, every output.every-th step, and the last step
+  int steps = 0;   ///< the time steps; with time.tolerance at most end/min_step (model::step_bound)
+  int frames = 0;  ///< frames written: step 0, every output.every-th step (or each output.interval), the last
   std::vector<Warning> warnings;        ///< scene::warnings (warnings.hpp)
   std::vector<ResolvedChoice> choices;  ///< scene::resolved_choices
   Estimates estimates;                  ///< scales and the run-time estimate (estimates.hpp)

@@ -341,8 +341,34 @@ void check_entries(json& scene, const char* key, const SurfaceIndex& index, Chec
   for (size_t i = 0; i < entries->size(); ++i) check_entry((*entries)[i], child(child("", key), i), index, c);
 }
 
+/// time.tolerance, min_step and max_step (docs/scene.md "Time"): the bounds of adaptive steps, defaults
+/// step/1024 and end, only with a tolerance; `step` (the first step) inside them.
+void check_step_control(json& t, const std::string& p, std::optional<double> step, std::optional<double> end,
+                        Checker& c) {
+  if (!t.contains("tolerance")) {
+    for (const char* key : {"min_step", "max_step"})
+      if (t.contains(key)) c.fail(child(p, key), "is allowed only with time.tolerance (steps chosen by a tolerance)");
+    return;
+  }
+  const size_t start = c.mark();
+  number_field(t, "tolerance", p, Presence::must(), above(0), c);
+  if (!step || !end) return;
+  const auto low = number_field(t, "min_step", p, Presence::or_default(*step / 1024), above(0), c);
+  const auto high = number_field(t, "max_step", p, Presence::or_default(*end), above(0), c);
+  if (!low || !high || c.mark() != start) return;
+  if (*low > *high)
+    c.fail(child(p, "min_step"), "must be <= max_step (" + shown(t["max_step"]) + "), got " + shown(t["min_step"]));
+  if (*low >= *end) c.fail(child(p, "min_step"), "must be < end (" + shown(t["end"]) + "), got " + shown(t["min_step"]));
+  else if (*end / *low > 1e9)
+    c.fail(child(p, "min_step"), "must give at most 1e9 steps, got end / min_step = " + number_text(*end / *low));
+  if (c.mark() == start && (*step < *low || *step > *high))
+    c.fail(child(p, "step"), "must be in [min_step, max_step] = [" + shown(t["min_step"]) + ", " +
+                                 shown(t["max_step"]) + "] (the first step), got " + shown(t["step"]));
+}
+
 void check_time(json& t, const std::string& p, Checker& c) {
-  if (!object_with(t, p, {"scheme", "step", "end", "alpha", "rho_infinity"}, c)) return;
+  if (!object_with(t, p, {"scheme", "step", "end", "alpha", "rho_infinity", "tolerance", "min_step", "max_step"}, c))
+    return;
   std::vector<std::string> names;
   for (model::Scheme s : model::all_schemes) names.push_back(model::to_string(s));
   const std::vector<std::string_view> schemes(names.begin(), names.end());
@@ -357,6 +383,7 @@ void check_time(json& t, const std::string& p, Checker& c) {
   number_field(t, "alpha", p, alpha, between(-1.0 / 3, 0, true, true, "-1/3, 0"), c);
   const Presence rho = scheme == "generalized_alpha" ? Presence::or_default(0.9) : Presence::may();
   number_field(t, "rho_infinity", p, rho, between(0, 1, true, true), c);
+  check_step_control(t, p, step, end, c);
 }
 
 void check_solver(json& s, const std::string& p, Checker& c) {
@@ -371,8 +398,15 @@ void check_solver(json& s, const std::string& p, Checker& c) {
 }
 
 void check_output(json& o, const std::string& p, Checker& c) {
-  if (!object_with(o, p, {"every", "checkpoint_seconds", "checkpoint_every"}, c)) return;
-  integer_field(o, "every", p, Presence::or_default(1), at_least(1), c);
+  if (!object_with(o, p, {"every", "interval", "checkpoint_seconds", "checkpoint_every"}, c)) return;
+  if (o.contains("interval")) {
+    if (o.contains("every"))
+      c.fail(child(p, "interval"), "cannot be given together with output.every: frames come at times (interval) "
+                                   "or every so many steps (every), not both");
+    number_field(o, "interval", p, Presence::must(), above(0), c);
+  } else {
+    integer_field(o, "every", p, Presence::or_default(1), at_least(1), c);
+  }
   number_field(o, "checkpoint_seconds", p, Presence::or_default(60.0), between(0, 1e7, false, true, "0, 1e7"), c);
   integer_field(o, "checkpoint_every", p, Presence::may(), at_least(1), c);
 }

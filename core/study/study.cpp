@@ -1,7 +1,9 @@
 #include "core/study/study.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 #include "core/simulate.hpp"
@@ -23,9 +25,16 @@ struct Outcome {
 };
 
 Outcome run_once(model::Model m, const Run& run, const Options& options) {
+  const bool had_tolerance = m.time.adaptive();
   m.time.scheme = run.scheme;
   m.time.step = run.step;
-  m.output.every = std::max(1, m.time.steps());
+  m.time.tolerance.reset();
+  if (run.tolerance > 0) {
+    m.time.tolerance = run.tolerance;
+    if (!had_tolerance) m.time.min_step = run.step / 1024, m.time.max_step = m.time.end;  // the defaults
+  }
+  m.output.every = std::numeric_limits<int>::max();  // the first and the last frame
+  m.output.interval.reset();
   FinalState last;
   model::Observer* extra = options.observe_run ? options.observe_run(run) : nullptr;
   model::ObserverList observers(extra ? std::vector<model::Observer*>{&last, extra}
@@ -52,6 +61,7 @@ Row row_of(const Outcome& o, const Run& run, const Eigen::VectorXd& reference) {
   Row r;
   r.scheme = model::to_string(run.scheme);
   r.step = run.step;
+  r.tolerance = run.tolerance;
   r.steps = o.summary.steps;
   r.completed = o.summary.completed && o.failure.empty();
   r.failure = o.failure;
@@ -95,16 +105,23 @@ std::vector<Run> plan(const model::Model& model, const Options& options) {
     return t.steps();
   };
   const double reference = resolved_reference_step(options);
-  std::vector<Run> runs{{options.reference_scheme, reference, true, steps_to_end(reference)}};
-  for (model::Scheme scheme : options.schemes)
+  std::vector<Run> runs{{options.reference_scheme, reference, 0, true, steps_to_end(reference)}};
+  for (model::Scheme scheme : options.schemes) {
     for (double step : options.steps)
       for (int k = 0; k < std::max(1, options.repeat); ++k)
-        runs.push_back({scheme, step, false, steps_to_end(step), k});
+        runs.push_back({scheme, step, 0, false, steps_to_end(step), k});
+    for (double tolerance : options.tolerances)
+      for (int k = 0; k < std::max(1, options.repeat); ++k)
+        runs.push_back({scheme, model.time.step, tolerance, false, steps_to_end(model.time.step), k});
+  }
   return runs;
 }
 
 Result run(const model::Model& model, const Options& options) {
   if (options.steps.empty()) throw std::invalid_argument("study: no step sizes given");
+  for (double tolerance : options.tolerances)
+    if (!(tolerance > 0) || !std::isfinite(tolerance))
+      throw std::invalid_argument("study: a tolerance must be > 0 and finite");
   Result result;
   result.reference_step = resolved_reference_step(options);
   result.repeat = std::max(1, options.repeat);
@@ -131,13 +148,19 @@ Result run(const model::Model& model, const Options& options) {
 
 std::string to_csv(const Result& result) {
   std::ostringstream out;
+  // The column tolerance only when a row has one: tables of fixed steps keep their columns.
+  const bool tolerances = std::any_of(result.rows.begin(), result.rows.end(), [](const Row& r) { return r.tolerance > 0; });
   out << "scheme,step,steps,completed,displacement_error,energy_error,momentum_error,wall_seconds,"
-         "newton_iterations,newton_per_step\n";
+         "newton_iterations,newton_per_step"
+      << (tolerances ? ",tolerance\n" : "\n");
   out.precision(6);
-  for (const Row& r : result.rows)
+  for (const Row& r : result.rows) {
     out << r.scheme << ',' << r.step << ',' << r.steps << ',' << (r.completed ? 1 : 0) << ','
         << r.displacement_error << ',' << r.energy_error << ',' << r.momentum_error << ',' << r.wall_seconds << ','
-        << r.newton_iterations << ',' << r.newton_per_step << '\n';
+        << r.newton_iterations << ',' << r.newton_per_step;
+    if (tolerances) out << ',' << (r.tolerance > 0 ? std::to_string(r.tolerance) : "");
+    out << '\n';
+  }
   return out.str();
 }
 
@@ -151,6 +174,7 @@ nlohmann::json to_json(const Result& result) {
                      {"newton_per_step", r.newton_per_step}};
     j["displacement_error"] = r.completed ? nlohmann::json(r.displacement_error) : nlohmann::json(nullptr);
     if (!r.failure.empty()) j["failure"] = r.failure;
+    if (r.tolerance > 0) j["tolerance"] = r.tolerance;
     rows.push_back(j);
   }
   return {{"reference_step", result.reference_step},
@@ -169,6 +193,7 @@ Result result_from_json(const nlohmann::json& table) {
     Row r;
     r.scheme = j.value("scheme", "");
     r.step = number_or_nan(j, "step");
+    r.tolerance = j.value("tolerance", 0.0);
     r.steps = j.value("steps", 0);
     r.completed = j.value("completed", false);
     r.failure = j.value("failure", "");
@@ -193,14 +218,18 @@ std::string to_markdown(const Result& result) {
   out << timing_note(result) << " of each scheme and step\n\n";
   out << "| scheme | h | displacement error | energy error | momentum error | wall s | Newton its/step |\n"
          "|---|---|---|---|---|---|---|\n";
-  char line[256];
+  char line[320], h[64];
   for (const Row& r : result.rows) {
+    if (r.tolerance > 0)  // steps chosen by a tolerance: the steps taken stand beside it
+      std::snprintf(h, sizeof h, "TOL %g (%d steps)", r.tolerance, r.steps);
+    else
+      std::snprintf(h, sizeof h, "%g", r.step);
     if (r.completed)
-      std::snprintf(line, sizeof line, "| %s | %g | %.2e | %.2e | %.2e | %.2f | %.1f |\n", r.scheme.c_str(), r.step,
+      std::snprintf(line, sizeof line, "| %s | %s | %.2e | %.2e | %.2e | %.2f | %.1f |\n", r.scheme.c_str(), h,
                     r.displacement_error, r.energy_error, r.momentum_error, r.wall_seconds, r.newton_per_step);
     else
-      std::snprintf(line, sizeof line, "| %s | %g | failed at step %d | | | %.2f | |\n", r.scheme.c_str(), r.step,
-                    r.steps, r.wall_seconds);
+      std::snprintf(line, sizeof line, "| %s | %s | failed at step %d | | | %.2f | |\n", r.scheme.c_str(), h, r.steps,
+                    r.wall_seconds);
     out << line;
   }
   return out.str();

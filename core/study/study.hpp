@@ -16,9 +16,10 @@ namespace stoss::study {
 /// One run of a sweep: the reference first, then every scheme × step.
 struct Run {
   model::Scheme scheme = model::Scheme::energy_momentum;
-  double step = 0;
+  double step = 0;     ///< the fixed step, or with a tolerance the first step
+  double tolerance = 0;  ///< > 0: steps chosen by time.tolerance = this (docs/scene.md "Time")
   bool reference = false;
-  int steps = 0;       ///< time steps to reach the scene's end
+  int steps = 0;       ///< time steps to reach the scene's end (with a tolerance: at the first step)
   int repetition = 0;  ///< 0 … Options::repeat − 1: the same run again, for its wall time
 };
 
@@ -27,6 +28,9 @@ struct Row;
 struct Options {
   std::vector<model::Scheme> schemes{model::Scheme::energy_momentum, model::Scheme::midpoint, model::Scheme::hht};
   std::vector<double> steps;                                   ///< step sizes to sweep
+  /// time.tolerance values to sweep beside the steps, each scheme once per value: the first step is the
+  /// scene's time.step, min_step and max_step the scene's (or their defaults step/1024 and end).
+  std::vector<double> tolerances;
   double reference_step = 0;                                   ///< 0: smallest step / 32
   model::Scheme reference_scheme = model::Scheme::energy_momentum;
   /// Runs of each scheme × step; the row's wall_seconds is their median (wall time is noisy on a shared
@@ -43,7 +47,7 @@ struct Options {
 /// One run of the sweep.
 struct Row {
   std::string scheme;
-  double step = 0;
+  double step = 0;       ///< the fixed step, or with a tolerance the first step
   int steps = 0;
   bool completed = false;
   std::string failure;              ///< why the run stopped, when it did not complete
@@ -53,6 +57,7 @@ struct Row {
   double wall_seconds = 0;          ///< the median over Result::repeat runs
   int newton_iterations = 0;
   double newton_per_step = 0;
+  double tolerance = 0;  ///< > 0: a run with steps chosen by this time.tolerance (step: its first step)
 };
 
 struct Result {
@@ -72,8 +77,9 @@ std::vector<Run> plan(const model::Model& model, const Options& options);
 /// The reference step options.reference_step resolves to (smallest step / 32 when 0).
 double resolved_reference_step(const Options& options);
 
-/// Runs the reference and then every scheme × step of `options` on `model` (its own scheme and step
-/// are replaced; everything else is kept). A run that fails is a row with completed = false.
+/// Runs the reference and then every scheme × step and scheme × tolerance of `options` on `model` (its own
+/// scheme, step and tolerance are replaced; everything else is kept). A run that fails is a row with
+/// completed = false.
 Result run(const model::Model& model, const Options& options);
 
 std::string to_csv(const Result& result);

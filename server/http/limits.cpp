@@ -3,6 +3,7 @@
 #include <malloc.h>
 
 #include <algorithm>
+#include <optional>
 #include <climits>
 #include <cmath>
 #include <string>
@@ -111,12 +112,23 @@ SceneCounts estimate_scene_counts(const nlohmann::json& scene) {
     for (const auto& body : *bodies)
       if (body.is_object() && body.contains("mesh"))
         s.nodes = saturating_add(s.nodes, estimated_nodes(body["mesh"]));
-  if (auto time = scene.find("time"); time != scene.end())
-    s.steps = model::step_count(number_at(*time, "end"), number_at(*time, "step"));
   model::OutputSpec output;
-  if (auto o = scene.find("output"); o != scene.end() && number_at(*o, "every") >= 1)
+  const auto o = scene.find("output");
+  if (o != scene.end() && number_at(*o, "every") >= 1)
     output.every = static_cast<int>(std::min(number_at(*o, "every"), double(INT_MAX)));
-  s.frames = s.steps > 0 ? output.frame_count(s.steps) : 0;
+  if (o != scene.end() && number_at(*o, "interval") > 0) output.interval = number_at(*o, "interval");
+  double end = 0;
+  if (auto time = scene.find("time"); time != scene.end()) {
+    // With time.tolerance at most end/min_step steps (min_step defaults to step/1024); with frames at an
+    // interval, end/interval + 1 frames.
+    end = number_at(*time, "end");
+    const double step = number_at(*time, "step");
+    std::optional<double> min_step;
+    if (time->is_object() && time->contains("tolerance"))
+      min_step = number_at(*time, "min_step") > 0 ? number_at(*time, "min_step") : step / 1024;
+    s.steps = model::step_bound(end, step, min_step, output.interval);
+  }
+  s.frames = s.steps > 0 ? output.frame_count(s.steps, end) : 0;
   return s;
 }
 

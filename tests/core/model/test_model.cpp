@@ -74,6 +74,22 @@ TEST(TimeSpec, NonPositiveEndOrStepGivesNoSteps) {
   EXPECT_EQ(TimeSpec{}.steps(), 0) << "the defaults (step 0, end 0)";
 }
 
+// The limits' counts (issue 22 §2, §3): with a tolerance end/min_step steps; with frames at an interval and
+// fixed steps one clipped step per frame on top; frames end/interval + 1 (the end as the last).
+TEST(TimeSpec, TheStepBoundUsesMinStepWithAToleranceAndTheFramesTheInterval) {
+  EXPECT_EQ(step_bound(1, 0.01, 1e-4, std::nullopt), 10000);
+  EXPECT_EQ(step_bound(1, 0.01, std::nullopt, std::nullopt), 100);
+  EXPECT_EQ(step_bound(1, 0.01, std::nullopt, 0.1), 110);
+  EXPECT_EQ(step_bound(1, 0.01, 1e-3, 0.1), 1010) << "a landing step may be shorter than min_step";
+  OutputSpec o;
+  o.interval = 0.1;
+  EXPECT_EQ(o.frame_count(12345, 1.0), 11);
+  EXPECT_EQ(o.frame_count(12345, 1.05), 12) << "k·interval for k = 0…10 and the end";
+  o.interval.reset();
+  o.every = 5;
+  EXPECT_EQ(o.frame_count(12, 1.0), 4) << "without an interval: by every, as before";
+}
+
 // --- Scheme / contact conflicts --------------------------------------------------------------------
 
 /// The rules of contact_scheme_conflict's doc comment, written out independently: which field is at fault.

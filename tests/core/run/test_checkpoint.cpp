@@ -2,6 +2,9 @@
 // output.checkpoint_every steps, and a run resumed from the last checkpoint after a crash shall compute only
 // the steps after it and end with the series and frames of a run that never crashed, to the Newton tolerance.
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
 #include <unistd.h>
 
 #include <cmath>
@@ -147,6 +150,42 @@ INSTANTIATE_TEST_SUITE_P(LagrangeAndPenaltyFriction, CheckpointResume,
                                            std::pair<std::string, std::string>{"penalty", "energy_momentum"},
                                            std::pair<std::string, std::string>{"lagrange", "hht"}),
                          [](const auto& info) { return info.param.first + "_" + info.param.second; });
+
+// With steps chosen by a tolerance (issue 22 §4) the step controller's state is part of the checkpoint: a
+// run resumed from one takes the same steps (times, step_size, rejected_steps) and ends bit for bit as the
+// run that never crashed.
+TEST(Checkpoint, AResumedRunWithAToleranceTakesTheSameStepsBitForBit) {
+  nlohmann::json scene = ball_on_plate("lagrange", 3);
+  scene["time"]["tolerance"] = 1e-3;
+  scene["time"]["end"] = 0.12;
+  const model::Model m = scene::load(scene);
+  TempDir uncrashed_dir;
+  CrashingObserver uncrashed;
+  const model::Summary reference = simulate(m, uncrashed, nullptr, {uncrashed_dir.path, false});
+  ASSERT_TRUE(reference.completed);
+  const std::vector<double> h = uncrashed.series("step_size"), rejected = uncrashed.series("rejected_steps");
+  ASSERT_GT(*std::max_element(h.begin() + 1, h.end()), 1.5 * *std::min_element(h.begin() + 1, h.end()))
+      << "the steps do not vary: no test";
+  std::printf("ball on plate, TOL 1e-3: %d steps, h %.2e…%.2e, %.0f rejected\n", reference.steps,
+              *std::min_element(h.begin() + 1, h.end()), *std::max_element(h.begin() + 1, h.end()),
+              std::accumulate(rejected.begin(), rejected.end(), 0.0));
+  ASSERT_GT(std::accumulate(rejected.begin(), rejected.end(), 0.0), 0) << "no step rejected: no test";
+  for (int crash_at : {reference.steps / 3, 2 * reference.steps / 3 + 1}) {
+    SCOPED_TRACE("crash at step " + std::to_string(crash_at));
+    TempDir dir;
+    CrashingObserver first(crash_at);
+    EXPECT_THROW(simulate(m, first, nullptr, {dir.path, true}), Crash);
+    ASSERT_TRUE(run::CheckpointStore(dir.path).exists());
+    ASSERT_TRUE(run::CheckpointStore(dir.path).read().controller.has_value());
+    CrashingObserver resumed;
+    const model::Summary summary = simulate(m, resumed, nullptr, {dir.path, true});
+    EXPECT_TRUE(summary.completed);
+    EXPECT_GT(summary.resumed_from_step, 0);
+    EXPECT_EQ(summary.steps, reference.steps);
+    EXPECT_EQ(summary.newton_iterations, reference.newton_iterations);
+    expect_same_run(uncrashed, resumed, 0.0);  // step_size and rejected_steps included
+  }
+}
 
 TEST(Checkpoint, ACheckpointOfAnotherSceneIsRefusedWithTheReason) {
   TempDir dir;

@@ -43,8 +43,8 @@ TEST(SeriesTable, AContactFreeSceneGetsTheEnergiesMomentaAndSolverSeriesInOrder)
   EXPECT_EQ(names(rows.layout()),
             (std::vector<std::string>{"kinetic_energy", "strain_energy", "total_energy", "linear_momentum",
                                       "angular_momentum", "newton_iterations", "residual_norm",
-                                      "step_seconds", "substeps"}));
-  EXPECT_EQ(rows.layout().row_size(), 13);
+                                      "step_seconds", "substeps", "step_size", "rejected_steps"}));
+  EXPECT_EQ(rows.layout().row_size(), 15);
 }
 
 TEST(SeriesTable, GravityFrictionAndASmoothMasterAddTheirSeriesWhereTheDocsListThem) {
@@ -54,7 +54,7 @@ TEST(SeriesTable, GravityFrictionAndASmoothMasterAddTheirSeriesWhereTheDocsListT
                 "kinetic_energy", "strain_energy", "potential_energy", "total_energy", "dissipated_energy",
                 "linear_momentum", "angular_momentum", "active_contacts", "max_penetration",
                 "contact_energy_jump", "face_switches", "unprojected_nodes", "max_faceted_penetration",
-                "slipping_contacts", "newton_iterations", "residual_norm", "step_seconds", "substeps"}));
+                "slipping_contacts", "newton_iterations", "residual_norm", "step_seconds", "substeps", "step_size", "rejected_steps"}));
   EXPECT_TRUE(rows.layout().series.at(7).integer) << "active_contacts is a count (int32)";
   EXPECT_FALSE(rows.layout().series.at(8).integer) << "max_penetration is a length";
 }
@@ -70,7 +70,7 @@ TEST(SeriesTable, ARowIsFilledFromTheStepsMeasuresAtTheLayoutsOffsets) {
   c.active = 7, c.switches = 2, c.unprojected = 1, c.max_penetration = 1e-3, c.energy_jump = -2e-4;
   time::ReducedStep newton;
   newton.iterations = 9, newton.substeps = 2, newton.residuals = {1, 1e-11};
-  const model::StepRow row = rows.row(12, 0.12, {b, c, &newton, 0.5});
+  const model::StepRow row = rows.row(12, 0.12, {b, c, &newton, 0.5, 0.0125, 3});
   const model::SeriesLayout& l = rows.layout();
   const auto at = [&](const char* name, int k = 0) { return row.values.at(l.index_of(name) + k); };
   EXPECT_EQ(row.step, 12);
@@ -87,8 +87,12 @@ TEST(SeriesTable, ARowIsFilledFromTheStepsMeasuresAtTheLayoutsOffsets) {
   EXPECT_EQ(at("residual_norm"), 1e-11);
   EXPECT_EQ(at("step_seconds"), 0.5);
   EXPECT_EQ(at("substeps"), 2);
+  EXPECT_EQ(at("step_size"), 0.0125);
+  EXPECT_EQ(at("rejected_steps"), 3);
   const model::StepRow first = rows.row(0, 0, {b, c, nullptr, 0.0});
   EXPECT_EQ(first.values.at(l.index_of("newton_iterations")), 0);
+  EXPECT_EQ(first.values.at(l.index_of("step_size")), 0) << "row 0 is no step";
+  EXPECT_EQ(first.values.at(l.index_of("rejected_steps")), 0);
   EXPECT_EQ(first.values.at(l.index_of("substeps")), 1) << "row 0 is one (no) step";
 }
 

@@ -458,7 +458,11 @@ void expect_documented(const json& schema, const json& node, const std::string& 
   // by checkpoint_seconds.
   const std::set<std::string> without_default{"center",         "normal_stiffness", "tangential_stiffness",
                                                 "elements",       "master_surface",   "switch_gap",
-                                                "max_wall_seconds", "checkpoint_every"};
+                                                "max_wall_seconds", "checkpoint_every",
+                                                // adaptive steps and frames at times: optional, or a default
+                                                // relative to time.step and time.end (step/1024, end)
+                                                "tolerance",      "min_step",         "max_step",
+                                                "interval"};
   if (node.is_array())
     for (const json& element : node) expect_documented(schema, element, where);
   if (!node.is_object()) return;

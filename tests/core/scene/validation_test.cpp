@@ -2,6 +2,8 @@
 // with its JSON pointer and exact message; several problems are all reported.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "core/scene/scene.hpp"
 
 namespace stoss::scene {
@@ -252,8 +254,58 @@ INSTANTIATE_TEST_SUITE_P(Rules, SceneRule, ::testing::Values(
   Violation{"solver object", {{"/solver", "newton"}}, "/solver", R"(must be an object, got "newton")"},
   Violation{"linear solver name", {{"/solver/linear", "amg"}}, "/solver/linear",
             R"(must be one of auto, direct, iterative, petsc_gamg, got "amg")"},
-  Violation{"output every", {{"/output/every", 0}}, "/output/every", "must be >= 1, got 0"}));
+  Violation{"output every", {{"/output/every", 0}}, "/output/every", "must be >= 1, got 0"},
+  // steps chosen by a tolerance, frames at an interval (issue 22 "Bad input")
+  Violation{"time tolerance > 0", {{"/time/tolerance", 0}}, "/time/tolerance", "must be > 0, got 0"},
+  Violation{"time tolerance negative", {{"/time/tolerance", -1e-3}}, "/time/tolerance", "must be > 0, got -0.001"},
+  Violation{"time tolerance finite", {{"/time/tolerance", std::numeric_limits<double>::infinity()}}, "/time/tolerance",
+            "must be a number, got null"},
+  Violation{"min_step without tolerance", {{"/time/min_step", 1e-4}}, "/time/min_step",
+            "is allowed only with time.tolerance (steps chosen by a tolerance)"},
+  Violation{"max_step without tolerance", {{"/time/max_step", 0.1}}, "/time/max_step",
+            "is allowed only with time.tolerance (steps chosen by a tolerance)"},
+  Violation{"min_step <= max_step", {{"/time/tolerance", 1e-3}, {"/time/min_step", 0.02}, {"/time/max_step", 0.01}},
+            "/time/min_step", "must be <= max_step (0.01), got 0.02"},
+  Violation{"min_step < end", {{"/time/tolerance", 1e-3}, {"/time/min_step", 1.0}, {"/time/max_step", 2.0}},
+            "/time/min_step", "must be < end (1.0), got 1.0"},
+  Violation{"step >= min_step", {{"/time/tolerance", 1e-3}, {"/time/min_step", 0.02}}, "/time/step",
+            "must be in [min_step, max_step] = [0.02, 1.0] (the first step), got 0.01"},
+  Violation{"step <= max_step", {{"/time/tolerance", 1e-3}, {"/time/max_step", 0.005}}, "/time/step",
+            "must be in [min_step, max_step] = [9.765625e-06, 0.005] (the first step), got 0.01"},
+  Violation{"min_step > 0", {{"/time/tolerance", 1e-3}, {"/time/min_step", 0}}, "/time/min_step", "must be > 0, got 0"},
+  Violation{"output interval > 0", {{"/output/every", nullptr, true}, {"/output/interval", 0}}, "/output/interval",
+            "must be > 0, got 0"},
+  Violation{"output interval finite", {{"/output/every", nullptr, true}, {"/output/interval", -0.5}}, "/output/interval",
+            "must be > 0, got -0.5"},
+  Violation{"every with interval", {{"/output/interval", 0.1}}, "/output/interval",
+            "cannot be given together with output.every: frames come at times (interval) or every so many steps "
+            "(every), not both"}));
 // clang-format on
+
+// With a tolerance, min_step and max_step get their defaults step/1024 and end in the resolved scene and the
+// model; the dry run counts end/min_step steps and, with an interval, end/interval + 1 frames (the server's
+// limits use these counts).
+TEST(SceneValidation, ATolerancesStepBoundsAndAnIntervalsFramesAreResolved) {
+  json scene = full_scene();
+  apply(scene, {"/time/tolerance", 1e-3});
+  apply(scene, {"/output/every", nullptr, true});
+  apply(scene, {"/output/interval", 0.25});
+  const model::Model m = load(scene);
+  ASSERT_TRUE(m.time.tolerance.has_value());
+  EXPECT_EQ(*m.time.tolerance, 1e-3);
+  EXPECT_EQ(m.time.min_step, 0.01 / 1024);
+  EXPECT_EQ(m.time.max_step, 1.0);
+  EXPECT_EQ(m.scene["time"]["min_step"].get<double>(), 0.01 / 1024);
+  ASSERT_TRUE(m.output.interval.has_value());
+  EXPECT_EQ(*m.output.interval, 0.25);
+  const Summary s = summarize(m);
+  EXPECT_EQ(s.steps, 102404) << "end/min_step, and a landing step per frame";
+  EXPECT_EQ(s.frames, 5);
+  // Without a tolerance the scene gets neither bound.
+  const model::Model fixed = load(full_scene());
+  EXPECT_FALSE(fixed.time.adaptive());
+  EXPECT_FALSE(fixed.scene["time"].contains("min_step"));
+}
 
 TEST(SceneValidation, ReportsEveryProblemAtOnce) {
   // The validator shall report all problems of a scene, not only the first, in one SceneError whose

@@ -50,6 +50,38 @@ TEST(Study, ErrorsFallAtSecondOrderAndCostsAreRecorded) {
   EXPECT_GT(r.rows[3].energy_error, 1e3 * r.rows[0].energy_error) << "midpoint does not";
 }
 
+// Tolerances beside steps (issue 22 §2): each scheme once per time.tolerance, first step the scene's; a
+// tighter tolerance takes more steps for a smaller error, each within 10 × its tolerance; the tables carry
+// the tolerance (JSON, CSV column, Markdown "TOL").
+TEST(Study, TolerancesAreSweptBesideStepsAndTheirRowsSayWhichTheyAre) {
+  Options o;
+  o.schemes = {model::Scheme::energy_momentum};
+  o.steps = {0.02};
+  o.tolerances = {1e-3, 1e-4};
+  o.reference_step = 0.02 / 64;
+  o.repeat = 1;
+  model::Model m = spinning_bar();
+  m.time.step = 0.005;  // the first step: midpoint-type schemes accept it without an estimate (§2.7)
+  const Result r = run(m, o);
+  ASSERT_EQ(r.rows.size(), 3u);
+  EXPECT_EQ(r.rows[0].tolerance, 0);
+  const Row &loose = r.rows[1], &tight = r.rows[2];
+  ASSERT_TRUE(loose.completed && tight.completed) << loose.failure << tight.failure;
+  EXPECT_EQ(loose.tolerance, 1e-3);
+  EXPECT_EQ(loose.step, 0.005) << "the first step is the scene's time.step";
+  EXPECT_GT(tight.steps, loose.steps);
+  EXPECT_LT(tight.displacement_error, loose.displacement_error);
+  EXPECT_LE(loose.displacement_error, 10 * 1e-3);
+  EXPECT_LE(tight.displacement_error, 10 * 1e-4);
+  EXPECT_LT(tight.energy_error, 1e-9) << "energy–momentum with varying steps";
+  EXPECT_EQ(result_from_json(to_json(r)).rows[2].tolerance, 1e-4);
+  const std::string csv = to_csv(r);
+  EXPECT_NE(csv.find("newton_per_step,tolerance\n"), std::string::npos) << csv;
+  EXPECT_NE(to_markdown(r).find("| energy_momentum | TOL 0.0001 ("), std::string::npos) << to_markdown(r);
+  std::printf("spinning bar: TOL 1e-3 %d steps error %.2e; TOL 1e-4 %d steps error %.2e\n", loose.steps,
+              loose.displacement_error, tight.steps, tight.displacement_error);
+}
+
 TEST(Study, EachPointRunsRepeatTimesAndShowsTheMedianWallTime) {
   Options o;
   o.schemes = {model::Scheme::energy_momentum, model::Scheme::midpoint};
