@@ -1,5 +1,5 @@
 #pragma once
-/// @file Mortar integrals of one slave face against one master face (docs/theory.md §4.7, (4.76)–(4.79)):
+/// @file Mortar integrals of one slave face against one master face (docs/theory.md §4.7, (4.77)–(4.80)):
 /// D (slave × slave), M (slave × master) and the weighted gaps g̃_j, with standard or dual multipliers.
 
 #include <Eigen/Core>
@@ -42,7 +42,7 @@ Eigen::Matrix<T, 4, 4> dual_coefficients(const Polygon<T>& slave) {
   return De * Me.inverse();  // (4.77)
 }
 
-/// The integrals over the clip polygon of the slave face s and the master face m (4.76)–(4.79). Zero
+/// The integrals over the clip polygon of the slave face s and the master face m (4.77)–(4.80). Zero
 /// when the faces do not face each other (n_s · n_m ≥ 0) or do not overlap in the slave's plane.
 /// The gap is g = (x_m − x_s)·n_s = (x_s − x_m)·n with n = −n_s from the master to the slave (§0).
 template <class T>
@@ -57,6 +57,10 @@ FacePairIntegrals<T> face_pair_integrals(const QuadNodes<T>& s, const QuadNodes<
   double size = 0;
   for (int k = 0; k < 4; ++k) size = std::max(size, distance_value<T>(ps[k], ps[(k + 1) % 4]));
   const double tol = 1e-14 * size;  // (4.70)
+  for (int k = 0; k < 4; ++k)       // (4.70) needs a convex clip polygon
+    if (value_of(cross2<T>(ps[(k + 1) % 4] - ps[k], ps[(k + 2) % 4] - ps[(k + 1) % 4])) < -tol * tol)
+      throw std::domain_error(
+          "mortar: the slave face's projection onto its plane is not convex (docs/theory.md §4.7)");
   const Polygon<T> clip = clip_convex(pm_ccw, ps, tol);
   const Eigen::Matrix<T, 4, 4> a = kind == Multipliers::dual
                                        ? dual_coefficients(ps)

@@ -1,6 +1,6 @@
 #pragma once
 /// @file One slave face against one master face in the slave's mortar plane (docs/theory.md §4.7,
-/// (4.73)–(4.76)): the plane, the projected quads, their clip polygon, the triangle rule and the inverse
+/// (4.73)–(4.75)): the plane, the projected quads, their clip polygon, the triangle rule and the inverse
 /// bilinear map of a plane point onto each quad.
 
 #include <Eigen/Core>

@@ -199,5 +199,19 @@ TEST_P(MortarIntegrals, GapJacobianJumpsByTheQuadratureErrorWhereAVertexCrossesA
   expect_smooth_crossing(m, GetParam(), 1e-6);
 }
 
+// Sutherland–Hodgman (4.70) needs a convex clip polygon: a slave face folded into an arrow is refused by
+// name.
+TEST(MortarIntegralsInput, NonConvexSlaveProjectionIsAnError) {
+  SegmentNodes s;
+  s << 0, 0, 0.1, 0, 1, 0.1, 0.3, 0.3, 0.1, 1, 0, 0.1;  // node 3 pulled inside: a reflex corner
+  const SegmentNodes m = rectangle(0, 0, 1, 1, 0, false);
+  try {
+    face_pair_integrals(s, m, Multipliers::standard);
+    FAIL() << "no error";
+  } catch (const std::domain_error& e) {
+    EXPECT_NE(std::string(e.what()).find("not convex"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace stoss::contact::mortar
