@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/LU>
+#include <algorithm>
 #include <unsupported/Eigen/AutoDiff>
 
 #include "core/contact/mortar/segmentation.hpp"
