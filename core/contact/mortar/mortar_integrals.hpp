@@ -1,0 +1,100 @@
+#pragma once
+/// @file Mortar integrals of one slave face against one master face (docs/theory.md §4.7, (4.77)–(4.80)):
+/// D (slave × slave), M (slave × master) and the weighted gaps g̃_j, with standard or dual multipliers.
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <algorithm>
+#include <unsupported/Eigen/AutoDiff>
+
+#include "core/contact/mortar/segmentation.hpp"
+#include "core/contact/types.hpp"
+
+namespace stoss::contact::mortar {
+
+/// Φ_j = N_j (standard) or Φ_j = Σ_k a_jk N_k with ∫Φ_j N_k = δ_jk ∫N_j on the slave face (dual, (4.77)).
+enum class Multipliers { standard, dual };
+
+template <class T>
+struct FacePairIntegrals {
+  Eigen::Matrix<T, 4, 4> D = Eigen::Matrix<T, 4, 4>::Zero();    ///< D_jk = ∫ Φ_j N_k (4.78)
+  Eigen::Matrix<T, 4, 4> M = Eigen::Matrix<T, 4, 4>::Zero();    ///< M_jl = ∫ Φ_j N^m_l (4.78)
+  Eigen::Matrix<T, 4, 1> gap = Eigen::Matrix<T, 4, 1>::Zero();  ///< g̃_j (4.79)
+  T area = T(0.0);                                              ///< the clip polygon's area
+  int triangles = 0;
+};
+
+/// Dual coefficients a = D_e M_e^{-1} (4.77) over the whole slave face in the plane's measure; 2 × 2
+/// Gauss points are exact (N_j N_k det ∂p/∂ξ has degree 3 in each ξ^α).
+template <class T>
+Eigen::Matrix<T, 4, 4> dual_coefficients(const Polygon<T>& slave) {
+  Eigen::Matrix<T, 4, 4> Me = Eigen::Matrix<T, 4, 4>::Zero(), De = Me;
+  const double g = 1 / std::sqrt(3.0);
+  for (double u : {-g, g})
+    for (double v : {-g, g}) {
+      const Point2<T> xi{T(u), T(v)};
+      const Eigen::Matrix<T, 4, 1> N = shape(xi);
+      const Point2<T> j1 = ((slave[1] - slave[0]) * T(1 - v) + (slave[2] - slave[3]) * T(1 + v)) * T(0.25);
+      const Point2<T> j2 = ((slave[3] - slave[0]) * T(1 - u) + (slave[2] - slave[1]) * T(1 + u)) * T(0.25);
+      const T J = cross2<T>(j1, j2);
+      Me += N * N.transpose() * J;
+      for (int k = 0; k < 4; ++k) De(k, k) += N[k] * J;
+    }
+  return De * Me.inverse();  // (4.77)
+}
+
+/// The integrals over the clip polygon of the slave face s and the master face m (4.77)–(4.80). Zero
+/// when the faces do not face each other (n_s · n_m ≥ 0) or do not overlap in the slave's plane.
+/// The gap is g = (x_m − x_s)·n_s = (x_s − x_m)·n with n = −n_s from the master to the slave (§0).
+template <class T>
+FacePairIntegrals<T> face_pair_integrals(const QuadNodes<T>& s, const QuadNodes<T>& m, Multipliers kind) {
+  FacePairIntegrals<T> out;
+  const MortarPlane<T> plane = mortar_plane(s);
+  const Vec3<T> master_normal = (m[2] - m[0]).cross(m[3] - m[1]);
+  if (!(value_of(T(master_normal.dot(plane.n))) < 0)) return out;
+  const Polygon<T> ps = projected(plane, s), pm = projected(plane, m);
+  Polygon<T> pm_ccw = pm;
+  if (value_of(signed_area(pm)) < 0) std::reverse(pm_ccw.begin(), pm_ccw.end());
+  double size = 0;
+  for (int k = 0; k < 4; ++k) size = std::max(size, distance_value<T>(ps[k], ps[(k + 1) % 4]));
+  const double tol = 1e-14 * size;  // (4.70)
+  for (int k = 0; k < 4; ++k)       // (4.70) needs a convex clip polygon
+    if (value_of(cross2<T>(ps[(k + 1) % 4] - ps[k], ps[(k + 2) % 4] - ps[(k + 1) % 4])) < -tol * tol)
+      throw std::domain_error(
+          "mortar: the slave face's projection onto its plane is not convex (docs/theory.md §4.7)");
+  const Polygon<T> clip = clip_convex(pm_ccw, ps, tol);
+  const Eigen::Matrix<T, 4, 4> a = kind == Multipliers::dual
+                                       ? dual_coefficients(ps)
+                                       : Eigen::Matrix<T, 4, 4>(Eigen::Matrix<T, 4, 4>::Identity());
+  for (const Triangle<T>& t : fan_triangles(clip, tol * tol)) {
+    const T area = T(0.5) * cross2<T>(t.b - t.a, t.c - t.a);
+    out.area += area;
+    ++out.triangles;
+    for (const TrianglePoint& q : triangle_rule()) {
+      const Point2<T> p = t.a * T(q.l1) + t.b * T(q.l2) + t.c * T(q.l3);
+      const Eigen::Matrix<T, 4, 1> Ns = shape(inverse_bilinear(ps, p)), Nm = shape(inverse_bilinear(pm, p));
+      const Eigen::Matrix<T, 4, 1> Phi = a * Ns;
+      Vec3<T> xs = Vec3<T>::Zero(), xm = Vec3<T>::Zero();
+      for (int K = 0; K < 4; ++K) xs += s[K] * Ns[K], xm += m[K] * Nm[K];
+      const T w = area * T(q.weight);
+      out.D += Phi * Ns.transpose() * w;                 // (4.78)
+      out.M += Phi * Nm.transpose() * w;                 // (4.78)
+      out.gap += Phi * (T((xm - xs).dot(plane.n)) * w);  // (4.79)
+    }
+  }
+  return out;
+}
+
+/// The face nodes as QuadNodes (rows of SegmentNodes).
+QuadNodes<double> quad_nodes(const SegmentNodes& rows);
+
+/// Double-valued integrals of a slave face (rows: nodes) against a master face.
+FacePairIntegrals<double> face_pair_integrals(const SegmentNodes& slave, const SegmentNodes& master,
+                                              Multipliers kind);
+
+/// ∂g̃_j/∂x (4.80), 4 × 24, columns: slave nodes 1–4 then master nodes 1–4, 3 per node; forward-mode
+/// dual numbers through the clipping, the fan, the inverse maps and the dual coefficients.
+Eigen::Matrix<double, 4, 24> weighted_gap_jacobian(const SegmentNodes& slave, const SegmentNodes& master,
+                                                   Multipliers kind);
+
+}  // namespace stoss::contact::mortar
