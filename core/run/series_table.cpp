@@ -25,6 +25,8 @@ const SeriesColumn table[] = {
      [](S s, int, double* v) { v[0] = s.balance.total(); }},
     {"dissipated_energy", Shape::scalar, false, Presence::friction,  // §5.2 item 7
      [](S s, int, double* v) { v[0] = s.balance.dissipated; }},
+    {"external_work", Shape::scalar, false, Presence::loads,  // (5b.5): the loads' work since t_0
+     [](S s, int, double* v) { v[0] = s.balance.external_work; }},
     {"linear_momentum", Shape::vector, false, Presence::always,
      [](S s, int, double* v) { put3(s.balance.linear, v); }},
     {"angular_momentum", Shape::vector, false, Presence::always,
@@ -95,6 +97,8 @@ bool is_present(Presence presence, const model::Model& m) {
       return m.has_effect(model::effect::contact_frictional);
     case Presence::smooth_master:
       return any_smooth_master(m);
+    case Presence::loads:
+      return !m.loads.empty();
   }
   return false;
 }
