@@ -115,6 +115,8 @@ std::string presence_text(Presence presence) {
       return "a frictional pair";
     case Presence::smooth_master:
       return "a pair with a smooth master surface";
+    case Presence::loads:
+      return "loads";
   }
   return "";
 }
