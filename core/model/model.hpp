@@ -45,6 +45,17 @@ struct Boundary {
   std::array<bool, 3> fix{true, true, true};
 };
 
+/// An external load on a surface (scene `loads[i]`, docs/scene.md; docs/theory.md §5b): a follower
+/// pressure or a dead traction per unit reference area, scaled by a piecewise-linear amplitude (5b.1).
+struct Load {
+  enum class Kind { pressure, traction };
+  std::string surface;                           ///< "body/surface"
+  Kind kind = Kind::pressure;
+  double pressure = 0;                           ///< positive pushes into the body
+  Eigen::Vector3d traction = Eigen::Vector3d::Zero();
+  std::vector<std::array<double, 2>> amplitude;  ///< [[t, factor], …]; empty: the factor is 1
+};
+
 enum class Enforcement { lagrange, penalty };
 /// Energy treatment of Lagrange contact at impacts (docs/theory.md §4.5). `located` (experimental, §4.6):
 /// each slave node's activation and release end a sub-step at their located time, with a massless slave
@@ -159,6 +170,8 @@ inline constexpr const char* gravity = "gravity";
 inline constexpr const char* dirichlet = "dirichlet";
 inline constexpr const char* contact_frictionless = "contact_frictionless";
 inline constexpr const char* contact_frictional = "contact_frictional";
+inline constexpr const char* pressure = "pressure";
+inline constexpr const char* traction = "traction";
 }  // namespace effect
 
 struct Model {
@@ -167,6 +180,7 @@ struct Model {
   mesh::Mesh mesh;
   std::vector<BodySpec> bodies;        ///< same order as mesh.bodies
   std::vector<Boundary> boundary;
+  std::vector<Load> loads;
   std::optional<Eigen::Vector3d> gravity;
   std::vector<ContactPair> contact;
   TimeSpec time;

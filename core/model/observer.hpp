@@ -42,7 +42,10 @@ struct Summary {
   int resumed_from_step = 0;  ///< the checkpoint's step when the run went on from one (0: from the start)
   double end_time = 0;
   double initial_energy = 0;
-  double energy_drift = 0;            ///< max over steps |H_n − H_0| / |H_0|
+  /// max over steps |H_n − W_n − H_0| / |H_0|, W_n the loads' external work; with loads the scale is
+  /// max_{k≤n} |H_k|, meaningful for a loaded body that starts at rest (H_0 = 0).
+  double energy_drift = 0;
+  double external_work = 0;           ///< W at the end: the loads' work since t_0 (series/external_work)
   double linear_momentum_drift = 0;   ///< max |L_n − L_0| / max(|L_0|, m·v scale)
   double angular_momentum_drift = 0;  ///< max |J_n − J_0| / max(|J_0|, ...)
   double max_penetration = 0;  ///< only meaningful with contact: series max_penetration, max over steps
@@ -69,7 +72,7 @@ struct Summary {
   double krylov_iterations_per_solve = 0;
   int krylov_fallbacks = 0;
   /// What the checks of the run measure (run/checks.hpp, docs/results.md "Verdict"): with E_n = H_n + D_n
-  /// − Σ contact_energy_jump, the largest |E_n − E_0| and E_n − E_0, the largest |H_n|, Σ jumps so far,
+  /// − W_n − Σ contact_energy_jump, the largest |E_n − E_0| and E_n − E_0, the largest |H_n|, Σ jumps so far,
   /// and the steps that needed a step reduction.
   double energy_balance_error = 0, energy_balance_rise = 0, max_abs_energy = 0, contact_energy_jumps = 0;
   int reduced_steps = 0;

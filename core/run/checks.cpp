@@ -47,7 +47,7 @@ model::Check energy_check(const model::Model& m, const model::Summary& s) {
 }  // namespace
 
 bool is_free(const model::Model& m) {
-  return m.boundary.empty() && !(m.gravity && m.gravity->norm() > 0);
+  return m.boundary.empty() && m.loads.empty() && !(m.gravity && m.gravity->norm() > 0);
 }
 
 std::vector<model::Check> run_checks(const model::Model& m, const model::Summary& s) {

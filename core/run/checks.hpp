@@ -10,7 +10,7 @@
 
 namespace stoss::run {
 
-/// Whether the model's momenta are conserved: no boundary condition and no gravity, so no body is held
+/// Whether the model's momenta are conserved: no boundary condition, no load and no gravity, so no body is held
 /// and no external force acts (contact between free bodies is internal).
 bool is_free(const model::Model& m);
 

@@ -14,6 +14,7 @@ namespace stoss::run {
 /// `dissipated` the Coulomb work D so far (§5.2 item 7).
 struct Balance {
   double kinetic = 0, strain = 0, potential = 0, contact = 0, dissipated = 0;
+  double external_work = 0;  ///< W: the loads' work since t_0 (docs/theory.md (5b.5)); not part of H
   Eigen::Vector3d linear = Eigen::Vector3d::Zero(), angular = Eigen::Vector3d::Zero();
   double momentum_scale = 0, angular_scale = 0;  ///< Σ|p_I|, Σ|x_I||p_I|: scales for relative drifts
   double total() const { return kinetic + strain + potential + contact; }  // H of (5.4)

@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 
+#include "core/loads/pressure_load.hpp"
+#include "core/loads/traction_load.hpp"
 #include "core/run/timing.hpp"
 
 namespace stoss::run {
@@ -16,6 +18,15 @@ double bounding_box_diagonal(const mesh::Mesh& mesh) {
     hi = hi.cwiseMax(p);
   }
   return std::max((hi - lo).norm(), 1e-300);
+}
+
+/// The scene's loads as terms (docs/theory.md §5b.2): a follower pressure or a dead traction on the faces.
+std::unique_ptr<loads::SurfaceLoad> make_load(const model::Model& m, const model::Load& l) {
+  const std::vector<mesh::Quad>& faces = m.mesh.surface(l.surface);
+  loads::Amplitude amplitude(l.amplitude);
+  if (l.kind == model::Load::Kind::pressure)
+    return std::make_unique<loads::PressureLoad>(faces, l.pressure, std::move(amplitude));
+  return std::make_unique<loads::TractionLoad>(faces, m.mesh.reference_positions(), l.traction, std::move(amplitude));
 }
 
 std::vector<char> fixed_dofs(const model::Model& m) {
@@ -55,8 +66,15 @@ Eigen::VectorXd initial_velocity(const model::Model& m, const Problem& p, const 
 std::vector<time::Term*> Problem::terms() const {
   std::vector<time::Term*> out{elasticity.get()};
   if (gravity) out.push_back(gravity.get());
+  for (const auto& l : loads) out.push_back(l.get());
   for (const auto& c : contact) out.push_back(c.get());
   return out;
+}
+
+double Problem::external_work() const {
+  double work = 0;
+  for (const auto& l : loads) work += l->work();
+  return work;
 }
 
 Problem build_problem(const model::Model& m) {
@@ -78,6 +96,7 @@ Problem build_problem(const model::Model& m) {
   p.elasticity = std::make_unique<fem::ElasticityTerm>(m.mesh, p.geometry, std::move(material));
   if (m.has_effect(model::effect::gravity))
     p.gravity = std::make_unique<fem::GravityTerm>(p.mass, *m.gravity);
+  for (const model::Load& l : m.loads) p.loads.push_back(make_load(m, l));
   p.fixed = fixed_dofs(m);
   p.total_mass = p.mass.sum() / 3;
   p.length_scale = bounding_box_diagonal(m.mesh);

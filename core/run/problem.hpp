@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/contact/contact.hpp"
+#include "core/loads/surface_load.hpp"
 #include "core/fem/assembly.hpp"
 #include "core/model/model.hpp"
 #include "core/model/observer.hpp"
@@ -21,6 +22,7 @@ struct Problem {
   solve::SparseMatrix velocity_map;  ///< P of docs/theory.md (4.13), empty unless a node is massless
   std::unique_ptr<fem::ElasticityTerm> elasticity;
   std::unique_ptr<fem::GravityTerm> gravity;
+  std::vector<std::unique_ptr<loads::SurfaceLoad>> loads;  ///< one per scene load; none without loads
   std::vector<std::unique_ptr<contact::ContactTerm>> contact;  ///< one per pair; none without contact
   std::vector<char> fixed;
   double total_mass = 0;
@@ -28,10 +30,13 @@ struct Problem {
   double setup_contact_seconds = 0;  ///< building the contact terms
   double setup_seconds = 0;          ///< the rest of build_problem: geometry, mass, elasticity
 
-  /// The terms in the order the integrator gets them: elasticity, gravity if any, then the contact pairs.
+  /// The terms in the order the integrator gets them: elasticity, gravity if any, the loads, then the contact
+  /// pairs.
   std::vector<time::Term*> terms() const;
   /// Index of the first contact term in terms().
-  size_t first_contact_term() const { return gravity ? 2 : 1; }
+  size_t first_contact_term() const { return (gravity ? 2 : 1) + loads.size(); }
+  /// Σ of the loads' work so far in each step's discrete form (docs/theory.md (5b.5)): series/external_work.
+  double external_work() const;
 };
 
 Problem build_problem(const model::Model& m);

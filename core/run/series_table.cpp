@@ -25,6 +25,8 @@ const SeriesColumn table[] = {
      [](S s, int, double* v) { v[0] = s.balance.total(); }},
     {"dissipated_energy", Shape::scalar, false, Presence::friction,  // §5.2 item 7
      [](S s, int, double* v) { v[0] = s.balance.dissipated; }},
+    {"external_work", Shape::scalar, false, Presence::loads,  // (5b.5): the loads' work since t_0
+     [](S s, int, double* v) { v[0] = s.balance.external_work; }},
     {"linear_momentum", Shape::vector, false, Presence::always,
      [](S s, int, double* v) { put3(s.balance.linear, v); }},
     {"angular_momentum", Shape::vector, false, Presence::always,
@@ -99,6 +101,8 @@ bool is_present(Presence presence, const model::Model& m) {
       return m.has_effect(model::effect::contact_frictional);
     case Presence::smooth_master:
       return any_smooth_master(m);
+    case Presence::loads:
+      return !m.loads.empty();
   }
   return false;
 }
@@ -115,6 +119,8 @@ std::string presence_text(Presence presence) {
       return "a frictional pair";
     case Presence::smooth_master:
       return "a pair with a smooth master surface";
+    case Presence::loads:
+      return "loads";
   }
   return "";
 }

@@ -43,6 +43,7 @@ enum class Presence {
   contact,        ///< at least one contact pair
   friction,       ///< a pair with friction > 0
   smooth_master,  ///< a pair with a smooth master surface
+  loads,          ///< at least one entry in the scene's loads
 };
 
 /// One series: a row of the table.

@@ -49,6 +49,19 @@ model::Boundary boundary(const json& e) {
            fix.find('z') != std::string::npos}};
 }
 
+model::Load load(const json& e) {
+  model::Load l;
+  l.surface = e["surface"].get<std::string>();
+  if (e.contains("traction")) {
+    l.kind = model::Load::Kind::traction;
+    l.traction = vector3(e["traction"]);
+  } else {
+    l.pressure = e["pressure"].get<double>();
+  }
+  if (e.contains("amplitude")) l.amplitude = e["amplitude"].get<std::vector<std::array<double, 2>>>();
+  return l;
+}
+
 /// A contact side as one "body/surface" name: the name itself, or for a list the union surface the mesh gets
 /// (mesh::Mesh::add_surface_union), which the contact code then sees like any named surface.
 std::string contact_side(const json& side, mesh::Mesh& mesh) {
@@ -145,6 +158,7 @@ model::Model build_model(const json& scene, const MeshFiles& mesh_files) {
     m.bodies.push_back(body_spec(b));
   }
   for (const json& e : scene["boundary"]) m.boundary.push_back(boundary(e));
+  for (const json& e : scene["loads"]) m.loads.push_back(load(e));
   for (const json& e : scene["contact"]) m.contact.push_back(contact_pair(e, m.mesh));
   const Eigen::Vector3d g = vector3(scene["gravity"]);
   if (g.norm() > 0) m.gravity = g;

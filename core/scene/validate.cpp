@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
 #include "core/fem/material.hpp"
+#include "core/loads/amplitude.hpp"
 #include "core/scene/build.hpp"
 #include "core/scene/file_mesh.hpp"
 
@@ -333,6 +335,36 @@ void check_boundary_condition(json& e, const std::string& p, const SurfaceIndex&
     check_fix(*fix, child(p, "fix"), c);
 }
 
+/// An amplitude [[t0, f0], [t1, f1], …] (docs/theory.md (5b.1)): pairs of finite numbers, times increasing.
+void check_amplitude(const json& a, const std::string& p, loads::AmplitudeUse use, Checker& c) {
+  if (!array(a, p, c)) return;
+  std::vector<loads::Amplitude::Point> points;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const json& point = a[i];
+    if (!point.is_array() || point.size() != 2 || !point[0].is_number() || !point[1].is_number()) {
+      c.fail(child(p, i), "must be a pair [time, factor] of numbers, got " + shown(point));
+      return;
+    }
+    points.push_back({point[0].get<double>(), point[1].get<double>()});
+  }
+  if (const auto broken = loads::amplitude_rule_broken(points, use)) c.fail(p + broken->where, broken->rule);
+}
+
+/// A load (docs/scene.md "loads"): one surface, exactly one of pressure and traction, an optional amplitude.
+void check_load(json& e, const std::string& p, const SurfaceIndex& index, Checker& c) {
+  if (!object_with(e, p, {"surface", "pressure", "traction", "amplitude"}, c)) return;
+  if (const json* surface = member(e, "surface", p, Presence::must(), c))
+    check_surface_ref(*surface, child(p, "surface"), index, c);
+  const bool pressure = e.contains("pressure"), traction = e.contains("traction");
+  if (pressure == traction)
+    c.fail(p, std::string("must give exactly one of \"pressure\" and \"traction\", got ") +
+                  (pressure ? "both" : "neither"));
+  const double largest = std::numeric_limits<double>::max();
+  if (pressure) number_field(e, "pressure", p, Presence::must(), between(-largest, largest, true, true, "finite"), c);
+  if (traction) vector3_field(e, "traction", p, Presence::must(), c);
+  if (e.contains("amplitude")) check_amplitude(e["amplitude"], child(p, "amplitude"), loads::AmplitudeUse::load, c);
+}
+
 template <class CheckEntry>
 void check_entries(json& scene, const char* key, const SurfaceIndex& index, CheckEntry check_entry,
                    Checker& c) {
@@ -439,7 +471,7 @@ void check_format(const json& format, const std::string& p, Checker& c) {
 
 void check_scene(json& scene, Checker& c) {
   const std::initializer_list<std::string_view> fields{"format",   "name", "bodies", "contact", "gravity",
-                                                       "boundary", "time", "solver", "output"};
+                                                       "boundary", "loads", "time", "solver", "output"};
   if (!object_with(scene, "", fields, c)) return;
   if (const json* format = member(scene, "format", "", Presence::must(), c))
     check_format(*format, "/format", c);
@@ -449,6 +481,7 @@ void check_scene(json& scene, Checker& c) {
     index = check_bodies(*bodies, "/bodies", c);
   check_entries(scene, "contact", index, check_contact_pair, c);
   check_entries(scene, "boundary", index, check_boundary_condition, c);
+  check_entries(scene, "loads", index, check_load, c);
   vector3_field(scene, "gravity", "", Presence::or_default(zero3), c);
   if (json* t = member(scene, "time", "", Presence::must(), c)) check_time(*t, "/time", c);
   if (json* s = member(scene, "solver", "", Presence::or_default(json::object()), c))
