@@ -57,9 +57,10 @@ struct Load {
 };
 
 enum class Enforcement { lagrange, penalty };
-/// Energy treatment of Lagrange contact at impacts (docs/theory.md §4.5). `located` (experimental, §4.6):
-/// each slave node's activation and release end a sub-step at their located time, with a massless slave
-/// surface under the midpoint-type schemes; energy exact, its order and cost not yet established.
+/// Energy treatment of Lagrange contact at impacts (docs/theory.md §4.5). `located` (opt-in, §4.6): each
+/// slave node's activation and release end a sub-step at their located time, with both contact surfaces
+/// massless under the midpoint-type schemes; energy exact, second order where h resolves the surface layer
+/// (measured orders: §4.6.4).
 enum class ImpactMode { persist, exact, velocity_correction, located };
 enum class NormalTraction { discrete_derivative, midpoint };
 /// Gap target of an active element that moves to another master face (docs/theory.md §3.4).
