@@ -462,7 +462,9 @@ void expect_documented(const json& schema, const json& node, const std::string& 
                                                 // adaptive steps and frames at times: optional, or a default
                                                 // relative to time.step and time.end (step/1024, end)
                                                 "tolerance",      "min_step",         "max_step",
-                                                "interval"};
+                                                "interval",
+                                                // a load: one of pressure and traction; factor 1 without amplitude
+                                                "pressure",       "traction",         "amplitude"};
   if (node.is_array())
     for (const json& element : node) expect_documented(schema, element, where);
   if (!node.is_object()) return;
