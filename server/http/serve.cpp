@@ -18,7 +18,7 @@
 #include "server/common/stop_signals.hpp"
 #include "server/http/connection_limit.hpp"
 #include "server/http/options.hpp"
-#include "server/http/routes.hpp"
+#include "server/http/request_gate.hpp"
 #include "server/jobs/job_runner.hpp"
 
 namespace stoss::server {

@@ -10,6 +10,7 @@
 #include "server/http/limits.hpp"
 #include "server/http/options.hpp"
 #include "server/http/problem.hpp"
+#include "server/http/request_gate.hpp"
 #include "server/http/routes.hpp"
 #include "server/jobs/id.hpp"
 #include "server/jobs/sha256.hpp"
