@@ -126,9 +126,7 @@ void write_run_file(const fs::path& out_dir, const model::Model& model, const st
   fs::create_directories(path.parent_path());
   const nlohmann::json run = {{"scene", model.scene},
                               {"mesh_directory", fs::absolute(fs::path(scene_path)).parent_path().string()}};
-  const fs::path temporary = path.string() + ".tmp";
-  std::ofstream(temporary, std::ios::binary | std::ios::trunc) << run.dump();
-  output::rename_durably(temporary, path);  // a crash right after the first checkpoint can still resume
+  output::write_durably(path, run.dump());  // a crash right after the first checkpoint can still resume
 }
 
 /// The model of the run that wrote DIR's checkpoint. @throws std::invalid_argument when DIR has none.
@@ -138,7 +136,9 @@ model::Model resumed_model(const fs::path& out_dir) {
     throw std::invalid_argument(out_dir.string() + " holds no checkpoint of stoss run (" + run_file(out_dir).string() +
                                 " is missing)");
   const nlohmann::json run = nlohmann::json::parse(in);
-  return scene::load_resolved(run.at("scene"), {fs::path(run.at("mesh_directory").get<std::string>()), {}});
+  scene::MeshFiles files;
+  files.directory = fs::path(run.at("mesh_directory").get<std::string>());
+  return scene::load_resolved(run.at("scene"), files);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <memory>
 #include <regex>
 
+#include "core/output/durable_file.hpp"
 #include "core/output/result_reader.hpp"
 #include "core/scene/scene.hpp"
 #include "core/scene/warnings.hpp"
@@ -17,10 +18,10 @@
 #include "server/http/request_gate.hpp"
 #include "server/http/scene_check.hpp"
 #include "server/http/study_check.hpp"
-#include "server/jobs/mesh_store.hpp"
-#include "server/jobs/series_recorder.hpp"
-#include "server/jobs/sha256.hpp"
-#include "server/jobs/study_job.hpp"
+#include "server/meshes/mesh_store.hpp"
+#include "server/jobs/reporting/series_recorder.hpp"
+#include "server/common/sha256.hpp"
+#include "server/jobs/running/study_job.hpp"
 #include "server/web/assets.hpp"
 
 namespace stoss::server::http {
@@ -84,7 +85,7 @@ struct TrimAfterUse {
 /// Mesh files for the scene checks: a stored mesh is parsed once and its parsed form shared (MeshStore).
 scene::MeshFiles mesh_files(App& app) {
   scene::MeshFiles files = app.files.mesh_files();
-  files.parsed = [store = &jobs::MeshStore::at(app.files.meshes()),
+  files.parsed = [store = &meshes::MeshStore::at(app.files.meshes()),
                   limits = mesh::upload_limits(app.limits.max_nodes),
                   trim = std::make_shared<TrimAfterUse>()](const std::string& id) {
     trim->used = true;
@@ -127,7 +128,7 @@ void queue_job(App& app, const jobs::NewJob& job, const nlohmann::json& before_r
   const jobs::CreateResult created = app.store.create(job, app.limits.max_queued);
   if (created.outcome == jobs::CreateResult::Outcome::created) try {
       std::filesystem::create_directories(app.files.dir(created.job->id));
-      jobs::write_synced(before_run_file(app, created.job->id), before_run.dump());
+      output::write_durably(before_run_file(app, created.job->id), before_run.dump());
     } catch (const std::exception& e) {  // the job is queued: without the file its JSON has no warnings
       std::cerr << "job " << created.job->id.str() << ": cannot keep its warnings: " << e.what() << "\n";
     }
@@ -154,7 +155,7 @@ void submit_job(App& app, const Request& req, Response& res) {
   jobs::NewJob job;
   job.idempotency_key = idempotency_key(req);
   job.scene = parse_json_body(req, app.limits);
-  job.body_hash = jobs::sha256_hex(job.scene.dump());  // of the scene as posted (idempotency)
+  job.body_hash = sha256_hex(job.scene.dump());  // of the scene as posted (idempotency)
   nlohmann::json resolved;
   const scene::Summary summary = check_scene(job.scene, app.limits, mesh_files(app), &resolved);
   job.scene = std::move(resolved);  // validated and resolved once: the worker runs it as stored
@@ -183,7 +184,7 @@ void submit_study(App& app, const Request& req, Response& res) {
   const nlohmann::json body = parse_json_body(req, app.limits);
   const StudyRequest study = check_study(body, app.limits, mesh_files(app));
   job.kind = jobs::Kind::study;
-  job.body_hash = jobs::sha256_hex("study\n" + body.dump());  // never equal to a scene's hash
+  job.body_hash = sha256_hex("study\n" + body.dump());  // never equal to a scene's hash
   job.scene = study.scene;
   job.study = jobs::study_params_json(study.options);
   job.effects = study.summary.effects;
@@ -430,7 +431,7 @@ void get_log(App& app, const Request& req, Response& res) {
 /// The format of a posted mesh: the `format` parameter, else what the bytes look like.
 std::string mesh_format(const Request& req) {
   if (req.has_param("format")) return format_param(req, {"msh", "inp"});
-  const std::string sniffed = jobs::sniff_mesh_format(req.body);
+  const std::string sniffed = meshes::sniff_mesh_format(req.body);
   if (sniffed.empty())
     fail(400, "bad-parameter", "Bad parameter",
          "cannot tell the mesh format from the body (a Gmsh file starts with $MeshFormat, an Abaqus/CalculiX "
@@ -461,14 +462,14 @@ void post_mesh(App& app, const Request& req, Response& res) {
   if (req.body.size() > app.limits.max_body_bytes) throw ProblemError(body_too_large(app.limits.max_body_bytes, req.body.size()));
   const std::string format = mesh_format(req);
   if (req.body.empty()) fail(400, "empty-body", "Empty body", "the body is empty; send the bytes of a .msh or .inp file");
-  jobs::StoredMesh stored;
+  meshes::StoredMesh stored;
   try {
-    stored = jobs::MeshStore::at(app.files.meshes())
+    stored = meshes::MeshStore::at(app.files.meshes())
                  .store(req.body, format, mesh::upload_limits(app.limits.max_nodes),
                         app.limits.max_mesh_store_bytes);
   } catch (const mesh::MeshFileError& e) {
     invalid_mesh(e, format);
-  } catch (const jobs::MeshStoreFull& e) {
+  } catch (const meshes::MeshStoreFull& e) {
     throw ProblemError(Problem{413,
                                "urn:stoss:problem:mesh-store-full",
                                "Mesh store full",
@@ -490,7 +491,7 @@ void post_mesh(App& app, const Request& req, Response& res) {
 /// The stored file of the mesh id in the path's first capture; 404 when there is none.
 std::filesystem::path find_mesh(App& app, const Request& req) {
   const std::string id = req.matches[1].str();
-  const auto path = jobs::MeshStore::at(app.files.meshes()).path_of(id);
+  const auto path = meshes::MeshStore::at(app.files.meshes()).path_of(id);
   if (!path)
     fail(404, "unknown-mesh", "Unknown mesh",
          "no mesh " + id.substr(0, 64) + " (mesh ids are 64 lowercase hex digits, as POST /v1/meshes answers)");
@@ -520,7 +521,7 @@ void delete_mesh(App& app, const Request& req, Response& res) {
                                    "; delete it once they ended (or cancel them)",
                                {{"jobs", ids}}});
   }
-  if (!jobs::MeshStore::at(app.files.meshes()).remove(id))
+  if (!meshes::MeshStore::at(app.files.meshes()).remove(id))
     fail(404, "unknown-mesh", "Unknown mesh", "no mesh " + id);
   res.status = 204;
 }

@@ -15,7 +15,7 @@
 
 #include "core/model/model.hpp"
 #include "server/http/limits.hpp"
-#include "server/http/options.hpp"
+#include "server/cli/serve.hpp"
 #include "tests/server/live_server.hpp"
 
 namespace stoss::test {
@@ -353,15 +353,15 @@ TEST(ChunkedFlood, WithATokenFileAnUnauthorizedChunkedUploadIs401UnreadAndOtherB
 // --- slow uploads and /healthz ------------------------------------------------------------------------
 
 TEST(RequestTimeout, TheFlagHasADefaultARangeAndItsHelp) {
-  EXPECT_EQ(server::http::parse_serve_options({}).limits.request_timeout, 60s);
-  EXPECT_EQ(server::http::parse_serve_options({"--request-timeout", "2.5"}).limits.request_timeout, 2500ms);
+  EXPECT_EQ(cli::parse_serve_options({}).limits.request_timeout, 60s);
+  EXPECT_EQ(cli::parse_serve_options({"--request-timeout", "2.5"}).limits.request_timeout, 2500ms);
   try {
-    server::http::parse_serve_options({"--request-timeout", "0"});
+    cli::parse_serve_options({"--request-timeout", "0"});
     ADD_FAILURE() << "0 must be refused";
-  } catch (const server::http::UsageError& e) {
+  } catch (const cli::UsageError& e) {
     EXPECT_EQ(std::string(e.what()), "--request-timeout needs seconds in [0.01, 86400], got '0'");
   }
-  EXPECT_NE(server::http::serve_usage().find("--request-timeout S"), std::string::npos);
+  EXPECT_NE(cli::serve_usage().find("--request-timeout S"), std::string::npos);
 }
 
 /// With --request-timeout 1 (and a read timeout of 5 s, far above the 0.1 s between bytes), an upload

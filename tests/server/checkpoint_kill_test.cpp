@@ -17,8 +17,8 @@
 
 #include "core/output/result_reader.hpp"
 #include "core/scene/scene.hpp"
-#include "server/jobs/inprocess_executor.hpp"
-#include "server/jobs/process_executor.hpp"
+#include "server/jobs/running/inprocess_executor.hpp"
+#include "server/jobs/running/process_executor.hpp"
 #include "tests/core/short_ball_on_plate.hpp"
 #include "tests/server/live_server.hpp"
 #include "tests/server/pg_cluster.hpp"

@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "server/http/connection_limit.hpp"
-#include "server/http/options.hpp"
+#include "server/cli/serve.hpp"
 #include "tests/server/live_server.hpp"
 
 namespace stoss::test {
@@ -54,12 +54,12 @@ TEST(ConnectionLimit, CountsEachConnectionOnceAndFreesItsPlaceWhenItCloses) {
 }
 
 TEST(ConnectionLimit, TheFlagHasADefaultAndARange) {
-  EXPECT_EQ(server::http::parse_serve_options({}).max_connections_per_client, 64);
-  EXPECT_EQ(server::http::parse_serve_options({"--max-connections-per-client", "3"}).max_connections_per_client, 3);
+  EXPECT_EQ(cli::parse_serve_options({}).max_connections_per_client, 64);
+  EXPECT_EQ(cli::parse_serve_options({"--max-connections-per-client", "3"}).max_connections_per_client, 3);
   try {
-    server::http::parse_serve_options({"--max-connections-per-client", "0"});
+    cli::parse_serve_options({"--max-connections-per-client", "0"});
     ADD_FAILURE() << "0 must be refused";
-  } catch (const server::http::UsageError& e) {
+  } catch (const cli::UsageError& e) {
     EXPECT_EQ(std::string(e.what()), "--max-connections-per-client needs an integer in [1, 1000000], got '0'");
   }
 }

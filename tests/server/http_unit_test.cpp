@@ -8,12 +8,12 @@
 
 #include "server/http/auth.hpp"
 #include "server/http/limits.hpp"
-#include "server/http/options.hpp"
+#include "server/cli/serve.hpp"
 #include "server/http/problem.hpp"
 #include "server/http/request_gate.hpp"
 #include "server/http/routes.hpp"
 #include "server/jobs/id.hpp"
-#include "server/jobs/sha256.hpp"
+#include "server/common/sha256.hpp"
 #include "tests/server/live_server.hpp"
 
 namespace stoss::server {
@@ -39,14 +39,14 @@ TEST(JobId, RejectsAnythingElseBeforeAnyLookup) {
 }
 
 TEST(Sha256, MatchesFipsTestVectors) {
-  EXPECT_EQ(jobs::sha256_hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
-  EXPECT_EQ(jobs::sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
-  EXPECT_EQ(jobs::sha256_hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
+  EXPECT_EQ(server::sha256_hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  EXPECT_EQ(server::sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  EXPECT_EQ(server::sha256_hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
             "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
 }
 
 TEST(ServeOptions, HasDocumentedDefaults) {
-  const http::ServeOptions o = http::parse_serve_options({});
+  const cli::ServeOptions o = cli::parse_serve_options({});
   EXPECT_EQ(o.host, "127.0.0.1");
   EXPECT_EQ(o.port, 8080);
   EXPECT_EQ(o.data, "var");
@@ -62,7 +62,7 @@ TEST(ServeOptions, HasDocumentedDefaults) {
 }
 
 TEST(ServeOptions, ParsesEveryFlag) {
-  const http::ServeOptions o = http::parse_serve_options({"--listen",
+  const cli::ServeOptions o = cli::parse_serve_options({"--listen",
                                                           "0.0.0.0:9000",
                                                           "--data",
                                                           "/tmp/x",
@@ -103,8 +103,8 @@ TEST(ServeOptions, ParsesEveryFlag) {
 TEST(ServeOptions, NamesTheFlagThatIsWrong) {
   auto message = [](std::vector<std::string> args) {
     try {
-      http::parse_serve_options(args);
-    } catch (const http::UsageError& e) {
+      cli::parse_serve_options(args);
+    } catch (const cli::UsageError& e) {
       return std::string(e.what());
     }
     return std::string("no error");

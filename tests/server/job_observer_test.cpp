@@ -1,6 +1,6 @@
 // Progress reports: the system shall report a run's progress about twice a second, not every step,
 // with an ETA, and once more at the end.
-#include "server/jobs/job_observer.hpp"
+#include "server/jobs/reporting/job_observer.hpp"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <regex>
 
-#include "server/jobs/process_executor.hpp"
+#include "server/jobs/running/process_executor.hpp"
 #include "tests/server/live_server.hpp"
 
 namespace stoss::test {

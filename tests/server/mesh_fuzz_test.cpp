@@ -17,7 +17,7 @@
 #include <random>
 
 #include "core/mesh/mesh_file.hpp"
-#include "server/jobs/sha256.hpp"
+#include "server/common/sha256.hpp"
 #include "tests/server/live_server.hpp"
 
 namespace stoss::test {
@@ -67,7 +67,7 @@ std::vector<MeshInput> reproducers() {
   add("*INCLUDE of /etc/passwd under *SURFACE", cube + "*SURFACE, NAME=S\n*INCLUDE, INPUT=/etc/passwd\n");
   add("*INCLUDE of ../jobs.db", cube + "*INCLUDE, INPUT=../jobs.db\n");
   add("*INCLUDE of /proc/self/cmdline", "*NODE\n*INCLUDE, INPUT=/proc/self/cmdline\n");
-  const std::string stored_id = server::jobs::sha256_hex(cube);
+  const std::string stored_id = server::sha256_hex(cube);
   std::string chain;
   for (int i = 0; i < 1000; ++i) chain += "*INCLUDE, INPUT=" + stored_id + ".inp\n";
   add("a chain of includes of a stored mesh", chain);

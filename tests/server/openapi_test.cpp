@@ -7,7 +7,7 @@
 #include <set>
 
 #include "server/http/routes.hpp"
-#include "server/jobs/sha256.hpp"
+#include "server/common/sha256.hpp"
 #include "tests/server/live_server.hpp"
 
 namespace stoss::test {
@@ -78,7 +78,7 @@ TEST(OpenApi, EveryOperationAnswersWithItsDocumentedSuccessCodeAndNeedsTheToken)
   // POST /v1/meshes stores this file (201); GET /v1/meshes/{id} reads it back by its SHA-256.
   std::ifstream mesh_in(std::filesystem::path(STOSS_SOURCE_DIR) / "tests/data/meshes/two_blocks_ascii.msh");
   const std::string mesh(std::istreambuf_iterator<char>(mesh_in), {});
-  const std::string mesh_id = server::jobs::sha256_hex(mesh);
+  const std::string mesh_id = server::sha256_hex(mesh);
 
   auto call = [&](httplib::Client& client, const Operation& op) -> httplib::Result {
     const bool study = op.path.find("stud") != std::string::npos;

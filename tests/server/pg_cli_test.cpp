@@ -9,8 +9,8 @@
 #include <mutex>
 #include <vector>
 
-#include "server/jobs/pg.hpp"
-#include "server/jobs/pg_store.hpp"
+#include "server/jobs/store/pg.hpp"
+#include "server/jobs/store/pg_store.hpp"
 #include "tests/server/live_server.hpp"
 #include "tests/server/pg_cluster.hpp"
 

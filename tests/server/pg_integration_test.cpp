@@ -12,7 +12,7 @@
 #include <set>
 #include <thread>
 
-#include "server/jobs/pg.hpp"
+#include "server/jobs/store/pg.hpp"
 #include "tests/server/live_server.hpp"
 #include "tests/server/pg_cluster.hpp"
 

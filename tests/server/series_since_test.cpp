@@ -4,7 +4,7 @@
 // exactly once.
 #include <gtest/gtest.h>
 
-#include "server/jobs/series_recorder.hpp"
+#include "server/jobs/reporting/series_recorder.hpp"
 #include "tests/server/live_server.hpp"
 
 namespace stoss::test {

@@ -6,11 +6,11 @@
 #include <set>
 #include <thread>
 
-#include "server/jobs/pg.hpp"
-#include "server/jobs/pg_store.hpp"
-#include "server/jobs/sha256.hpp"
-#include "server/jobs/sqlite.hpp"
-#include "server/jobs/sqlite_store.hpp"
+#include "server/jobs/store/pg.hpp"
+#include "server/jobs/store/pg_store.hpp"
+#include "server/common/sha256.hpp"
+#include "server/jobs/store/sqlite.hpp"
+#include "server/jobs/store/sqlite_store.hpp"
 #include "tests/server/live_server.hpp"
 #include "tests/server/pg_cluster.hpp"
 

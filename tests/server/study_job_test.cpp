@@ -1,6 +1,6 @@
 // A study job in isolation: the system shall run the sweep of core/study, report progress as runs done of
 // runs total, stop when canceled, and read its table back exactly as written.
-#include "server/jobs/study_job.hpp"
+#include "server/jobs/running/study_job.hpp"
 
 #include <gtest/gtest.h>
 

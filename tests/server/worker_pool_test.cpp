@@ -1,7 +1,7 @@
 // The worker pool with a scripted executor: the system shall run claimed jobs, stop a running job when
 // asked, give running jobs back to the queue on shutdown, and report nothing once a lease is lost.
 // Synchronisation is by signals from the executor, not by sleeps.
-#include "server/jobs/worker_pool.hpp"
+#include "server/jobs/running/worker_pool.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@
 #include <future>
 #include <mutex>
 
-#include "server/jobs/job_runner.hpp"
-#include "server/jobs/sqlite_store.hpp"
+#include "server/jobs/running/job_runner.hpp"
+#include "server/jobs/store/sqlite_store.hpp"
 #include "tests/server/live_server.hpp"
 
 namespace stoss::server::jobs {
