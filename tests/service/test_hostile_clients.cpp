@@ -1,9 +1,7 @@
 // The service under hostile input and hostile clients (issue 10): any body gets an answer and never a
 // crash, one listener per port, stalled uploads do not starve other clients, Range follows RFC 9110, and
 // the smaller holes (405 with Allow, the OpenAPI document, cancel of a finished job, the scene of a job).
-#include <arpa/inet.h>
 #include <gtest/gtest.h>
-#include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -27,19 +25,6 @@ std::string read_text(const std::filesystem::path& p) {
 }
 
 /// A connected loopback socket (-1 on failure).
-int connect_loopback(int port) {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(static_cast<uint16_t>(port));
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
-    close(fd);
-    return -1;
-  }
-  return fd;
-}
-
 nlohmann::json nested_arrays(int depth) {
   return nlohmann::json::parse(std::string(depth, '[') + std::string(depth, ']'));
 }

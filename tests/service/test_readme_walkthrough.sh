@@ -4,7 +4,7 @@
 # and prints output of the same shape as the page shows — the same lines after ids, numbers,
 # times and the worker's host name are masked. A job still running when polled is the one allowed
 # difference (the page shows it mid-run).
-# usage: readme_walkthrough.sh STOSS_BINARY SOURCE_DIR
+# usage: test_readme_walkthrough.sh STOSS_BINARY SOURCE_DIR
 set -uo pipefail
 binary=$1
 source_dir=$2

@@ -10,7 +10,7 @@ has one.
 
 Starts `stoss serve` on 127.0.0.1 (port 0) and Debian's headless Chromium, drives the page through the
 DevTools protocol (python3-websocket), asserts on the DOM and saves screenshots under BUILD/browser/.
-Usage: browser_page_test.py STOSS_BINARY BUILD_DIR
+Usage: test_browser_page.py STOSS_BINARY BUILD_DIR
 """
 import base64
 import itertools

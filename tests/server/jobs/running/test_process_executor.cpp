@@ -228,7 +228,7 @@ TEST(PartialResults, AFrictionalJobsSummaryCarriesTheDissipatedEnergy) {
   const auto series = body_json(c.Get("/v1/jobs/" + id + "/series"));
   EXPECT_DOUBLE_EQ(series["dissipated_energy"].back().get<double>(), summary["dissipated_energy"].get<double>());
   // Solver lines in the log name their step and the time it starts from (the format is checked in
-  // job_observer_test.cpp; with today's Newton this run may need no line search at all).
+  // tests/server/jobs/reporting/test_job_observer.cpp; with today's Newton this run may need no line search at all).
   const std::string log = c.Get("/v1/jobs/" + id + "/log")->body;
   EXPECT_FALSE(std::regex_search(log, std::regex(R"((^|\n)newton:)"))) << "a solver line without its step:\n" << log;
 }

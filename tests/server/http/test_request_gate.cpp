@@ -1,10 +1,9 @@
 // Limits before reading (issue 20, "What must hold" 3 and two small items of 5): a chunked body is
 // counted as it arrives and cut off at --max-body-bytes, a route that needs a token refuses before it
 // reads, a slow upload ends --request-timeout after its head, one address cannot make /healthz answer
-// 503, a 413 reports 64-bit counts exactly, and the server and the model count steps with one formula.
-#include <arpa/inet.h>
+// 503, a 413 reports 64-bit counts exactly, the server and the model count steps with one formula, and
+// the exception handler turns anything a route throws into a 500 problem.
 #include <gtest/gtest.h>
-#include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -15,6 +14,7 @@
 
 #include "core/model/model.hpp"
 #include "server/http/limits.hpp"
+#include "server/http/request_gate.hpp"
 #include "server/cli/serve.hpp"
 #include "tests/server/live_server.hpp"
 
@@ -24,6 +24,7 @@ namespace {
 using namespace std::chrono_literals;
 using server::http::Limits;
 using server::http::ProblemError;
+namespace http = server::http;
 
 // --- one step-count formula -------------------------------------------------------------------------
 
@@ -188,21 +189,6 @@ std::uint64_t status_bytes(pid_t pid, const std::string& field) {
   return 0;
 }
 
-int connect_loopback(int port) {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(static_cast<uint16_t>(port));
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  const timeval timeout{10, 0};
-  setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
-  if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
-    close(fd);
-    return -1;
-  }
-  return fd;
-}
-
 bool send_all(int fd, const std::string& bytes) {
   for (std::size_t sent = 0; sent < bytes.size();) {
     const ssize_t n = send(fd, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
@@ -232,7 +218,7 @@ struct Streamed {
 Streamed stream_body(int port, const std::string& head, std::uint64_t body_bytes, bool chunked,
                      std::size_t piece = 1 << 16, std::chrono::milliseconds pause = 0ms) {
   Streamed out;
-  const int fd = connect_loopback(port);
+  const int fd = connect_loopback(port, 10s);
   if (fd < 0 || !send_all(fd, head)) return out;
   const std::string data(piece, ' ');  // JSON whitespace: a body that is valid as far as it goes
   char size_line[32];
@@ -329,7 +315,7 @@ TEST(ChunkedFlood, WithATokenFileAnUnauthorizedChunkedUploadIs401UnreadAndOtherB
       one_gigabyte, false);
   EXPECT_TRUE(is_status(gzip.reply, 501)) << gzip.reply.substr(0, 300);
   for (const std::string length : {"1073741824", "18446744073709551615"}) {
-    const int fd = connect_loopback(server.port());
+    const int fd = connect_loopback(server.port(), 10s);
     ASSERT_TRUE(send_all(
         fd, "POST /v1/validate HTTP/1.1\r\nHost: x\r\n" + token + "Content-Length: " + length + "\r\n\r\n{"));
     const std::string reply = read_until_closed(fd);
@@ -340,7 +326,7 @@ TEST(ChunkedFlood, WithATokenFileAnUnauthorizedChunkedUploadIs401UnreadAndOtherB
     EXPECT_NE(p["detail"].get<std::string>().find(length), std::string::npos) << p.dump();
   }
   // A client that waits for 100 Continue is refused instead, and sends no body.
-  const int fd = connect_loopback(server.port());
+  const int fd = connect_loopback(server.port(), 10s);
   ASSERT_TRUE(send_all(fd,
                        "POST /v1/meshes HTTP/1.1\r\nHost: x\r\nContent-Length: 1073741824\r\n"
                        "Expect: 100-continue\r\n\r\n"));
@@ -394,13 +380,13 @@ TEST(HealthzUnderTheCap, SixtyFourStalledUploadsFromOneAddressDoNotMakeHealthz50
   LiveServer server(dir.path() / "data", {"--workers", "0", "--read-timeout", "60"});
   std::vector<int> uploads;
   for (int i = 0; i < 64; ++i) {
-    uploads.push_back(connect_loopback(server.port()));
+    uploads.push_back(connect_loopback(server.port(), 10s));
     ASSERT_GE(uploads.back(), 0);
     ASSERT_TRUE(
         send_all(uploads.back(), "POST /v1/jobs HTTP/1.1\r\nHost: x\r\nContent-Length: 1000\r\n\r\n{"));
   }
   auto ask = [&](const std::string& path) {
-    const int fd = connect_loopback(server.port());
+    const int fd = connect_loopback(server.port(), 10s);
     send_all(fd, "GET " + path + " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
     std::string reply = read_until_closed(fd);
     close(fd);
@@ -416,6 +402,40 @@ TEST(HealthzUnderTheCap, SixtyFourStalledUploadsFromOneAddressDoNotMakeHealthz50
   }
   for (int fd : uploads) close(fd);
   EXPECT_TRUE(server.alive()) << server.output();
+}
+
+// --- the exception handler --------------------------------------------------------------------------
+
+TEST(ExceptionHandler, TurnsAnyThrownValueIntoA500ProblemAndKeepsServing) {
+  httplib::Server server;
+  http::Metrics metrics;
+  http::install_error_handling(server, metrics);
+  server.Get("/std", [](const httplib::Request&, httplib::Response&) { throw std::runtime_error("boom"); });
+  server.Get("/int", [](const httplib::Request&, httplib::Response&) { throw 42; });
+  server.Get("/json", [](const httplib::Request&, httplib::Response& res) {
+    res.body = nlohmann::json::parse("{").dump();
+  });
+  server.Get("/ok",
+             [](const httplib::Request&, httplib::Response& res) { res.set_content("ok", "text/plain"); });
+  const int port = server.bind_to_any_port("127.0.0.1");
+  std::thread thread([&] { server.listen_after_bind(); });
+  httplib::Client client("127.0.0.1", port);
+  for (const char* path : {"/std", "/int", "/json"}) {
+    auto r = client.Get(path);
+    ASSERT_TRUE(r) << path;
+    EXPECT_EQ(r->status, 500) << path;
+    EXPECT_EQ(r->get_header_value("Content-Type"), "application/problem+json");
+    const auto j = nlohmann::json::parse(r->body);
+    EXPECT_EQ(j["type"], "urn:stoss:problem:internal");
+  }
+  EXPECT_EQ(nlohmann::json::parse(client.Get("/std")->body)["detail"], "boom");
+  auto unknown = client.Get("/nowhere");
+  EXPECT_EQ(unknown->status, 404);
+  EXPECT_EQ(nlohmann::json::parse(unknown->body)["type"], "urn:stoss:problem:no-route");
+  EXPECT_EQ(client.Get("/ok")->body, "ok");
+  server.stop();
+  thread.join();
+  EXPECT_NE(metrics.render({}, 0).find("stoss_http_requests_total{code=\"500\"} 4"), std::string::npos);
 }
 
 }  // namespace
