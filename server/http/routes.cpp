@@ -382,6 +382,14 @@ std::optional<long long> since_param(const Request& req) {
   return std::stoll(text);
 }
 
+/// A partial series' summary with the verdict and checks of the job's own summary once the job ended with
+/// one (a canceled or failed run is judged too); a running job's stay null and [] (read_partial_series).
+void with_job_verdict(nlohmann::json& series, const jobs::Job& job) {
+  if (!job.summary || !job.summary->is_object() || !job.summary->contains("verdict")) return;
+  series["summary"]["verdict"] = (*job.summary)["verdict"];
+  series["summary"]["checks"] = job.summary->value("checks", nlohmann::json::array());
+}
+
 void get_series(App& app, const Request& req, Response& res) {
   const std::string format = format_param(req, {"json", "csv"});
   const std::optional<long long> since = since_param(req);
@@ -395,6 +403,7 @@ void get_series(App& app, const Request& req, Response& res) {
         return res.set_content(*csv, "text/csv");
       }
     } else if (auto series = jobs::read_partial_series(partial)) {
+      with_job_verdict(*series, job);
       return send_json(res, 200, jobs::series_after(std::move(*series), since));
     }
   }

@@ -28,6 +28,8 @@ from pathlib import Path
 import websocket
 
 HDF5_SIGNATURE = [0x89, 0x48, 0x44, 0x46, 0x0D, 0x0A, 0x1A, 0x0A]
+# The verdict cell of the job's summary table (null while the run goes on shows as "made when the run ends").
+VERDICT_SHOWN = "document.querySelector('#job-summary tr[data-key=verdict] td')?.textContent ?? null"
 EXAMPLE = "hollow_ball_plate"   # contact, 100 steps: a few seconds of run to watch
 EXAMPLE_ROWS = 101               # t0 and 100 steps
 CHECKS = {"passed": 0, "failed": 0}
@@ -218,6 +220,7 @@ def live_run(browser, out):
     status = "document.getElementById('job-status').textContent"
     browser.wait_for(f"{points} > 0", "the energy plot holds points")
     seen_running = []  # point counts sampled while the page says running
+    verdicts_running = set()  # the verdict row of the summary "so far"
     screenshot_taken = contact_screenshot_taken = False
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline:
@@ -225,6 +228,7 @@ def live_run(browser, out):
         if now_status != "running":
             break
         seen_running.append(now_points)
+        verdicts_running.add(browser.run(VERDICT_SHOWN))
         if not screenshot_taken and now_points > 10:
             browser.screenshot(out / "running.png")
             screenshot_taken = True
@@ -248,6 +252,14 @@ def live_run(browser, out):
     check(xlabel == "t (model units)", f"the time axis names its units: {xlabel!r}")
     summary = browser.run("document.getElementById('job-summary').textContent")
     check("energy_drift" in summary and "max_penetration" in summary, "the summary shows energy drift and penetration")
+    check("made when the run ends" in verdicts_running,
+          f"while the job runs, its summary says the verdict is made when the run ends: {verdicts_running}")
+    check(browser.run(VERDICT_SHOWN) == "ok", f"the finished job's summary shows the verdict ok: {browser.run(VERDICT_SHOWN)!r}")
+    checks = browser.run("[...document.querySelectorAll('#job-summary th')].map(t => t.textContent)"
+                         ".filter(t => t.startsWith('check '))")
+    check("check energy_balance" in checks and "check penetration" in checks,
+          f"the summary lists the named checks: {checks}")
+    check(browser.run(status) == "succeeded", "an ok job is not marked suspect")
     log = browser.run("document.getElementById('job-log').textContent")
     check("run completed: 100 steps" in log, f"the log is shown: {log.strip().splitlines()[-1]!r}")
     download = browser.run("""(async () => {

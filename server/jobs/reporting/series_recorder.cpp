@@ -127,9 +127,13 @@ std::optional<nlohmann::json> read_partial_series(const std::filesystem::path& p
   }
   // The summary up to the last recorded step.
   const auto& last = p->rows.back();
+  // The verdict judges a whole run (its bounds grow with the steps: docs/results.md, "Verdict"): it is made
+  // when the run ends, null with no checks until then (docs/api.md, "Results": GET …/series).
   nlohmann::json summary = {{"completed", false},
                             {"steps", static_cast<int>(last[0])},
-                            {"end_time", last.size() > 1 ? last[1] : 0.0}};
+                            {"end_time", last.size() > 1 ? last[1] : 0.0},
+                            {"verdict", nullptr},
+                            {"checks", nlohmann::json::array()}};
   if (total >= 0) {
     const double h0 = p->rows.front()[static_cast<std::size_t>(total)];
     double drift = 0, balance = 0;

@@ -48,7 +48,8 @@ class SeriesRecorder : public model::Observer {
 /// The partial series of a job from its series.partial.jsonl: {"time": [...], <series>: [...], ...} as
 /// output::series_json gives for a complete result, plus "completed": false and "summary" (steps, end_time,
 /// initial_energy, energy_drift, newton_iterations up to the last recorded step; dissipated_energy and
-/// energy_plus_dissipated_drift with friction). nullopt when the file is absent or has no step.
+/// energy_plus_dissipated_drift with friction; "verdict": null and "checks": [], as the checks are made when
+/// the run ends). nullopt when the file is absent or has no step.
 std::optional<nlohmann::json> read_partial_series(const std::filesystem::path& path);
 
 /// The same series as CSV (columns as output::series_csv writes them); with `since`, only the rows of the

@@ -65,6 +65,8 @@ TEST(SeriesSince, APartialSeriesNamesItsStepsAndIsCutByThem) {
   EXPECT_EQ(after["step"], nlohmann::json({3, 4}));
   EXPECT_EQ(after["newton_iterations"], nlohmann::json({9, 12}));
   EXPECT_EQ(after["summary"]["steps"], 4) << "the summary covers every recorded step";
+  EXPECT_TRUE(after["summary"]["verdict"].is_null()) << "a run is judged when it ends, not before";
+  EXPECT_EQ(after["summary"]["checks"], nlohmann::json::array());
   EXPECT_EQ(server::jobs::partial_series_csv(file, 2), "time,total_energy,newton_iterations\n1.5,2,9\n2,2,12\n");
 }
 
@@ -124,6 +126,8 @@ TEST(SeriesSince, PollingARunningJobWithItsLastStepGetsEveryStepOnce) {
         if (!r || r->status != 200) return false;
         const auto chunk = nlohmann::json::parse(r->body);
         EXPECT_EQ(chunk["completed"], false);
+        EXPECT_TRUE(chunk["summary"]["verdict"].is_null()) << "no verdict while the run goes on";
+        EXPECT_EQ(chunk["summary"]["checks"], nlohmann::json::array());
         EXPECT_EQ(chunk["step"].size(), chunk["total_energy"].size());
         for (const auto& step : chunk["step"]) steps.push_back(step.get<long long>());
         polls_with_rows += chunk["step"].empty() ? 0 : 1;
@@ -132,7 +136,14 @@ TEST(SeriesSince, PollingARunningJobWithItsLastStepGetsEveryStepOnce) {
       120s));
   EXPECT_EQ(c.Post("/v1/jobs/" + id + "/cancel")->status, 202);
   for (std::size_t i = 0; i < steps.size(); ++i) ASSERT_EQ(steps[i], static_cast<long long>(i)) << "step " << i;
-  wait_for_status(c, id, {"canceled", "failed", "succeeded"}, 60s);
+  const nlohmann::json job = wait_for_status(c, id, {"canceled", "failed", "succeeded"}, 60s);
+  // Once ended, the partial summary carries the job's own verdict and checks (a canceled run is judged too).
+  ASSERT_TRUE(job["summary"].is_object()) << job.dump();
+  ASSERT_TRUE(job["summary"]["verdict"] == "ok" || job["summary"]["verdict"] == "suspect") << job.dump();
+  const auto ended = nlohmann::json::parse(c.Get("/v1/jobs/" + id + "/series?since=999999999")->body);
+  EXPECT_EQ(ended["summary"]["verdict"], job["summary"]["verdict"]);
+  EXPECT_EQ(ended["summary"]["checks"], job["summary"]["checks"]);
+  EXPECT_FALSE(ended["summary"]["checks"].empty());
 }
 
 }  // namespace
