@@ -1,6 +1,7 @@
 #include "server/cli/flags.hpp"
 
 #include <cmath>
+#include <iostream>
 
 namespace stoss::cli {
 
@@ -81,6 +82,26 @@ const char* runner_flags_usage() {
   --renew-seconds S      lease renewal interval (default 2)
   --max-attempts N       runs a job may start before an expired lease fails it (default 3)
 )";
+}
+
+int run_subcommand(const std::string& name, const std::vector<std::string>& args, const std::string& usage,
+                   const std::function<int()>& run) {
+  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
+    std::cout << usage;
+    return 0;
+  }
+  try {
+    return run();
+  } catch (const UsageError& e) {
+    std::cerr << "stoss " << name << ": " << e.what() << "\n\n" << usage;
+    return 2;
+  } catch (const jobs::StoreOpenError& e) {
+    std::cerr << "stoss " << name << ": " << e.what() << std::endl;
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "stoss " << name << ": " << e.what() << std::endl;
+    return 1;
+  }
 }
 
 }  // namespace stoss::cli

@@ -86,4 +86,10 @@ server::jobs::JobRunnerOptions job_runner_options(const RunnerFlags& flags,
 /// The usage lines of the lease flags and --job-memory, the same for serve and worker.
 const char* runner_flags_usage();
 
+/// Runs `stoss <name>` (serve, worker): `--help` prints `usage` (exit 0); otherwise the exit code of `run`,
+/// or 2 after a UsageError (its message, then `usage`) or a store that cannot be opened, 1 after any other
+/// error, each printed as "stoss <name>: <what>".
+int run_subcommand(const std::string& name, const std::vector<std::string>& args, const std::string& usage,
+                   const std::function<int()>& run);
+
 }  // namespace stoss::cli

@@ -112,25 +112,14 @@ Runs the job service (HTTP/JSON, see api/openapi.yaml) until SIGINT or SIGTERM.
 }
 
 int serve_command(const std::vector<std::string>& args) {
-  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
-    std::cout << serve_usage();
-    return 0;
-  }
-  try {
-    return run(parse_serve_options(args));
-  } catch (const UsageError& e) {
-    std::cerr << "stoss serve: " << e.what() << "\n\n" << serve_usage();
-    return 2;
-  } catch (const server::jobs::StoreOpenError& e) {
-    std::cerr << "stoss serve: " << e.what() << std::endl;
-    return 2;
-  } catch (const server::http::AddressInUse& e) {
-    std::cerr << "stoss serve: " << e.what() << std::endl;
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "stoss serve: " << e.what() << std::endl;
-    return 1;
-  }
+  return run_subcommand("serve", args, serve_usage(), [&] {
+    try {
+      return run(parse_serve_options(args));
+    } catch (const server::http::AddressInUse& e) {  // not a second listener: exit 2
+      std::cerr << "stoss serve: " << e.what() << std::endl;
+      return 2;
+    }
+  });
 }
 
 }  // namespace stoss::cli

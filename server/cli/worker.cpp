@@ -53,22 +53,7 @@ and the data directory.
 }
 
 int worker_command(const std::vector<std::string>& args) {
-  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
-    std::cout << worker_usage();
-    return 0;
-  }
-  try {
-    return run(parse_worker_options(args));
-  } catch (const UsageError& e) {
-    std::cerr << "stoss worker: " << e.what() << "\n\n" << worker_usage();
-    return 2;
-  } catch (const jobs::StoreOpenError& e) {
-    std::cerr << "stoss worker: " << e.what() << std::endl;
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "stoss worker: " << e.what() << std::endl;
-    return 1;
-  }
+  return run_subcommand("worker", args, worker_usage(), [&] { return run(parse_worker_options(args)); });
 }
 
 }  // namespace stoss::cli

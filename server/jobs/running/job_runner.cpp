@@ -25,6 +25,11 @@ JobFiles share_cores_then_prepare(const JobRunnerOptions& options) {
 
 }  // namespace
 
+WorkerPoolOptions pool_options_for(const StoreLocation& location, WorkerPoolOptions pool) {
+  if (location.kind == StoreLocation::Kind::postgresql) pool.idle_poll = notify_fallback_poll;
+  return pool;
+}
+
 int element_threads_per_job(int workers, unsigned cores) {
   return std::max(1, static_cast<int>(cores) / std::max(1, workers));
 }
@@ -36,8 +41,8 @@ JobRunner::JobRunner(const JobRunnerOptions& options, const Clock& clock)
       // over a limit fails alone.
       executor_(files_, options.data, std::filesystem::read_symlink("/proc/self/exe"), options.limits),
       pool_(*store_, executor_, pool_options_for(options.store, options.pool)),
-      subscription_(store_->subscribe(
-          {[this] { pool_.notify(); }, [this](const JobId& id) { pool_.cancel(id); }})),
+      subscription_(
+          store_->subscribe({[this] { pool_.notify(); }, [this](const JobId& id) { pool_.cancel(id); }})),
       rescuer_(*store_, clock, options.max_attempts, files_),
       rescue_every_(options.pool.renew_every) {}
 

@@ -6,21 +6,28 @@
 #include <filesystem>
 #include <memory>
 
-#include "server/jobs/store/open_store.hpp"
 #include "server/jobs/running/periodic.hpp"
 #include "server/jobs/running/process_executor.hpp"
 #include "server/jobs/running/rescuer.hpp"
 #include "server/jobs/running/worker_pool.hpp"
+#include "server/jobs/store/open_store.hpp"
 
 namespace stoss::server::jobs {
 
 struct JobRunnerOptions {
   std::filesystem::path data;  ///< results and logs: DIR/jobs/<id>/
   StoreLocation store;
-  ProcessLimits limits;        ///< of each job's process
+  ProcessLimits limits;  ///< of each job's process
   WorkerPoolOptions pool;
-  int max_attempts = 3;        ///< runs before an expired lease fails a job
+  int max_attempts = 3;  ///< runs before an expired lease fails a job
 };
+
+/// How often an idle worker polls a store that also wakes it (PostgreSQL's LISTEN/NOTIFY): only to cover
+/// a lost notification.
+inline constexpr Millis notify_fallback_poll = 30'000;
+
+/// `pool` with the idle poll the store needs: notify_fallback_poll for PostgreSQL, unchanged for SQLite.
+WorkerPoolOptions pool_options_for(const StoreLocation& location, WorkerPoolOptions pool);
 
 /// Threads for each job process's element loops when `workers` jobs run at once on `cores` cores:
 /// an equal share, at least one (results do not depend on it: core/fem/assembly.hpp).

@@ -40,9 +40,4 @@ std::unique_ptr<JobStore> open_store(const StoreLocation& location, const Clock&
   }
 }
 
-WorkerPoolOptions pool_options_for(const StoreLocation& location, WorkerPoolOptions pool) {
-  if (location.kind == StoreLocation::Kind::postgresql) pool.idle_poll = notify_fallback_poll;
-  return pool;
-}
-
 }  // namespace stoss::server::jobs

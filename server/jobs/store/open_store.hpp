@@ -8,7 +8,6 @@
 
 #include "server/jobs/clock.hpp"
 #include "server/jobs/store/store.hpp"
-#include "server/jobs/running/worker_pool.hpp"
 
 namespace stoss::server::jobs {
 
@@ -38,12 +37,5 @@ class StoreOpenError : public std::runtime_error {
 
 /// Opens (creating and migrating) the store. Throws StoreOpenError with the reason.
 std::unique_ptr<JobStore> open_store(const StoreLocation& location, const Clock& clock);
-
-/// How often an idle worker polls a store that also wakes it (PostgreSQL's LISTEN/NOTIFY): only to cover
-/// a lost notification.
-inline constexpr Millis notify_fallback_poll = 30'000;
-
-/// `pool` with the idle poll the store needs: notify_fallback_poll for PostgreSQL, unchanged for SQLite.
-WorkerPoolOptions pool_options_for(const StoreLocation& location, WorkerPoolOptions pool);
 
 }  // namespace stoss::server::jobs
