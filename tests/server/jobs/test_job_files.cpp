@@ -185,6 +185,35 @@ TEST(AttemptFolders, TheServedFolderIsThePublishedAttemptsAndTheLogIsEveryAttemp
   EXPECT_EQ(files.read_log(legacy.id), "from before\n");
 }
 
+// The files an attempt writes whole (study.json, outcome.json) go through output::write_durably: the system
+// shall show the old file or all of the new one, leave no temporary behind, and name the path it could
+// not write.
+TEST(AttemptFolders, WholeFilesAppearCompleteOrNotAtAllAndLeaveNoTemporary) {
+  TempDir tmp;
+  const server::jobs::AttemptFiles files(tmp.path());
+  const auto text_of = [](const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  files.write_study("{\"rows\": 1}");
+  EXPECT_EQ(text_of(files.study()), "{\"rows\": 1}");
+  EXPECT_FALSE(fs::exists(files.study_partial())) << "the temporary became study.json";
+  fs::create_directories(files.study_partial() / "in-the-way");  // the temporary cannot be written
+  try {
+    files.write_study("{\"rows\": 2}");
+    ADD_FAILURE() << "a write that cannot happen must throw";
+  } catch (const std::system_error& e) {
+    EXPECT_NE(std::string(e.what()).find("study.json.partial"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(text_of(files.study()), "{\"rows\": 1}") << "a failed write leaves the old file whole";
+  files.write_outcome({server::jobs::Status::succeeded, nlohmann::json{{"steps", 3}}, std::nullopt});
+  EXPECT_EQ(nlohmann::json::parse(text_of(files.outcome_file()))["summary"]["steps"], 3);
+  EXPECT_FALSE(fs::exists(files.outcome_file().string() + ".tmp"));
+  const auto adopted = files.succeeded();  // study.json is there: the attempt is complete
+  ASSERT_TRUE(adopted && adopted->summary);
+  EXPECT_EQ((*adopted->summary)["steps"], 3) << "the outcome read back is the one written";
+}
+
 // Once an attempt succeeded, the checkpoints and partial files of it and the attempts before it go; logs,
 // outcomes and complete results stay, and later attempts' files are not touched.
 TEST(AttemptFolders, ASucceededAttemptPrunesOnlyCheckpointsAndPartialFilesUpToItself) {
