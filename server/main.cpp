@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "server/cli/commands.hpp"
+#include "server/cli/run_job.hpp"
+#include "server/cli/serve.hpp"
 #include "server/cli/worker.hpp"
-#include "server/http/serve.hpp"
-#include "server/jobs/process_executor.hpp"
 
 namespace {
 constexpr const char* usage_text =
@@ -40,10 +40,10 @@ int main(int argc, char** argv) {
     // HTTP thread at most 8 × cores of them: two arenas give it back (docs/measurements.md, "Hardening
     // numbers").
     mallopt(M_ARENA_MAX, 2);
-    return stoss::server::serve_command(args);
+    return stoss::cli::serve_command(args);
   }
   if (command == "worker") return stoss::cli::worker_command(args);
-  if (command == "run-job") return stoss::server::jobs::run_job_command(args);
+  if (command == "run-job") return stoss::cli::run_job_command(args);
   if (command == "--help" || command == "-h" || command == "help") {
     std::cout << usage_text;
     return 0;

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "core/output/durable_file.hpp"
@@ -126,9 +127,7 @@ void write_run_file(const fs::path& out_dir, const model::Model& model, const st
   fs::create_directories(path.parent_path());
   const nlohmann::json run = {{"scene", model.scene},
                               {"mesh_directory", fs::absolute(fs::path(scene_path)).parent_path().string()}};
-  const fs::path temporary = path.string() + ".tmp";
-  std::ofstream(temporary, std::ios::binary | std::ios::trunc) << run.dump();
-  output::rename_durably(temporary, path);  // a crash right after the first checkpoint can still resume
+  output::write_durably(path, run.dump());  // a crash right after the first checkpoint can still resume
 }
 
 /// The model of the run that wrote DIR's checkpoint. @throws std::invalid_argument when DIR has none.
@@ -138,7 +137,89 @@ model::Model resumed_model(const fs::path& out_dir) {
     throw std::invalid_argument(out_dir.string() + " holds no checkpoint of stoss run (" + run_file(out_dir).string() +
                                 " is missing)");
   const nlohmann::json run = nlohmann::json::parse(in);
-  return scene::load_resolved(run.at("scene"), {fs::path(run.at("mesh_directory").get<std::string>()), {}});
+  scene::MeshFiles files;
+  files.directory = fs::path(run.at("mesh_directory").get<std::string>());
+  return scene::load_resolved(run.at("scene"), files);
+}
+
+/// The command line of `stoss run`.
+struct RunOptions {
+  std::string scene_path;
+  std::string out_dir = "out";
+  bool resume = false, out_given = false, strict = false;
+};
+
+/// nullopt when `args` is not a command line of `stoss run`.
+std::optional<RunOptions> parse_run_options(const std::vector<std::string>& args) {
+  RunOptions o;
+  std::string resume_dir;
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--strict") o.strict = true;
+    else if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size()) o.out_dir = args[++i], o.out_given = true;
+    else if (args[i] == "--resume" && i + 1 < args.size()) resume_dir = args[++i];
+    else if (o.scene_path.empty() && args[i].rfind("-", 0) != 0) o.scene_path = args[i];
+    else return std::nullopt;
+  }
+  o.resume = !resume_dir.empty();
+  if (o.resume == !o.scene_path.empty() || (o.resume && o.out_given)) return std::nullopt;
+  if (o.resume) o.out_dir = resume_dir;
+  return o;
+}
+
+/// Without -o, out/ is written only when it is absent or empty: nothing is overwritten unasked.
+bool refuses_default_output(const RunOptions& o) {
+  std::error_code error;
+  if (o.resume || o.out_given || !fs::exists(o.out_dir, error)) return false;
+  if (fs::is_directory(o.out_dir, error) && fs::is_empty(o.out_dir, error)) return false;
+  std::cerr << "stoss run: " << o.out_dir << "/ exists and is not empty; nothing was overwritten. Pass -o "
+            << o.out_dir << " to overwrite it, or -o DIR for another directory.\n";
+  return true;
+}
+
+/// Simulates (or resumes) into o.out_dir and prints the summary and the verdict; the exit code.
+int simulate_into(const RunOptions& o) {
+  const fs::path checkpoint_dir = fs::path(o.out_dir) / output::checkpoint_directory_name;
+  std::error_code error;
+  try {
+    model::Model model;
+    if (o.resume && !fs::exists(run_file(o.out_dir)) && fs::exists(fs::path(o.out_dir) / output::result_file_name)) {
+      std::printf("result: %s/result.h5 (the run had completed: nothing to resume)\n", o.out_dir.c_str());
+      return success;
+    }
+    if (o.resume) {
+      model = resumed_model(o.out_dir);
+    } else {
+      precheck_scene_file(o.scene_path);
+      model = scene::load_file(o.scene_path);
+      fs::remove_all(checkpoint_dir, error);  // a checkpoint of an earlier run in DIR
+      write_run_file(o.out_dir, model, o.scene_path);
+    }
+    output::ResultWriter writer(o.out_dir);
+    ProgressObserver progress;
+    model::ObserverList observers({&writer, &progress});
+    const model::Summary summary = simulate(model, observers, nullptr, {checkpoint_dir, true});
+    fs::remove_all(checkpoint_dir, error);  // result.h5 has it all
+    print_summary(model, summary);
+    std::printf("result: %s/result.h5\n", o.out_dir.c_str());
+    print_verdict(summary);
+    return o.strict && summary.verdict == "suspect" ? suspect_result : success;
+  } catch (const scene::SceneError& e) {
+    print_scene_error(e);
+    return invalid_scene;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << (o.resume ? "stoss run --resume: " : "invalid scene: ") << e.what() << "\n";
+    return invalid_scene;
+  } catch (const nlohmann::json::exception& e) {  // a scene value the core could not take
+    std::cerr << "invalid scene: " << e.what() << "\n";
+    return invalid_scene;
+  } catch (const SolverError& e) {
+    fs::remove_all(checkpoint_dir, error);  // the same step would fail again
+    std::cerr << "solver failure: " << e.what() << "\n";
+    return solver_failure;
+  } catch (const std::exception& e) {
+    std::cerr << "solver failure: " << e.what() << "\n";
+    return solver_failure;
+  }
 }
 
 }  // namespace
@@ -156,66 +237,10 @@ int run_command(const std::vector<std::string>& args) {
     std::cout << "usage: " << text << "\n";
     return success;
   }
-  std::string scene_path, out_dir = "out", resume_dir;
-  bool out_given = false, strict = false;
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--strict") strict = true;
-    else if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size()) out_dir = args[++i], out_given = true;
-    else if (args[i] == "--resume" && i + 1 < args.size()) resume_dir = args[++i];
-    else if (scene_path.empty() && args[i].rfind("-", 0) != 0) scene_path = args[i];
-    else return usage(text);
-  }
-  const bool resume = !resume_dir.empty();
-  if (resume == !scene_path.empty() || (resume && out_given)) return usage(text);
-  if (resume) out_dir = resume_dir;
-  std::error_code error;
-  if (!resume && !out_given && std::filesystem::exists(out_dir, error) &&
-      !(std::filesystem::is_directory(out_dir, error) && std::filesystem::is_empty(out_dir, error))) {
-    std::cerr << "stoss run: " << out_dir << "/ exists and is not empty; nothing was overwritten. Pass -o "
-              << out_dir << " to overwrite it, or -o DIR for another directory.\n";
-    return invalid_scene;
-  }
-  const fs::path checkpoint_dir = fs::path(out_dir) / output::checkpoint_directory_name;
-  try {
-    model::Model model;
-    if (resume && !fs::exists(run_file(out_dir)) && fs::exists(fs::path(out_dir) / output::result_file_name)) {
-      std::printf("result: %s/result.h5 (the run had completed: nothing to resume)\n", out_dir.c_str());
-      return success;
-    }
-    if (resume) {
-      model = resumed_model(out_dir);
-    } else {
-      precheck_scene_file(scene_path);
-      model = scene::load_file(scene_path);
-      fs::remove_all(checkpoint_dir, error);  // a checkpoint of an earlier run in DIR
-      write_run_file(out_dir, model, scene_path);
-    }
-    output::ResultWriter writer(out_dir);
-    ProgressObserver progress;
-    model::ObserverList observers({&writer, &progress});
-    const model::Summary summary = simulate(model, observers, nullptr, {checkpoint_dir, true});
-    fs::remove_all(checkpoint_dir, error);  // result.h5 has it all
-    print_summary(model, summary);
-    std::printf("result: %s/result.h5\n", out_dir.c_str());
-    print_verdict(summary);
-    return strict && summary.verdict == "suspect" ? suspect_result : success;
-  } catch (const scene::SceneError& e) {
-    print_scene_error(e);
-    return invalid_scene;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << (resume ? "stoss run --resume: " : "invalid scene: ") << e.what() << "\n";
-    return invalid_scene;
-  } catch (const nlohmann::json::exception& e) {  // a scene value the core could not take
-    std::cerr << "invalid scene: " << e.what() << "\n";
-    return invalid_scene;
-  } catch (const SolverError& e) {
-    fs::remove_all(checkpoint_dir, error);  // the same step would fail again
-    std::cerr << "solver failure: " << e.what() << "\n";
-    return solver_failure;
-  } catch (const std::exception& e) {
-    std::cerr << "solver failure: " << e.what() << "\n";
-    return solver_failure;
-  }
+  const std::optional<RunOptions> options = parse_run_options(args);
+  if (!options) return usage(text);
+  if (refuses_default_output(*options)) return invalid_scene;
+  return simulate_into(*options);
 }
 
 namespace {

@@ -1,53 +1,26 @@
 #include "server/cli/worker.hpp"
 
-#include <pthread.h>
-#include <signal.h>
-
 #include <iostream>
 
 #include "server/common/stop_signals.hpp"
-#include "server/http/options.hpp"
-#include "server/jobs/job_runner.hpp"
 
 namespace stoss::cli {
 
 namespace {
 
-using namespace stoss::server;
+namespace jobs = server::jobs;
 
-/// SIGINT and SIGTERM, blocked in this thread and every thread started after; wait() returns the one
-/// that came.
-class Signals {
- public:
-  Signals() {
-    sigemptyset(&set_);
-    sigaddset(&set_, SIGINT);
-    sigaddset(&set_, SIGTERM);
-    pthread_sigmask(SIG_BLOCK, &set_, nullptr);
-    signal(SIGPIPE, SIG_IGN);
-  }
-  int wait() {
-    const StopSignalRoute route;  // signals a library's own threads receive come here
-    int received = 0;
-    sigwait(&set_, &received);
-    return received;
-  }
-
- private:
-  sigset_t set_{};
-};
-
-int run(const http::ServeOptions& options) {
-  Signals signals;
+int run(const WorkerOptions& options) {
+  server::StopSignals signals;  // before any thread
   jobs::SystemClock clock;
-  const jobs::StoreLocation location = http::store_location(options);
-  jobs::JobRunner runner(http::job_runner_options(options, location), clock);
+  const jobs::StoreLocation location = store_location(options);
+  jobs::JobRunner runner(job_runner_options(options, location), clock);
   runner.start();
   std::cout << "stoss worker: " << runner.pool().name() << " running " << options.pool.workers
             << " workers (store " << location.describe() << ", data " << options.data.string() << ")"
             << std::endl;
   const int received = signals.wait();
-  std::cout << "stoss worker: " << (received == SIGINT ? "SIGINT" : "SIGTERM") << ", stopping" << std::endl;
+  std::cout << "stoss worker: " << server::stop_signal_name(received) << ", stopping" << std::endl;
   runner.stop();
   std::cout << "stoss worker: stopped" << std::endl;
   return 0;
@@ -55,23 +28,32 @@ int run(const http::ServeOptions& options) {
 
 }  // namespace
 
+WorkerOptions parse_worker_options(const std::vector<std::string>& args) {
+  static const FlagTable<WorkerOptions> table = with_runner_flags(FlagTable<WorkerOptions>{});
+  WorkerOptions options;
+  parse_flags(args, table, options);
+  check_runner_flags(options);
+  if (options.pool.workers == 0) throw UsageError("--workers needs an integer in [1, 256], got '0'");
+  return options;
+}
+
+std::string worker_usage() {
+  return std::string(R"(usage: stoss worker --store STORE [options]
+
+Runs queued jobs without HTTP until SIGINT or SIGTERM (then gives running jobs back to the queue).
+API processes (`stoss serve`, possibly with --workers 0) queue the jobs; every process shares the store
+and the data directory.
+
+  --store STORE          postgresql://USER[:PASSWORD]@HOST:PORT/DB (libpq's PG* variables and PGPASSFILE
+                         fill what the URL leaves out) or sqlite:PATH (default sqlite:DIR/jobs.db)
+  --data DIR             results and logs (DIR/jobs/<id>/), shared with the API processes (default ./var)
+  --workers N            jobs run at once in this process (default 2)
+  --job-timeout S        wall-time limit of one job attempt; 0: none (default 0)
+)") + runner_flags_usage();
+}
+
 int worker_command(const std::vector<std::string>& args) {
-  if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
-    std::cout << http::worker_usage();
-    return 0;
-  }
-  try {
-    return run(http::parse_worker_options(args));
-  } catch (const http::UsageError& e) {
-    std::cerr << "stoss worker: " << e.what() << "\n\n" << http::worker_usage();
-    return 2;
-  } catch (const jobs::StoreOpenError& e) {
-    std::cerr << "stoss worker: " << e.what() << std::endl;
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "stoss worker: " << e.what() << std::endl;
-    return 1;
-  }
+  return run_subcommand("worker", args, worker_usage(), [&] { return run(parse_worker_options(args)); });
 }
 
 }  // namespace stoss::cli

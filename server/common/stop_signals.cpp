@@ -1,10 +1,9 @@
 #include "server/common/stop_signals.hpp"
 
+#include <pthread.h>
 #include <signal.h>
 #include <sys/syscall.h>
 #include <unistd.h>
-
-#include <atomic>
 
 namespace stoss::server {
 namespace {
@@ -28,6 +27,46 @@ StopSignalRoute::StopSignalRoute() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
-StopSignalRoute::~StopSignalRoute() { waiting_thread = 0; }
+StopSignalRoute::~StopSignalRoute() {
+  waiting_thread = 0;
+}
+
+StopSignals::StopSignals() {
+  sigemptyset(&signals_);
+  sigaddset(&signals_, SIGINT);
+  sigaddset(&signals_, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals_, &previous_);
+  signal(SIGPIPE, SIG_IGN);
+}
+
+StopSignals::~StopSignals() {
+  stop_waiting();
+  pthread_sigmask(SIG_SETMASK, &previous_, nullptr);
+}
+
+int StopSignals::wait() {
+  const StopSignalRoute route;  // signals a library's own threads receive come here
+  int received = 0;
+  sigwait(&signals_, &received);
+  return received;
+}
+
+void StopSignals::on_stop(std::function<void(int signal)> stop) {
+  thread_ = std::thread([this, stop = std::move(stop)] {
+    const int received = wait();
+    if (!done_) stop(received);
+  });
+}
+
+void StopSignals::stop_waiting() {
+  done_ = true;
+  if (!thread_.joinable()) return;
+  pthread_kill(thread_.native_handle(), SIGTERM);  // blocked and awaited: wakes sigwait, kills nothing
+  thread_.join();
+}
+
+const char* stop_signal_name(int signal) {
+  return signal == SIGINT ? "SIGINT" : "SIGTERM";
+}
 
 }  // namespace stoss::server

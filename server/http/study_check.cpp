@@ -8,7 +8,7 @@
 
 #include "core/model/model.hpp"
 #include "server/http/scene_check.hpp"
-#include "server/jobs/study_job.hpp"
+#include "server/jobs/running/study_job.hpp"
 
 namespace stoss::server::http {
 

@@ -8,13 +8,12 @@
 #include "core/output/durable_file.hpp"
 #include "core/run/checkpoint.hpp"
 #include "server/common/json_input.hpp"
-#include "server/jobs/series_recorder.hpp"
+#include "server/jobs/reporting/series_recorder.hpp"
 
 namespace stoss::server::jobs {
 
 namespace fs = std::filesystem;
 using output::rename_durably;
-using output::sync_to_disk;
 
 namespace {
 
@@ -52,16 +51,6 @@ void copy_durably(const fs::path& from, const fs::path& to) {
 
 }  // namespace
 
-void write_synced(const fs::path& path, std::string_view bytes) {
-  {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.flush();
-    if (!out) throw std::system_error(EIO, std::generic_category(), "cannot write " + path.string());
-  }
-  sync_to_disk(path);
-}
-
 nlohmann::json outcome_json(const Outcome& outcome) {
   return {{"status", to_string(outcome.status)},
           {"summary", outcome.summary ? *outcome.summary : nlohmann::json(nullptr)},
@@ -90,14 +79,11 @@ void AttemptFiles::discard_partial() const {
 }
 
 void AttemptFiles::write_study(const std::string& text) const {
-  write_synced(study_partial(), text);
-  rename_durably(study_partial(), study());
+  output::write_durably(study(), text, study_partial());
 }
 
 void AttemptFiles::write_outcome(const Outcome& outcome) const {
-  const fs::path temporary = outcome_file().string() + ".tmp";
-  write_synced(temporary, safe_dump(outcome_json(outcome)));
-  rename_durably(temporary, outcome_file());
+  output::write_durably(outcome_file(), safe_dump(outcome_json(outcome)));
 }
 
 std::optional<Outcome> AttemptFiles::succeeded() const {
@@ -153,7 +139,9 @@ std::optional<fs::path> JobFiles::stored_mesh(const std::string& id) const {
 }
 
 scene::MeshFiles JobFiles::mesh_files() const {
-  return {std::nullopt, [files = *this](const std::string& id) { return files.stored_mesh(id); }};
+  scene::MeshFiles files;
+  files.stored = [jobs = *this](const std::string& id) { return jobs.stored_mesh(id); };
+  return files;
 }
 
 AttemptFiles JobFiles::prepare_attempt(const JobId& id, int attempt_number) const {

@@ -14,13 +14,9 @@
 #include "core/output/result_writer.hpp"
 #include "core/scene/scene.hpp"
 #include "server/jobs/id.hpp"
-#include "server/jobs/store.hpp"
+#include "server/jobs/store/store.hpp"
 
 namespace stoss::server::jobs {
-
-/// Writes `bytes` to `path` (replacing it) and fsyncs the file, so that a rename after it cannot expose
-/// a torn file. @throws std::system_error naming the path.
-void write_synced(const std::filesystem::path& path, std::string_view bytes);
 
 /// How an attempt ended, in its folder: written last, once the attempt's files are final.
 inline constexpr const char* outcome_file_name = "outcome.json";

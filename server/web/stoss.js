@@ -352,10 +352,15 @@ function suspectReasons(summary) {
     .map((c) => `${c.name} ${number(c.value)} exceeds ${number(c.bound)}`).join('; ');
 }
 
+// A running job's summary has verdict null: the checks judge the whole run (docs/api.md, "Results": GET …/series).
+const VERDICT_PENDING = 'made when the run ends';
+
 function showSummary(summary, note) {
+  const text = (key, value) => typeof value === 'number' ? number(value)
+    : key === 'verdict' && value === null ? VERDICT_PENDING : String(value);
   const rows = Object.entries(summary).filter(([key]) => key !== 'checks').map(([key, value]) =>
-    el('tr', { class: key === 'verdict' ? 'status ' + value : '' }, el('th', {}, key),
-      el('td', {}, typeof value === 'number' ? number(value) : String(value)), el('td', { class: 'unit' }, unitOf(key))));
+    el('tr', { class: key === 'verdict' && value ? 'status ' + value : '', 'data-key': key }, el('th', {}, key),
+      el('td', {}, text(key, value)), el('td', { class: 'unit' }, unitOf(key))));
   for (const c of summary.checks || [])
     rows.push(el('tr', { class: c.passed ? '' : 'status suspect' }, el('th', {}, 'check ' + c.name),
       el('td', {}, number(c.value) + (c.passed ? ' ≤ ' : ' > ') + number(c.bound)), el('td', { class: 'unit' }, c.passed ? 'passed' : 'FAILED')));

@@ -1,9 +1,12 @@
 #include "tests/server/live_server.hpp"
 
+#include <arpa/inet.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/socket.h>
 #include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -17,6 +20,23 @@
 extern char** environ;
 
 namespace stoss::test {
+
+int connect_loopback(int port, std::chrono::seconds receive_timeout) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<uint16_t>(port));
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (receive_timeout.count() > 0) {
+    const timeval timeout{static_cast<time_t>(receive_timeout.count()), 0};
+    setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  }
+  if (connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
+    close(fd);
+    return -1;
+  }
+  return fd;
+}
 
 namespace {
 
@@ -142,7 +162,8 @@ pid_t spawn_stoss(const std::vector<std::string>& arguments, const std::filesyst
   pid_t pid = -1;
   const int rc = posix_spawn(&pid, STOSS_BINARY, &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) throw std::runtime_error("cannot start " + std::string(STOSS_BINARY) + " " + arguments.front());
+  if (rc != 0)
+    throw std::runtime_error("cannot start " + std::string(STOSS_BINARY) + " " + arguments.front());
   return pid;
 }
 

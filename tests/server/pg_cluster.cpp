@@ -14,9 +14,9 @@
 #include <stdexcept>
 
 #include "server/jobs/id.hpp"
-#include "server/jobs/pg.hpp"
-#include "server/jobs/pg_store.hpp"
-#include "server/jobs/sqlite_store.hpp"
+#include "server/jobs/store/pg.hpp"
+#include "server/jobs/store/pg_store.hpp"
+#include "server/jobs/store/sqlite_store.hpp"
 #include "tests/server/live_server.hpp"
 
 namespace stoss::test {

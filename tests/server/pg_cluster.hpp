@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "server/jobs/clock.hpp"
-#include "server/jobs/store.hpp"
+#include "server/jobs/store/store.hpp"
 
 namespace stoss::test {
 

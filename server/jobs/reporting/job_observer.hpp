@@ -1,0 +1,59 @@
+#pragma once
+/// @file Observers a job adds to a run: throttled progress with an ETA, and the log file.
+
+#include <fstream>
+#include <optional>
+
+#include "core/model/observer.hpp"
+#include "server/jobs/clock.hpp"
+#include "server/jobs/running/executor.hpp"
+
+namespace stoss::server::jobs {
+
+/// Reports progress (step, steps, simulated time, ETA) at most once per `interval`, and once at the end:
+/// a run of thousands of steps per second costs a handful of store writes per second.
+class ProgressObserver : public model::Observer {
+ public:
+  ProgressObserver(ProgressSink sink, const Clock& clock, Millis interval = 500);
+
+  void begin(const model::Model& model, const model::SeriesLayout& layout) override;
+  void step(const model::StepRow& row) override;
+  /// A run resumed from a checkpoint: the ETA counts from its step and this moment, not from the rows
+  /// given back at once.
+  void resumed(int step) override;
+  void end(const model::Summary& summary) override;
+
+  /// The latest progress, reported or not.
+  const Progress& current() const { return current_; }
+
+ private:
+  void report(Millis now);
+
+  ProgressSink sink_;
+  const Clock& clock_;
+  Millis interval_;
+  Millis started_ = 0;
+  int first_step_ = 0;  ///< the step the rate counts from: 0, or the checkpoint's when resumed
+  std::optional<Millis> last_report_;
+  Progress current_;
+};
+
+/// Appends the run's log lines to a file, flushed line by line (so a killed run leaves its log).
+class LogObserver : public model::Observer {
+ public:
+  explicit LogObserver(std::ofstream& out) : out_(out) {}
+  void step(const model::StepRow& row) override;
+  /// Solver lines ("newton: …") name the step they belong to and the time it starts from.
+  void log(const std::string& line) override;
+  void end(const model::Summary& summary) override;
+
+ private:
+  std::ofstream& out_;
+  int last_step_ = -1;     ///< the last converged step (0: the initial state)
+  double last_time_ = 0;
+};
+
+/// The job summary of docs/api.md from a run's summary; max_penetration only when the model has contact.
+nlohmann::json summary_json(const model::Summary& summary, const model::Model& model);
+
+}  // namespace stoss::server::jobs

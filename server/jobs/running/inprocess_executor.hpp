@@ -1,0 +1,38 @@
+#pragma once
+/// @file InProcessExecutor: runs one attempt of a job in the calling thread, writing only in the attempt's
+/// folder (JobFiles::prepare_attempt): its log, a simulation's result (stoss::simulate, resumed from the
+/// checkpoint seeded from the attempt before) or a study's table (study_job.hpp), and last outcome.json.
+/// When an earlier attempt had completed its run but lost its lease before reporting it, that run's
+/// outcome is adopted instead of running again.
+
+#include <fstream>
+
+#include "core/model/model.hpp"
+#include "server/jobs/clock.hpp"
+#include "server/jobs/running/executor.hpp"
+#include "server/jobs/job_files.hpp"
+
+namespace stoss::server::jobs {
+
+class InProcessExecutor : public Executor {
+ public:
+  /// `progress_interval`: least time between two progress reports (ms).
+  InProcessExecutor(JobFiles files, const Clock& clock, Millis progress_interval = 500)
+      : files_(std::move(files)), clock_(clock), progress_interval_(progress_interval) {}
+
+  Outcome run(const Job& job, const std::atomic<bool>& cancel, const ProgressSink& progress) override;
+
+ private:
+  /// An earlier attempt's completed run (result_attempt set), else a run of this attempt.
+  Outcome adopt_or_run(const Job& job, const AttemptFiles& files, std::ofstream& log,
+                       const std::atomic<bool>& cancel, const ProgressSink& progress);
+  /// One simulation of the scene, its result written to result.h5 and result.xdmf.
+  Outcome simulate_job(const Job& job, const AttemptFiles& files, const model::Model& model,
+                       std::ofstream& log, const std::atomic<bool>& cancel, const ProgressSink& progress);
+
+  JobFiles files_;
+  const Clock& clock_;
+  Millis progress_interval_;
+};
+
+}  // namespace stoss::server::jobs
