@@ -28,6 +28,18 @@ bool has_friction(const model::Model& m) {
                      [](const model::ContactPair& p) { return p.friction > 0; });
 }
 
+/// Slave nodes over every contact pair (a node in two pairs counts twice); a pair naming a surface the
+/// mesh does not hold counts none.
+double contact_nodes(const model::Model& m) {
+  double nodes = 0;
+  for (const model::ContactPair& p : m.contact) {
+    const int b = m.mesh.find_body(p.slave.substr(0, p.slave.find('/')));
+    if (b >= 0 && m.mesh.bodies[b].surfaces.count(p.slave.substr(p.slave.find('/') + 1)))
+      nodes += static_cast<double>(m.mesh.surface_nodes(p.slave).size());
+  }
+  return nodes;
+}
+
 model::Check bounded(const char* name, double value, double bound) {
   return {name, value, bound, value <= bound};
 }
@@ -190,6 +202,12 @@ int nodes_inside_other_body(const mesh::Mesh& mesh, const Eigen::VectorXd& x) {
   return inside;
 }
 
+double newton_bound(const model::Model& m) {
+  const double dofs = 3.0 * m.mesh.node_count();  // (V6)
+  return 0.6 * m.solver.max_iterations + 2 * std::log10(std::max(1.0, dofs / 1000)) +
+         2 * std::log2(1 + contact_nodes(m) / 100);
+}
+
 bool is_free(const model::Model& m) {
   return m.boundary.empty() && !(m.gravity && m.gravity->norm() > 0);
 }
@@ -203,8 +221,7 @@ std::vector<model::Check> run_checks(const model::Model& m, const model::Summary
   if (!m.contact.empty())  // (V5)
     checks.push_back(bounded("penetration", s.max_penetration, 0.5 * shortest_edge(m.mesh)));
   // (V6)–(V7)
-  checks.push_back(
-      bounded("newton_iterations_per_step", s.newton_iterations_per_step, 0.6 * m.solver.max_iterations));
+  checks.push_back(bounded("newton_iterations_per_step", s.newton_iterations_per_step, newton_bound(m)));
   checks.push_back(bounded("reduced_steps", s.reduced_steps, 1.0 + 0.01 * s.steps));
   if (is_free(m)) {  // (V8)
     checks.push_back(bounded("linear_momentum_drift", s.linear_momentum_drift, 1e-8));

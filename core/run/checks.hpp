@@ -15,6 +15,10 @@ namespace stoss::run {
 /// and no external force acts (contact between free bodies is internal).
 bool is_free(const model::Model& m);
 
+/// The bound of (V6) newton_iterations_per_step (docs/results.md, "Verdict"): 0.6 · solver.max_iterations,
+/// plus 2 log₁₀(n_dof / 1000) above 1000 dofs and 2 log₂(1 + n_c / 100) for n_c contact slave nodes.
+double newton_bound(const model::Model& m);
+
 /// How far inside an element a node must lie to count as inside it: every |ξ| ≤ 1 − this (docs/results.md,
 /// "Verdict", (V9)). 0.05 is a depth of 2.5 % of the element across that face: twenty times the
 /// contact's own tolerated penetration (0.29 % of a face at the default penalty, docs/scene.md), far
