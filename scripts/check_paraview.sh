@@ -1,6 +1,7 @@
 #!/bin/sh
 # Checks that ParaView opens a Stoss result by itself: pvpython's OpenDataFile on result.xdmf (the
-# reader ParaView picks), the last frame's points and every field compared with the HDF5 datasets.
+# reader ParaView picks): the first frame's point count without a time and at its time, then the last
+# frame's points and every field compared with the HDF5 datasets.
 # Not run in CI: it needs Debian's paraview and python3-paraview (large), plus python3-h5py.
 #   scripts/check_paraview.sh [DIR]
 # DIR holds result.xdmf and result.h5; without it, api/examples/ball_plate_inp.json is run with

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
+#include <set>
 #include <stdexcept>
 
 #include "core/contact/geometry/assignment.hpp"
@@ -27,27 +29,80 @@ void ContactTerm::log(const time::StepContext& step, const std::string& line) co
   if (step.log && *step.log) (*step.log)(name() + ": " + line);
 }
 
+namespace {
+
+/// Edges of the master surface that belong to one face only: the surface's boundary.
+std::set<std::pair<int, int>> boundary_edges(const std::vector<mesh::Quad>& faces) {
+  std::map<std::pair<int, int>, int> count;
+  for (const mesh::Quad& q : faces)
+    for (int k = 0; k < 4; ++k) ++count[std::minmax(q[k], q[(k + 1) % 4])];
+  std::set<std::pair<int, int>> out;
+  for (const auto& [edge, n] : count)
+    if (n == 1) out.insert(edge);
+  return out;
+}
+
+/// Whether the projection ξ onto face q leaves it across an edge in `boundary` (theory.md §3.4): the node
+/// lies beyond the master's footprint. Face edges by corner ξ (segment.cpp): ξ₂ < −1 across (0, 1),
+/// ξ₁ > 1 across (1, 2), ξ₂ > 1 across (2, 3), ξ₁ < −1 across (3, 0).
+bool leaves_across(const Eigen::Vector2d& xi, const mesh::Quad& q,
+                   const std::set<std::pair<int, int>>& boundary) {
+  const bool past[4] = {xi[1]<-1, xi[0]> 1, xi[1] > 1, xi[0] < -1};
+  for (int k = 0; k < 4; ++k)
+    if (past[k] && boundary.count(std::minmax(q[k], q[(k + 1) % 4]))) return true;
+  return false;
+}
+
+/// Of the slave nodes no face accepts: those level with some candidate face (§3.4), and among them those
+/// beyond the master's footprint (a projection leaves the surface across its boundary). The rest are the
+/// NTS blind spot between faces.
+struct Unaccepted {
+  int level = 0, outside_footprint = 0;
+};
+
+Unaccepted classify(const PairSurfaces& surfaces, const BroadPhase& broad, const std::vector<int>& unaccepted,
+                    const Eigen::VectorXd& x) {
+  Unaccepted out;
+  if (unaccepted.empty()) return out;
+  const std::set<std::pair<int, int>> boundary = boundary_edges(surfaces.faces);
+  for (int i : unaccepted) {
+    const Eigen::Vector3d x_s = x.segment<3>(3 * surfaces.slave_nodes[i]);
+    bool level = false, outside = false;
+    for (int f : broad.candidates(i)) {
+      const Projection p = project_on(x_s, f, surfaces, x).projection;
+      if (!p.converged || std::abs(p.gap) >= NarrowPhase::max_depth_ratio * surfaces.face_size[f]) continue;
+      level = true;
+      outside = outside || leaves_across(p.xi, surfaces.faces[f], boundary);
+    }
+    out.level += level;
+    out.outside_footprint += level && outside;
+  }
+  return out;
+}
+
+}  // namespace
+
 void ContactTerm::measure_closest_penetration(const time::StepContext& step, const Eigen::VectorXd& x) {
+  std::vector<int> unaccepted;
   for (int i : broad_.near_slaves()) {
     const Eigen::Vector3d x_s = x.segment<3>(3 * surfaces_.slave_nodes[i]);
     const FaceProjection best = best_face(x_s, broad_.candidates(i), surfaces_, x);
-    if (best.found()) {
+    if (best.found())
       report_.max_penetration = std::max(report_.max_penetration, -best.projection.gap);
-      continue;
-    }
-    for (int f : broad_.candidates(i)) {  // level with the surface, yet no face accepts it
-      const Projection p = project_on(x_s, f, surfaces_, x).projection;
-      if (p.converged && std::abs(p.gap) < NarrowPhase::max_depth_ratio * surfaces_.face_size[f]) {
-        ++report_.unassigned;
-        break;
-      }
-    }
+    else
+      unaccepted.push_back(i);
   }
+  const Unaccepted u = classify(surfaces_, broad_, unaccepted, x);
+  report_.unassigned += u.level;
+  report_.outside_footprint += u.outside_footprint;
   if (surfaces_.smooth()) measure_faceted_penetration(x);
-  if (report_.unassigned > 0)
-    log(step, std::to_string(report_.unassigned) +
-                  " slave node(s) level with the master surface project onto no face (NTS blind spot, §3.4): "
-                  "no contact element for them; refine the master mesh");
+  // Only a node between two faces is helped by a finer master mesh; beyond the master's boundary there
+  // is no face to give it, and the hint would be wrong.
+  if (const int blind = report_.unassigned - report_.outside_footprint; blind > 0)
+    log(step,
+        std::to_string(blind) +
+            " slave node(s) level with the master surface project onto no face between two of its faces "
+            "(NTS blind spot, §3.4): no contact element for them; refine the master mesh");
 }
 
 void ContactTerm::measure_faceted_penetration(const Eigen::VectorXd& x) {

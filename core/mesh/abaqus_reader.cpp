@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <set>
 
 #include "core/mesh/mesh_file.hpp"
 
@@ -202,6 +203,15 @@ bool is_integer_text(const std::string& s) {
 /// S1 = 1-2-3-4 (ζ−), S2 = 5-8-7-6 (ζ+), S3 = 1-5-6-2 (η−), S4 = 2-6-7-3 (ξ+), S5 = 3-7-8-4 (η+), S6 = 4-8-5-1 (ξ−).
 constexpr int abaqus_face[6] = {0, 1, 2, 5, 3, 4};
 
+/// Abaqus 2D and 1D element families (plane stress/strain, axisymmetric, shells, membranes, surface
+/// and rigid elements, trusses, beams): what a Gmsh export writes beside its volumes.
+bool is_lower_dimensional(const std::string& type) {
+  for (const char* family :
+       {"CPS", "CPE", "CAX", "S3", "S4", "S8", "STRI", "M3D", "SFM3D", "R3D", "T2D", "T3D", "B2", "B3"})
+    if (type.rfind(family, 0) == 0) return true;
+  return false;
+}
+
 struct Deck {
   Deck(LineReader& reader, const ReadLimits& limits) : in(reader), limits(limits) {}
   LineReader& in;
@@ -211,6 +221,15 @@ struct Deck {
   std::vector<long> node_lines;  ///< line of each node's definition
   std::map<long, int> element_index;
   std::vector<std::array<long, 8>> element_nodes;  ///< node ids until resolved
+  /// 2D and 1D elements beside the hexahedra (a Gmsh export's CPS4, T3D2): kept apart, a quadrilateral on
+  /// the hexahedra's boundary becomes that face (resolve_lower_elements).
+  struct LowerElement {
+    std::string type;
+    std::vector<long> nodes;
+    Where where;
+  };
+  std::map<long, LowerElement> lower_elements;
+  std::string lower_type;  ///< the current *ELEMENT's TYPE when it is 2D or 1D, else empty
   /// Named sets, keyed by upper-case name: canonical name and members (ids) with where they are named.
   struct Member {
     long id;
@@ -301,6 +320,7 @@ struct Deck {
            "element " + std::to_string(id) + " has " + std::to_string(f.size() - 1) + " nodes, C3D8 needs 8");
     if (static_cast<long long>(mesh.hex8.size()) >= limits.max_nodes)
       fail(where, "the file has " + limits.exceeded("elements"));
+    if (lower_elements.contains(id)) fail(where, "duplicate element id " + std::to_string(id));
     const auto [it, fresh] = element_index.try_emplace(id, static_cast<int>(mesh.hex8.size()));
     if (!fresh)
       fail(where, "duplicate element id " + std::to_string(id) + " (first defined on line " +
@@ -311,6 +331,19 @@ struct Deck {
     mesh.hex8.push_back({});
     mesh.element_ids.push_back(id);
     mesh.element_lines.push_back(where.line);
+    if (!elset.empty()) add_member(element_sets, elset, id, where);
+  }
+
+  void add_lower_element(const Where& where, const std::vector<std::string>& f, const std::string& elset) {
+    const long id = parse_id(where, f[0], "element id");
+    if (static_cast<long long>(lower_elements.size()) >= limits.max_records())
+      fail(where, limits.exceeded("2D and 1D elements", ReadLimits::records_per_node));
+    if (element_index.contains(id) || lower_elements.contains(id))
+      fail(where, "duplicate element id " + std::to_string(id));
+    LowerElement& e = lower_elements[id];
+    e.type = lower_type;
+    e.where = where;
+    for (size_t k = 1; k < f.size(); ++k) e.nodes.push_back(parse_id(where, f[k], "node id"));
     if (!elset.empty()) add_member(element_sets, elset, id, where);
   }
 
@@ -388,6 +421,8 @@ struct Deck {
       const auto f = fields(text);
       if (k.name == "NODE") {
         add_node(line.where, f, k.get("NSET"));
+      } else if (k.name == "ELEMENT" && !lower_type.empty()) {
+        add_lower_element(line.where, f, k.get("ELSET"));
       } else if (k.name == "ELEMENT") {
         if (pending.empty()) pending_where = line.where;
         pending.insert(pending.end(), f.begin(), f.end());
@@ -412,7 +447,8 @@ struct Deck {
     if (k.name == "ELEMENT") {
       const std::string type = upper(k.get("TYPE"));
       if (type.empty()) fail(k.where, "*ELEMENT needs TYPE=");
-      if (type != "C3D8" && type != "C3D8R")
+      lower_type = is_lower_dimensional(type) ? k.get("TYPE") : "";
+      if (type != "C3D8" && type != "C3D8R" && lower_type.empty())
         fail(k.where, "unsupported element type " + k.get("TYPE").substr(0, 40) +
                           "; Stoss reads 8-node hexahedra (C3D8, C3D8R)");
       if (k.has("ELSET") && k.get("ELSET").empty()) fail(k.where, "ELSET= needs a name");
@@ -454,20 +490,102 @@ struct Deck {
       }
   }
 
+  /// Boundary faces of the hexahedra (faces of one element only) by their sorted nodes.
+  std::map<std::array<int, 4>, ElementFace> boundary_face_index() const {
+    std::map<std::array<int, 4>, std::pair<ElementFace, int>> count;
+    if (lower_elements.empty()) return {};
+    for (size_t e = 0; e < mesh.hex8.size(); ++e) {
+      const auto quads = hex_faces(mesh.hex8[e]);
+      for (int f = 0; f < 6; ++f) {
+        std::array<int, 4> key = quads[f];
+        std::sort(key.begin(), key.end());
+        auto [it, fresh] = count.try_emplace(key, ElementFace{static_cast<int>(e), f}, 0);
+        ++it->second.second;
+      }
+    }
+    std::map<std::array<int, 4>, ElementFace> out;
+    for (const auto& [key, value] : count)
+      if (value.second == 1) out.emplace(key, value.first);
+    return out;
+  }
+
+  /// The boundary face a 4-node 2D element covers (same nodes), if any.
+  std::optional<ElementFace> face_of(const LowerElement& e,
+                                     const std::map<std::array<int, 4>, ElementFace>& faces) const {
+    if (e.nodes.size() != 4) return std::nullopt;
+    std::array<int, 4> key;
+    for (int k = 0; k < 4; ++k) {
+      const auto it = node_index.find(e.nodes[k]);
+      if (it == node_index.end())
+        fail(e.where,
+             e.type + " element refers to node " + std::to_string(e.nodes[k]) + ", which no *NODE defines");
+      key[k] = it->second;
+    }
+    std::sort(key.begin(), key.end());
+    const auto it = faces.find(key);
+    return it == faces.end() ? std::nullopt : std::optional<ElementFace>(it->second);
+  }
+
+  /// An ELSET of 2D elements on the boundary as a surface of the same name.
+  void add_lower_surface(const Set& set, std::vector<ElementFace> faces) {
+    if (surfaces.contains(upper(set.name)))
+      fail(set.ids.front().where, "ELSET " + set.name + " of 2D elements and *SURFACE " + set.name +
+                                      " would both be surface '" + set.name + "'; rename one");
+    mesh.surfaces[set.name] = std::move(faces);
+  }
+
+  /// One note on the 2D and 1D elements: how many became boundary faces, how many were skipped.
+  void note_lower_elements(const std::map<std::array<int, 4>, ElementFace>& faces) {
+    if (lower_elements.empty()) return;
+    long on_boundary = 0;
+    std::set<std::string> types;
+    for (const auto& [id, e] : lower_elements) {
+      types.insert(upper(e.type));
+      on_boundary += face_of(e, faces).has_value();
+    }
+    std::string names;
+    for (const std::string& t : types) names += (names.empty() ? "" : ", ") + t;
+    const long skipped = static_cast<long>(lower_elements.size()) - on_boundary;
+    mesh.notes.push_back(std::to_string(lower_elements.size()) + " 2D/1D elements (" + names +
+                         ") beside the hexahedra: " + std::to_string(on_boundary) +
+                         " on the hexahedra's boundary are faces of the surfaces their ELSETs name, " +
+                         std::to_string(skipped) +
+                         " skipped (Stoss meshes are 8-node hexahedra; a 2D element only names a face)");
+  }
+
   void resolve_sets() {
     for (const auto& [key, set] : node_sets)
       for (const auto& [id, where] : set.ids)
         if (!node_index.contains(id))
           fail(where, "NSET " + set.name + ": node " + std::to_string(id) + " is not defined");
-    for (auto& [key, set] : element_sets) {
+    for (const auto& [key, set] : node_sets) {
       std::vector<int> members;
-      members.reserve(set.ids.size());
-      for (const auto& [id, where] : set.ids) members.push_back(element(id, where, "ELSET " + set.name));
+      for (const auto& [id, where] : set.ids) members.push_back(node_index.at(id));
       std::sort(members.begin(), members.end());
       members.erase(std::unique(members.begin(), members.end()), members.end());
-      mesh.element_sets[set.name] = std::move(members);
+      mesh.node_sets[set.name] = std::move(members);
+    }
+    const auto faces = boundary_face_index();
+    for (auto& [key, set] : element_sets) {
+      std::vector<int> members;
+      std::vector<ElementFace> lower_faces;
+      bool has_lower = false;
+      members.reserve(set.ids.size());
+      for (const auto& [id, where] : set.ids) {
+        if (const auto lower = lower_elements.find(id); lower != lower_elements.end()) {
+          has_lower = true;
+          if (const auto face = face_of(lower->second, faces)) lower_faces.push_back(*face);
+          continue;
+        }
+        members.push_back(element(id, where, "ELSET " + set.name));
+      }
+      std::sort(members.begin(), members.end());
+      members.erase(std::unique(members.begin(), members.end()), members.end());
+      if (!members.empty() || !has_lower) mesh.element_sets[set.name] = std::move(members);
+      if (!lower_faces.empty()) add_lower_surface(set, std::move(lower_faces));
       set.ids = {};
     }
+    note_lower_elements(faces);
   }
 
   /// The faces of every *SURFACE, an ELSET row expanded to its elements; the faces of all surfaces are

@@ -28,6 +28,10 @@ int Mesh::add_body(const std::string& name, const BodyMesh& body) {
       out.push_back(q);
     }
   }
+  for (const auto& [set_name, members] : body.node_sets) {
+    auto& out = b.node_sets[set_name];
+    for (int n : members) out.push_back(n + offset);
+  }
   bodies.push_back(std::move(b));
   return index;
 }
@@ -79,6 +83,29 @@ std::vector<int> Mesh::surface_nodes(const std::string& body_slash_surface) cons
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
+}
+
+const std::vector<int>& Mesh::node_set(const std::string& body_slash_set) const {
+  const auto slash = body_slash_set.find('/');
+  if (slash == std::string::npos)
+    throw std::out_of_range("node set reference '" + body_slash_set + "' is not of the form body/set");
+  const int b = find_body(body_slash_set.substr(0, slash));
+  if (b < 0) throw std::out_of_range("no body named '" + body_slash_set.substr(0, slash) + "'");
+  const auto it = bodies[b].node_sets.find(body_slash_set.substr(slash + 1));
+  if (it == bodies[b].node_sets.end())
+    throw std::out_of_range("body '" + bodies[b].name + "' has no node set '" +
+                            body_slash_set.substr(slash + 1) + "'");
+  return it->second;
+}
+
+std::vector<int> Mesh::named_nodes(const std::string& body_slash_name) const {
+  const auto slash = body_slash_name.find('/');
+  const int b = slash == std::string::npos ? -1 : find_body(body_slash_name.substr(0, slash));
+  if (b < 0) return surface_nodes(body_slash_name);  // its message names what is wrong
+  const std::string name = body_slash_name.substr(slash + 1);
+  if (bodies[b].surfaces.contains(name)) return surface_nodes(body_slash_name);
+  if (bodies[b].node_sets.contains(name)) return node_set(body_slash_name);
+  throw std::out_of_range("body '" + bodies[b].name + "' has no surface or node set '" + name + "'");
 }
 
 Eigen::VectorXd Mesh::reference_positions() const {

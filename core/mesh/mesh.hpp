@@ -17,6 +17,7 @@ struct BodyMesh {
   std::vector<Eigen::Vector3d> nodes;
   std::vector<Hex> hex8;
   std::map<std::string, std::vector<Quad>> surfaces;
+  std::map<std::string, std::vector<int>> node_sets;  ///< named nodes (*NSET), sorted body-local indices
 };
 
 /// A body's place inside the global Mesh. Surfaces hold global node indices.
@@ -25,6 +26,7 @@ struct Body {
   int node_begin = 0, node_end = 0;        ///< [begin, end) in Mesh::nodes
   int element_begin = 0, element_end = 0;  ///< [begin, end) in Mesh::hex8
   std::map<std::string, std::vector<Quad>> surfaces;
+  std::map<std::string, std::vector<int>> node_sets;  ///< sorted global node indices
 };
 
 /// All bodies of a scene in one node and element numbering.
@@ -50,6 +52,12 @@ struct Mesh {
   std::string add_surface_union(const std::vector<std::string>& body_slash_surfaces);
   /// Sorted unique node indices of a surface.
   std::vector<int> surface_nodes(const std::string& body_slash_surface) const;
+  /// Node set "body/set" (sorted global indices); throws std::out_of_range naming what is missing.
+  const std::vector<int>& node_set(const std::string& body_slash_set) const;
+  /// The nodes a boundary condition names by "body/name": the surface's nodes when the body has a surface
+  /// of that name, else its node set (an Abaqus *NSET). Throws std::out_of_range naming both kinds when
+  /// neither exists.
+  std::vector<int> named_nodes(const std::string& body_slash_name) const;
   /// Stacked reference coordinates (3 per node).
   Eigen::VectorXd reference_positions() const;
 };

@@ -85,6 +85,31 @@ Eigen::Vector3d Transform::apply(const Eigen::Vector3d& x) const {
   return translate + Eigen::AngleAxisd(radians, axis.normalized()) * scaled;
 }
 
+namespace {
+
+/// Throws when a surface of the body holds faces that two of its elements share (docs/scene.md, "Meshes
+/// from files"), naming the surface and how many of its faces are interior.
+void refuse_interior_faces(const std::string& file, const BodyMesh& body) {
+  if (body.surfaces.empty()) return;
+  std::map<std::array<int, 4>, int> uses;
+  const auto key = [](Quad q) { return std::sort(q.begin(), q.end()), q; };
+  for (const Hex& h : body.hex8)
+    for (const Quad& q : hex_faces(h)) ++uses[key(q)];
+  for (const auto& [name, quads] : body.surfaces) {
+    const auto interior =
+        std::count_if(quads.begin(), quads.end(), [&](const Quad& q) { return uses[key(q)] > 1; });
+    if (interior > 0)
+      throw MeshFileError(file, 0,
+                          "surface '" + name + "' holds " + std::to_string(interior) + " interior faces of " +
+                              std::to_string(quads.size()) +
+                              " (faces shared by two elements of the body): contact and supports act on the "
+                              "boundary, and a support on them would clamp the inside; name only boundary "
+                              "faces (for a whole side, the elements of its outer layer), or use 'boundary'");
+  }
+}
+
+}  // namespace
+
 Selection select_body(const ImportedMesh& mesh, const std::optional<std::string>& element_set,
                       const Transform& transform) {
   if (mesh.hex8.empty()) throw MeshFileError(mesh.file, 0, "has no 8-node hexahedra");
@@ -131,6 +156,14 @@ Selection select_body(const ImportedMesh& mesh, const std::optional<std::string>
       out.empty_surfaces.push_back(name);
     else
       out.body.surfaces[name] = std::move(quads);
+  }
+  refuse_interior_faces(mesh.file, out.body);
+  for (const auto& [name, members] : mesh.node_sets) {
+    std::vector<int> local;
+    for (int n : members)
+      if (local_node[n] >= 0) local.push_back(local_node[n]);
+    std::sort(local.begin(), local.end());
+    if (!local.empty()) out.body.node_sets[name] = std::move(local);
   }
   if (!out.body.surfaces.contains("boundary") &&
       std::find(out.empty_surfaces.begin(), out.empty_surfaces.end(), "boundary") == out.empty_surfaces.end())

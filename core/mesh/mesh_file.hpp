@@ -42,6 +42,10 @@ struct ImportedMesh {
   std::vector<long> element_lines;  ///< line of each element's definition (0 in binary files)
   std::map<std::string, std::vector<int>> element_sets;     ///< name → element indices (ascending)
   std::map<std::string, std::vector<ElementFace>> surfaces;  ///< name → faces, in outward order via hex_faces
+  std::map<std::string, std::vector<int>> node_sets;  ///< name → node indices (ascending): Abaqus *NSET
+  /// What the reader left out or turned into something else, one sentence each (e.g. the 2D elements of a
+  /// Gmsh export: which became surface faces, how many were skipped).
+  std::vector<std::string> notes;
 
   /// "file:line: element 17" for messages (no line part in binary files).
   std::string where_element(int element) const;
@@ -91,6 +95,10 @@ ImportedMesh read_gmsh(const std::filesystem::path& path, const std::string& sho
 /// *NSET and *ELSET (ids, set names, GENERATE), *SURFACE (TYPE=ELEMENT: element or ELSET, S1..S6 with the
 /// C3D8 face numbering). Other keywords and their data lines are skipped. Names are matched without
 /// regard to case (as Abaqus does) and kept as first written. *INCLUDE as `limits` allow it.
+/// @note 2D and 1D elements beside the hexahedra (Gmsh's export writes its physical surfaces as CPS4 and
+///       its curves as T3D2): a 4-node quadrilateral whose nodes are those of a boundary face of a
+///       hexahedron is that face, and an ELSET holding such elements is a surface of that name (outward
+///       order, as *SURFACE); every other 2D or 1D element is skipped. One note says how many of each.
 /// @throws MeshFileError naming the file and the line.
 ImportedMesh read_abaqus(const std::filesystem::path& path, const std::string& shown_name = "",
                          const ReadLimits& limits = {});
@@ -130,8 +138,11 @@ struct Selection {
 
 /// The elements of `element_set` (all elements when absent) as a body: its nodes (transformed), and
 /// every surface of the file restricted to faces of these elements (empty ones listed, not kept).
-/// Surface "boundary" (all boundary faces of the body) is added unless the file names one.
-/// @throws MeshFileError when the set does not exist or is empty, or the file has no hexahedra.
+/// Surface "boundary" (all boundary faces of the body) is added unless the file names one. Node sets are
+/// kept restricted to the body's nodes (a set with none of them is left out).
+/// @throws MeshFileError when the set does not exist or is empty, or the file has no hexahedra, or a surface
+///         holds faces interior to the body (shared by two of its elements): contact and supports act on
+///         a body's boundary, and a support there would silently clamp the inside (docs/scene.md).
 Selection select_body(const ImportedMesh& mesh, const std::optional<std::string>& element_set,
                       const Transform& transform = {});
 

@@ -116,7 +116,22 @@ PairScale pair_scale(const model::Model& m, size_t i, const std::vector<BodyScal
   return s;
 }
 
+/// S_f of (W7): slave nodes of every pair, a frictional pair's counted twice.
+double weighted_slave_nodes(const model::Model& m) {
+  double nodes = 0;
+  for (const model::ContactPair& p : m.contact)
+    nodes += (p.friction > 0 ? 2.0 : 1.0) * static_cast<double>(m.mesh.surface_nodes(p.slave).size());
+  return nodes;
+}
+
 }  // namespace
+
+double run_seconds(double steps, double elements, double courant, double weighted_slave_nodes) {
+  const double element_seconds = estimate_element_seconds * std::pow(elements, estimate_element_exponent) *
+                                 (1 + estimate_courant_factor * std::log10(1 + courant));
+  return estimate_setup_seconds +
+         steps * (element_seconds + estimate_slave_node_seconds * weighted_slave_nodes);  // (W7)
+}
 
 Estimates estimate(const model::Model& m) {
   Estimates e;
@@ -125,10 +140,9 @@ Estimates estimate(const model::Model& m) {
     e.slave_nodes += m.mesh.surface_nodes(m.contact[i].slave).size();
     if (PairScale p = pair_scale(m, i, e.bodies); p.approach_speed > 0) e.pairs.push_back(p);
   }
-  const double steps = m.time.steps();
-  e.wall_seconds =
-      steps * (estimate_element_seconds * std::pow(m.mesh.element_count(), estimate_element_exponent) +
-               estimate_slave_node_seconds * static_cast<double>(e.slave_nodes));  // (W7)
+  double courant = 0;
+  for (const BodyScale& b : e.bodies) courant = std::max(courant, b.courant);
+  e.wall_seconds = run_seconds(m.time.steps(), m.mesh.element_count(), courant, weighted_slave_nodes(m));
   return e;
 }
 

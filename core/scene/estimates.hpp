@@ -48,12 +48,21 @@ Estimates estimate(const model::Model& model);
 /// The estimates as docs/api.md shows them ("estimates" of POST /v1/validate and `stoss validate --json`).
 nlohmann::json to_json(const Estimates& estimates);
 
-/// The run-time estimate (W7): steps × (a E^k + b S), E the elements, S the slave nodes. a E^k covers
-/// assembly and the sparse factorisation (which grows faster than E) over a step's Newton iterations, b S
-/// the contact search and terms. Fitted to two runs of each shipped example with build/stoss run, on 2
-/// cores at load ~10 (docs/measurements.md, "The run-time estimate"): every run within 2.7× of it.
-inline constexpr double estimate_element_seconds = 3e-5;       ///< a
-inline constexpr double estimate_element_exponent = 1.3;       ///< k
-inline constexpr double estimate_slave_node_seconds = 1.2e-4;  ///< b
+/// The run-time estimate (W7), docs/scene.md: t₀ + steps × (a E^k (1 + c log₁₀(1 + C)) + b S_f) seconds,
+/// E the elements, C the largest Courant number (a larger step takes more Newton iterations), S_f the
+/// slave nodes of all pairs with a frictional pair's counted twice (its stick/slip states add passes).
+/// a E^k covers assembly and the sparse factorisation over a step's Newton iterations, b S_f the contact
+/// search and terms, t₀ the process's setup. Fitted (least worst ratio) to the CPU seconds (user + sys,
+/// the wall time of a run on an idle core) of every shipped example, measured with
+///   /usr/bin/time -f "%e %U %S" build/stoss run api/examples/NAME.json -o DIR
+/// on 2026-12-02 (docs/results.md, "The run-time estimate"): every example within 2.5× of it.
+inline constexpr double estimate_setup_seconds = 0.05;         ///< t₀
+inline constexpr double estimate_element_seconds = 1e-5;       ///< a
+inline constexpr double estimate_element_exponent = 1.1;       ///< k
+inline constexpr double estimate_courant_factor = 2;           ///< c
+inline constexpr double estimate_slave_node_seconds = 1.7e-4;  ///< b
+
+/// (W7) from its inputs: steps, elements E, the largest Courant number C and the weighted slave nodes S_f.
+double run_seconds(double steps, double elements, double courant, double weighted_slave_nodes);
 
 }  // namespace stoss::scene

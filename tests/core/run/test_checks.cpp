@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/mesh/generators.hpp"
 #include "core/run/checks.hpp"
 
 namespace stoss::run {
@@ -94,6 +95,23 @@ TEST(Checks, NewtonAndStepReductionsAgainstTheirFormulas) {
   const auto checks = run_checks(m, s);
   EXPECT_FALSE(find(checks, "newton_iterations_per_step").passed);
   EXPECT_FALSE(find(checks, "reduced_steps").passed);
+}
+
+TEST(Checks, NewtonBoundGrowsWithTheDofsAndTheContactNodes) {
+  // A 10 × 10 × 10 box: 1331 nodes, 3993 dofs; its top holds 121 nodes.
+  model::Model m;
+  m.mesh.add_body("a", mesh::box({0, 0, 0}, {1, 1, 1}, {10, 10, 10}));
+  m.solver.max_iterations = 25;
+  const double sized = 0.6 * 25 + 2 * std::log10(3.993);
+  EXPECT_NEAR(newton_bound(m), sized, 1e-12);
+  m.contact.push_back({"a/top", "b/m"});
+  EXPECT_NEAR(newton_bound(m), sized + 2 * std::log2(2.21), 1e-12);
+  // The seed's steel in g/cm³ takes 69 iterations per step (docs/results.md): far above the bound.
+  model::Summary s;
+  s.newton_iterations_per_step = 69;
+  EXPECT_FALSE(find(run_checks(m, s), "newton_iterations_per_step").passed);
+  s.newton_iterations_per_step = 11.4;  // two_balls, the shipped example that takes the most
+  EXPECT_TRUE(find(run_checks(m, s), "newton_iterations_per_step").passed);
 }
 
 TEST(Checks, MomentaAreCheckedOnlyWhereTheSystemIsFree) {

@@ -11,3 +11,7 @@ if command -v cgx > /dev/null; then
   cp cgx_block.fbd "$tmp/" && (cd "$tmp" && cgx -bg cgx_block.fbd > /dev/null 2>&1)
   mv "$tmp/all.msh" cgx_block.inp && rm -rf "$tmp"
 fi
+#   gmsh_box.inp: Gmsh's Abaqus export (gmsh -3 -format inp) of gmsh_box.geo: 8 C3D8 in ELSET block (and
+#   Volume1), its physical surfaces bottom and top as 4 CPS4 each (ELSETs bottom, top, Surface5, Surface6),
+#   and a *NSET per physical group (Mesh.SaveGroupsOfNodes); 27 nodes.
+gmsh -3 -format inp gmsh_box.geo -o gmsh_box.inp > /dev/null
