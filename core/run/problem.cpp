@@ -32,7 +32,7 @@ std::unique_ptr<loads::SurfaceLoad> make_load(const model::Model& m, const model
 std::vector<char> fixed_dofs(const model::Model& m) {
   std::vector<char> fixed(m.dof_count(), 0);
   for (const model::Boundary& b : m.boundary)
-    for (int node : m.mesh.surface_nodes(b.surface))
+    for (int node : m.mesh.named_nodes(b.surface))  // a surface or an *NSET
       for (int k = 0; k < 3; ++k)
         if (b.fix[k]) fixed[3 * node + k] = 1;
   return fixed;

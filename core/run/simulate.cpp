@@ -138,7 +138,7 @@ class Run {
     sum_.newton_iterations_per_step = s_.step > 0 ? double(sum_.newton_iterations) / s_.step : 0.0;
     add_timing();
     report_linear_solver();
-    add_verdict(m_, sum_);
+    add_verdict(m_, sum_, s_.x);
     observer_.end(sum_);
     return sum_;
   }
