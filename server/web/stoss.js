@@ -61,7 +61,7 @@ const UNITS = 'model units';
 
 // Log-axis ticks (a dygraphs `ticker`): decades only (1e-11, 1e-10, …), every k-th one so that labels stay
 // 30 px apart; where fewer than two decades fall inside, the 1-2-5 steps, then 1…9 (each label a distinct
-// one-digit number); on a range narrower than that, its two ends.
+// one-digit number); where fewer than two of those fall inside, the range's two ends.
 function logTicks(min, max, pixels) {
   if (!(min > 0) || !(max > min)) return [];
   const low = Math.floor(Math.log10(min)), high = Math.ceil(Math.log10(max));
@@ -76,7 +76,7 @@ function logTicks(min, max, pixels) {
     if (found.length >= 2) return found;
   }
   const dense = ticks([1, 2, 3, 4, 5, 6, 7, 8, 9], 1);
-  return dense.length ? dense : [min, max].map((v) => ({ v, label: Number(v.toPrecision(2)).toString() }));
+  return dense.length >= 2 ? dense : [min, max].map((v) => ({ v, label: Number(v.toPrecision(2)).toString() }));
 }
 
 // 1, 20, 0.005 as written; outside 1e-3 … 1e4 as 1e-11, 2e-5.
