@@ -40,47 +40,33 @@ void NtsContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z
 
 void NtsContactTerm::add_midpoint(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
                                   solve::BlockPattern* K) const {
-  if (surfaces_.smooth()) {
-    for (size_t k = 0; k < elements_.size(); ++k) {
-      const ContactElement& e = elements_[k];
-      const int o = element_offset(static_cast<int>(k));
+  for_each_element([&](const ContactElement& e, int o) {
+    if (surfaces_.smooth()) {
       const TensorPatch& patch = surfaces_.patches[e.face];
       const PatchNtsResult r =
           patch_midpoint_element(local_patch_of(e.face), local_positions(slave_node(e), patch, step.x_n),
                                  local_positions(slave_node(e), patch, z), z[o], e.f3, step.force_factor, e.xi);  // (4.2)
-      scatter_patch(e, o, r, R, K);
+      return scatter_patch(e, o, r, R, K);
     }
-    return;
-  }
-  for (size_t k = 0; k < elements_.size(); ++k) {
-    const ContactElement& e = elements_[k];
-    const int o = element_offset(static_cast<int>(k));
     const Vector15 x_n = element_positions(slave_node(e), face_of(e), step.x_n);
     const Vector15 x_1 = element_positions(slave_node(e), face_of(e), z);
     scatter(e, o, midpoint_element(x_n, x_1, z[o], e.f3, step.force_factor, e.xi), R, K);  // (4.2)
-  }
+  });
 }
 
 void NtsContactTerm::add_end_point(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
                                    solve::BlockPattern* K) const {
-  if (surfaces_.smooth()) {
-    for (size_t k = 0; k < elements_.size(); ++k) {
-      const ContactElement& e = elements_[k];
-      const int o = element_offset(static_cast<int>(k));
+  for_each_element([&](const ContactElement& e, int o) {
+    if (surfaces_.smooth()) {
       const TensorPatch& patch = surfaces_.patches[e.face];
-      scatter_patch(e, o,
-                    patch_hht_element(local_patch_of(e.face), local_positions(slave_node(e), patch, z), z[o], e.f3,
-                                      step.force_factor, step.rule.weight, e.xi),
-                    R, K);  // (2.11)
+      return scatter_patch(e, o,
+                           patch_hht_element(local_patch_of(e.face), local_positions(slave_node(e), patch, z), z[o],
+                                             e.f3, step.force_factor, step.rule.weight, e.xi),
+                           R, K);  // (2.11)
     }
-    return;
-  }
-  for (size_t k = 0; k < elements_.size(); ++k) {
-    const ContactElement& e = elements_[k];
-    const int o = element_offset(static_cast<int>(k));
     const Vector15 x_1 = element_positions(slave_node(e), face_of(e), z);
     scatter(e, o, hht_element(x_1, z[o], e.f3, step.force_factor, step.rule.weight, e.xi), R, K);  // (2.11)
-  }
+  });
 }
 
 void NtsContactTerm::end_step(const time::StepContext& step, const Eigen::VectorXd& z) {

@@ -39,6 +39,11 @@ class NtsContactTerm final : public LagrangeContactTerm {
   double auxiliary_residual_measure(const Eigen::VectorXd& R, const time::MeasureScales& s) const override;
 
  private:
+  /// Calls f(element, offset of its auxiliaries) for each active element, in order.
+  template <class F>
+  void for_each_element(F f) const {
+    for (size_t k = 0; k < elements_.size(); ++k) f(elements_[k], element_offset(static_cast<int>(k)));
+  }
   /// The midpoint rows (4.2), and the end-point rows (2.11), (2.12) without the t_n part.
   void add_midpoint(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
                     solve::BlockPattern* K) const;
