@@ -71,7 +71,7 @@ void SeriesRecorder::step(const model::StepRow& row) {
   for (double v : row.values) line += "," + (std::isfinite(v) ? shortest(v) : std::string("null"));
   out_ << line << "]\n";
   const auto now = std::chrono::steady_clock::now();
-  if (now - last_flush_ >= std::chrono::milliseconds(flush_every_)) {
+  if (row.step <= flushed_at_once || now - last_flush_ >= std::chrono::milliseconds(flush_every_)) {
     out_.flush();
     last_flush_ = now;
   }

@@ -21,7 +21,8 @@ inline constexpr const char* partial_series_file = "series.partial.jsonl";
 
 class SeriesRecorder : public model::Observer {
  public:
-  /// Writes to `path` (truncated); `flush_every` ms between flushes.
+  /// Writes to `path` (truncated); `flush_every` ms between flushes, the first steps (0 and 1) at once: a
+  /// job process killed once it has shown progress leaves a series, and a summary, to read.
   explicit SeriesRecorder(const std::filesystem::path& path, Millis flush_every = 250);
 
   void begin(const model::Model& model, const model::SeriesLayout& layout) override;
@@ -39,6 +40,7 @@ class SeriesRecorder : public model::Observer {
   std::ofstream out_;
   std::chrono::steady_clock::time_point last_flush_;
   Millis flush_every_;
+  static constexpr long long flushed_at_once = 1;  ///< steps up to this one are flushed as they come
   int total_ = -1, dissipated_ = -1;  ///< value offsets in a row
   std::optional<double> initial_energy_, last_dissipated_;
   double balance_drift_ = 0;

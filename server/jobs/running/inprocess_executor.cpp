@@ -87,7 +87,8 @@ Outcome InProcessExecutor::simulate_job(const Job& job, const AttemptFiles& file
     output::ResultWriter writer(files.dir());
     ProgressObserver reporter(progress, clock_, progress_interval_);
     LogObserver logger(log);
-    model::ObserverList observers({&writer, &reporter, &logger, &series});
+    // The series before the progress: a step the server has been told of is in the series stream.
+    model::ObserverList observers({&writer, &series, &reporter, &logger});
     const Checkpoints checkpoints{files.checkpoint(), true};
     try {
       summary = stoss::simulate(model, observers, &cancel, checkpoints);
