@@ -546,6 +546,7 @@ struct Deck {
     std::string names;
     for (const std::string& t : types) names += (names.empty() ? "" : ", ") + t;
     const long skipped = static_cast<long>(lower_elements.size()) - on_boundary;
+    mesh.skipped_elements = skipped;
     mesh.notes.push_back(std::to_string(lower_elements.size()) + " 2D/1D elements (" + names +
                          ") beside the hexahedra: " + std::to_string(on_boundary) +
                          " on the hexahedra's boundary are faces of the surfaces their ELSETs name, " +

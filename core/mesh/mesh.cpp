@@ -32,6 +32,7 @@ int Mesh::add_body(const std::string& name, const BodyMesh& body) {
     auto& out = b.node_sets[set_name];
     for (int n : members) out.push_back(n + offset);
   }
+  b.skipped_note = body.skipped_note;
   bodies.push_back(std::move(b));
   return index;
 }

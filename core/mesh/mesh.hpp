@@ -18,6 +18,7 @@ struct BodyMesh {
   std::vector<Hex> hex8;
   std::map<std::string, std::vector<Quad>> surfaces;
   std::map<std::string, std::vector<int>> node_sets;  ///< named nodes (*NSET), sorted body-local indices
+  std::string skipped_note;  ///< the mesh file's note on elements it read and left out; empty if none
 };
 
 /// A body's place inside the global Mesh. Surfaces hold global node indices.
@@ -27,6 +28,7 @@ struct Body {
   int element_begin = 0, element_end = 0;  ///< [begin, end) in Mesh::hex8
   std::map<std::string, std::vector<Quad>> surfaces;
   std::map<std::string, std::vector<int>> node_sets;  ///< sorted global node indices
+  std::string skipped_note;  ///< BodyMesh::skipped_note
 };
 
 /// All bodies of a scene in one node and element numbering.

@@ -158,6 +158,8 @@ Selection select_body(const ImportedMesh& mesh, const std::optional<std::string>
       out.body.surfaces[name] = std::move(quads);
   }
   refuse_interior_faces(mesh.file, out.body);
+  if (mesh.skipped_elements > 0)
+    for (const std::string& note : mesh.notes) out.body.skipped_note += (out.body.skipped_note.empty() ? mesh.file + ": " : "; ") + note;
   for (const auto& [name, members] : mesh.node_sets) {
     std::vector<int> local;
     for (int n : members)

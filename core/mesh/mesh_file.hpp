@@ -46,6 +46,9 @@ struct ImportedMesh {
   /// What the reader left out or turned into something else, one sentence each (e.g. the 2D elements of a
   /// Gmsh export: which became surface faces, how many were skipped).
   std::vector<std::string> notes;
+  /// Elements the reader dropped without using them (2D/1D elements not on the hexahedra's boundary): the
+  /// scene warns about them (docs/scene.md, "Checks before the run").
+  long skipped_elements = 0;
 
   /// "file:line: element 17" for messages (no line part in binary files).
   std::string where_element(int element) const;

@@ -157,10 +157,19 @@ void check_mode_step(const model::Model& m, const Estimates& e, std::vector<Warn
                        "scheme needs no such step; a step 100 times larger would still resolve the waves"});
 }
 
+/// A mesh file's 2D/1D elements that are no face of the hexahedra were dropped: a mesh meant as a shell or
+/// plane model does not run as one.
+void check_skipped_elements(const model::Model& m, std::vector<Warning>& out) {
+  for (size_t i = 0; i < m.mesh.bodies.size(); ++i)
+    if (const std::string& note = m.mesh.bodies[i].skipped_note; !note.empty())
+      out.push_back({warning::mesh_elements_skipped, "/bodies/" + std::to_string(i) + "/mesh", note});
+}
+
 }  // namespace
 
 std::vector<Warning> warnings(const model::Model& m, const Estimates& e) {
   std::vector<Warning> out;
+  check_skipped_elements(m, out);
   for (size_t i = 0; i < m.contact.size(); ++i) check_orientation(m, i, out);
   check_units(m, e, out);
   check_contact_step(m, e, out);

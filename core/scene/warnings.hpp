@@ -17,9 +17,11 @@ inline constexpr const char* unit_scale = "unit_scale";
 inline constexpr const char* step_longer_than_contact = "step_longer_than_contact";
 inline constexpr const char* step_longer_than_modes = "step_longer_than_modes";
 inline constexpr const char* step_far_below_waves = "step_far_below_waves";
+inline constexpr const char* mesh_elements_skipped = "mesh_elements_skipped";
 }  // namespace warning
 
-/// Every warning of a loaded model: orientation of each contact pair, then the scales of `estimates`.
+/// Every warning of a loaded model: elements a body's mesh file left out, orientation of each contact
+/// pair, then the scales of `estimates`.
 std::vector<Warning> warnings(const model::Model& model, const Estimates& estimates);
 
 /// Each contact pair's master_surface and switch_gap, and why it got them.

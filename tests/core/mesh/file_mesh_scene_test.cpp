@@ -196,6 +196,25 @@ TEST(FileMeshScene, PathIsRelativeToTheSceneFileNotTheWorkingDirectory) {
   EXPECT_EQ(m.scene["bodies"][0]["mesh"]["file"], "cube.inp");  // the scene as written, not a resolved path
 }
 
+TEST(FileMeshScene, ElementsTheFileLeavesOutAreAWarningAtTheBodysMesh) {
+  // A line element (T3D2) and a quadrangle that is no face of the hexahedron: read, skipped, warned about.
+  TempDir dir;
+  const std::string hex = cube_nodes + "*ELEMENT, TYPE=C3D8R, ELSET=E\n1,1,2,3,4,5,6,7,8\n";
+  dir.write("cube.inp", hex + "*ELEMENT, TYPE=T3D2, ELSET=L\n2,1,7\n*ELEMENT, TYPE=CPS4, ELSET=Q\n3,1,2,7,8\n");
+  dir.write("clean.inp", hex);
+  const auto warnings_of = [&](const std::string& file) {
+    const fs::path scene = dir.write(file + ".json", one_body_scene({{"file", file}, {"elements", "E"}}).dump());
+    return scene::summarize(scene::load_file(scene.string())).warnings;
+  };
+  const auto warned = warnings_of("cube.inp");
+  ASSERT_EQ(warned.size(), 1u);
+  EXPECT_EQ(warned[0].code, "mesh_elements_skipped");
+  EXPECT_EQ(warned[0].pointer, "/bodies/0/mesh");
+  EXPECT_NE(warned[0].message.find("2 2D/1D elements (CPS4, T3D2)"), std::string::npos) << warned[0].message;
+  EXPECT_NE(warned[0].message.find("2 skipped"), std::string::npos) << warned[0].message;
+  EXPECT_TRUE(warnings_of("clean.inp").empty());
+}
+
 TEST(FileMeshScene, ScenesWithoutAFileCannotNameMeshFiles) {
   // The HTTP API loads JSON bodies: a mesh file there would be a path on the server's disk.
   try {
