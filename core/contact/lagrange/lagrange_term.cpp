@@ -212,9 +212,10 @@ bool LagrangeContactTerm::update_active_set(const time::StepContext& step, const
 }
 
 void LagrangeContactTerm::end_step(const time::StepContext& step, const Eigen::VectorXd& z) {
+  measure_slave_force(step, z);
   const Eigen::VectorXd x = z.head(step.x_n.size());
   report_.energy_jump = 0;
-  pressure_.clear();
+  clear_pressure();
   for (size_t k = 0; k < elements_.size(); ++k) {
     ContactElement& e = elements_[k];
     read_auxiliaries(e, z, element_offset(static_cast<int>(k)));

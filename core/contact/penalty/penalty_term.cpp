@@ -139,10 +139,11 @@ void PenaltyContactTerm::add(const time::StepContext& step, const Eigen::VectorX
 }
 
 void PenaltyContactTerm::end_step(const time::StepContext& step, const Eigen::VectorXd& z) {
+  report_ = ContactReport{};
+  measure_slave_force(step, z);
   const Eigen::VectorXd x = z.head(step.x_n.size());
   std::vector<PenaltyNodeState> next(surfaces_.slave_nodes.size());
-  report_ = ContactReport{};
-  pressure_.clear();
+  clear_pressure();
   last_slip_work_ = 0;
   for (const PenaltyContact& c : contacts_) evaluate(c, step.x_n, x, [&](const auto& r) {
     PenaltyNodeState& node = next[c.slave];
