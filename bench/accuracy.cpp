@@ -1,9 +1,10 @@
-// What accuracy costs in time (docs/measurements.md, "Accuracy against time"): each scheme at h, h/2, h/4, h/8
-// (h = 0.04) against an energy_momentum reference at h/32, on a contact-free case and on the paper's
+// What accuracy costs in time (docs/measurements.md, "Accuracy against time"): each scheme at h, h/2, h/4,
+// h/8 (h = 0.04) against an energy_momentum reference at h/32, on a contact-free case and on the paper's
 // example. Writes bench/results/accuracy_<case>.{csv,md,png} (the PNG needs gnuplot).
-// Run: ./build/bench_accuracy [--quick] [--tolerances T1,T2,...]   (--quick: h and h/2 only, for a smoke check;
-//      --tolerances (or --tol), as stoss study's: also each scheme with steps chosen by time.tolerance = T, first step the scene's time.step,
-//      drawn as the lines "adaptive <scheme>")
+// Run: ./build/bench_accuracy [--quick] [--tolerances T1,T2,...]
+//      (--quick: h and h/2 only, for a smoke check; --tolerances, or --tol, as stoss study's: also each
+//      scheme with steps chosen by time.tolerance = T, first step the scene's time.step, drawn as the lines
+//      "adaptive <scheme>")
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>

@@ -298,9 +298,10 @@ study::Options study_options(const std::vector<std::string>& args, std::string& 
 int study_command(const std::vector<std::string>& args) {
   constexpr const char* text =
       "stoss study SCENE.json --steps h1,h2,... [--tolerances TOL1,TOL2,...] "
-      "[--schemes energy_momentum,midpoint,hht,generalized_alpha] [--reference H] [--repeat N] [--csv|--json]\n"
-      "  each scheme at each step, and with --tolerances also with steps chosen by time.tolerance = TOL (first\n"
-      "  step the scene's time.step); wall seconds are the median of N runs of each row (default 3)";
+      "[--schemes energy_momentum,midpoint,hht,generalized_alpha] [--reference H] [--repeat N] "
+      "[--csv|--json]\n"
+      "  each scheme at each step, and with --tolerances also with steps chosen by time.tolerance = TOL\n"
+      "  (first step the scene's time.step); wall seconds are the median of N runs of each row (default 3)";
   if (wants_help(args)) {
     std::cout << "usage: " << text << "\n";
     return success;

@@ -28,8 +28,8 @@ std::string ProgressObserver::line(const model::StepRow& row, double elapsed) co
   char text[200];
   if (!adaptive_) {
     const double eta = elapsed / (row.step - first_step_) * (steps_ - row.step);
-    std::snprintf(text, sizeof text, "step %d/%d  t = %.6g/%.6g  elapsed %.1f s  ETA %.1f s", row.step, steps_,
-                  row.time, end_time_, elapsed, eta);
+    std::snprintf(text, sizeof text, "step %d/%d  t = %.6g/%.6g  elapsed %.1f s  ETA %.1f s", row.step,
+                  steps_, row.time, end_time_, elapsed, eta);
     return text;
   }
   const double done = row.time - first_time_;

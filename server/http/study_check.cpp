@@ -177,7 +177,8 @@ double tolerance_min_step(const nlohmann::json& time) {
   return time.value("step", 0.0) / 1024;
 }
 
-/// The study's run with the most time steps: its name for a message and its step (a bound for a tolerance run).
+/// The study's run with the most time steps: its name for a message and its step (a bound for a tolerance
+/// run).
 struct FinestRun {
   std::string name;
   double step = 0;
@@ -185,8 +186,9 @@ struct FinestRun {
 
 FinestRun finest_run(const study::Options& options, const nlohmann::json& time) {
   const double finest_swept = *std::min_element(options.steps.begin(), options.steps.end());
-  FinestRun finest = options.reference_step <= finest_swept ? FinestRun{"the reference run", options.reference_step}
-                                                            : FinestRun{"the run", finest_swept};
+  FinestRun finest = options.reference_step <= finest_swept
+                         ? FinestRun{"the reference run", options.reference_step}
+                         : FinestRun{"the run", finest_swept};
   const double min_step = tolerance_min_step(time);
   if (!options.tolerances.empty() && min_step > 0 && min_step < finest.step)
     finest = {"a tolerance run at its min_step", min_step};
@@ -199,14 +201,14 @@ void check_run_limit(const study::Options& options, const nlohmann::json& time, 
   const FinestRun finest = finest_run(options, time);
   const long long value = model::step_count(time.value("end", 0.0), finest.step);
   if (value <= limits.max_steps) return;
-  throw ProblemError(Problem{
-      413,
-      "urn:stoss:problem:limit-exceeded",
-      "Study exceeds a server limit",
-      "the study's finest run (" + finest.name + ", h = " + format_step(finest.step) + ") has " +
-          std::to_string(value) + " time steps, more than the server limit max_steps = " +
-          std::to_string(limits.max_steps),
-      {{"limits", {{{"name", "max_steps"}, {"limit", limits.max_steps}, {"value", value}}}}}});
+  throw ProblemError(
+      Problem{413,
+              "urn:stoss:problem:limit-exceeded",
+              "Study exceeds a server limit",
+              "the study's finest run (" + finest.name + ", h = " + format_step(finest.step) + ") has " +
+                  std::to_string(value) +
+                  " time steps, more than the server limit max_steps = " + std::to_string(limits.max_steps),
+              {{"limits", {{{"name", "max_steps"}, {"limit", limits.max_steps}, {"value", value}}}}}});
 }
 
 }  // namespace

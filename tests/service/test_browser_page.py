@@ -319,7 +319,8 @@ def adaptive_run(browser, server, source_dir):
     scene["output"] = {"every": 40}  # the server counts end/min_step steps: 41 frames at most, under --max-frames
     job = server.post("/v1/jobs", scene)
     click_job_row(browser, job["id"])
-    browser.wait_for("document.getElementById('job-status').textContent === 'succeeded'", "the adaptive run succeeds")
+    browser.wait_for(f"document.getElementById('job-kind').textContent.includes({js(job['id'])}) &&"
+                     " document.getElementById('job-status').textContent === 'succeeded'", "the adaptive run succeeds")
     with urllib.request.urlopen(f"{server.url}/v1/jobs/{job['id']}/series", timeout=30) as response:
         rows = len(json.load(response)["time"])
     points = "Number(document.getElementById('plot-step-size')?.dataset.points)"

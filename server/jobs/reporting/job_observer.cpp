@@ -30,12 +30,15 @@ void ProgressObserver::estimate(Millis now) {
   const double elapsed = static_cast<double>(now - started_) / 1000.0;
   if (!adaptive_) {
     if (current_.step > first_step_)
-      current_.eta_seconds = elapsed / (current_.step - first_step_) * std::max(0, current_.steps - current_.step);
+      current_.eta_seconds =
+          elapsed / (current_.step - first_step_) * std::max(0, current_.steps - current_.step);
     return;
   }
   if (current_.time <= 0 || current_.time <= first_time_) return;
-  current_.steps = std::max(current_.step, static_cast<int>(std::lround(current_.step * current_.end / current_.time)));
-  current_.eta_seconds = elapsed / (current_.time - first_time_) * std::max(0.0, current_.end - current_.time);
+  current_.steps =
+      std::max(current_.step, static_cast<int>(std::lround(current_.step * current_.end / current_.time)));
+  current_.eta_seconds =
+      elapsed / (current_.time - first_time_) * std::max(0.0, current_.end - current_.time);
 }
 
 void ProgressObserver::resumed(int step) {

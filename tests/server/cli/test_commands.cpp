@@ -155,7 +155,8 @@ TEST(Cli, StudyTakesTolerancesBesideSteps) {
   EXPECT_EQ(stoss("study " + write(dir, scene) + " --steps 0.1 --tolerances 1e-3,0").exit_code, 2);
   const Command infinite = stoss("study " + write(dir, scene) + " --steps 0.1 --tolerances inf");
   EXPECT_EQ(infinite.exit_code, 2);
-  EXPECT_NE(infinite.output.find("--tolerances: every tolerance must be a finite number > 0"), std::string::npos)
+  EXPECT_NE(infinite.output.find("--tolerances: every tolerance must be a finite number > 0"),
+            std::string::npos)
       << infinite.output;
 }
 

@@ -1,10 +1,9 @@
 // A study's tolerances (issue 22 §2): POST /v1/studies takes `tolerances` beside `steps`; each must be a
 // finite number > 0, else a 422 naming /tolerances/i and the rule; the runs count them; the finest run a
 // tolerance allows (end/min_step) is held to max_steps as a scene with time.tolerance is.
-#include "server/http/study_check.hpp"
-
 #include <gtest/gtest.h>
 
+#include "server/http/study_check.hpp"
 #include "tests/server/live_server.hpp"
 
 namespace stoss::server::http {
@@ -64,7 +63,8 @@ TEST(StudyCheck, TolerancesMustBeANonEmptyArray) {
     const nlohmann::json errors = problem_of(body).extra.at("errors");
     ASSERT_EQ(errors.size(), 1u) << errors.dump();
     EXPECT_EQ(errors[0]["pointer"], "/tolerances");
-    EXPECT_EQ(errors[0]["message"].get<std::string>().rfind("must be an array of 1 to 100 tolerances, got ", 0), 0u)
+    EXPECT_EQ(
+        errors[0]["message"].get<std::string>().rfind("must be an array of 1 to 100 tolerances, got ", 0), 0u)
         << errors[0]["message"];
   }
 }
@@ -78,9 +78,10 @@ TEST(StudyCheck, ATolerancesFinestRunIsEndOverMinStepAgainstMaxSteps) {
   const Problem p = problem_of(body, limits);
   EXPECT_EQ(p.status, 413);
   EXPECT_EQ(p.extra.at("limits")[0]["value"], 20'480);
-  EXPECT_EQ(p.detail,
-            "the study's finest run (a tolerance run at its min_step, h = 9.76563e-06) has 20480 time steps, more "
-            "than the server limit max_steps = 10000");
+  EXPECT_EQ(
+      p.detail,
+      "the study's finest run (a tolerance run at its min_step, h = 9.76563e-06) has 20480 time steps, more "
+      "than the server limit max_steps = 10000");
   body["scene"]["time"]["tolerance"] = 1e-3;  // the scene's own min_step then bounds the tolerance runs
   body["scene"]["time"]["min_step"] = 1e-4;
   EXPECT_EQ(check_study(body, limits).options.tolerances.size(), 1u);

@@ -111,7 +111,8 @@ TEST(ProgressObserver, WithAToleranceProgressAndEtaGoBySimulatedTime) {
   EXPECT_NEAR(p.time, 0.5, 1e-12);
   EXPECT_EQ(p.steps, 120) << "60 steps to t = 0.5 of 1: step/steps = time/end";
   ASSERT_TRUE(p.eta_seconds);
-  EXPECT_NEAR(*p.eta_seconds, 3.0, 1e-9) << "3 s for half the time, 3 s for the other half (steps of end/time.step would say 2 s)";
+  EXPECT_NEAR(*p.eta_seconds, 3.0, 1e-9)
+      << "3 s for half the time, 3 s for the other half (steps of end/time.step would say 2 s)";
   for (int step = 61; step <= 80; ++step) {
     clock.advance(100);
     observer.step({step, t += 0.025, {}});
