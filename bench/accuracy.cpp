@@ -1,9 +1,10 @@
-// What accuracy costs in time (docs/measurements.md, "Accuracy against time"): each scheme at h, h/2, h/4, h/8
-// (h = 0.04) against an energy_momentum reference at h/32, on a contact-free case and on the paper's
+// What accuracy costs in time (docs/measurements.md, "Accuracy against time"): each scheme at h, h/2, h/4,
+// h/8 (h = 0.04) against an energy_momentum reference at h/32, on a contact-free case and on the paper's
 // example. Writes bench/results/accuracy_<case>.{csv,md,png} (the PNG needs gnuplot).
-// Run: ./build/bench_accuracy [--quick] [--tol T1,T2,...]   (--quick: h and h/2 only, for a smoke check;
-//      --tol: also each scheme with steps chosen by time.tolerance = T, first step the scene's time.step,
-//      drawn as the lines "adaptive <scheme>")
+// Run: ./build/bench_accuracy [--quick] [--tolerances T1,T2,...]
+//      (--quick: h and h/2 only, for a smoke check; --tolerances, or --tol, as stoss study's: also each
+//      scheme with steps chosen by time.tolerance = T, first step the scene's time.step, drawn as the lines
+//      "adaptive <scheme>")
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -73,11 +74,11 @@ void run_case(const std::string& name, stoss::model::Model m, bool quick, const 
 
 }  // namespace
 
-/// The values of "--tol T1,T2,...".
+/// The values of "--tolerances T1,T2,..." (or "--tol").
 std::vector<double> tolerances_of(int argc, char** argv) {
   std::vector<double> out;
   for (int k = 1; k + 1 < argc; ++k)
-    if (std::string(argv[k]) == "--tol") {
+    if (std::string(argv[k]) == "--tol" || std::string(argv[k]) == "--tolerances") {
       std::stringstream list(argv[k + 1]);
       for (std::string item; std::getline(list, item, ',');) out.push_back(std::stod(item));
     }

@@ -117,6 +117,11 @@ std::vector<Run> plan(const model::Model& model, const Options& options) {
   return runs;
 }
 
+int run_count(const Options& options) {
+  const std::size_t points = options.schemes.size() * (options.steps.size() + options.tolerances.size());
+  return 1 + static_cast<int>(points) * std::max(1, options.repeat);
+}
+
 Result run(const model::Model& model, const Options& options) {
   if (options.steps.empty()) throw std::invalid_argument("study: no step sizes given");
   for (double tolerance : options.tolerances)

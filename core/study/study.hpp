@@ -74,6 +74,9 @@ std::string timing_note(const Result& result);
 /// The runs of a sweep of `model` in order, reference first (reference_step resolved), each other run
 /// options.repeat times in a row.
 std::vector<Run> plan(const model::Model& model, const Options& options);
+/// The runs plan() makes, without a model: the reference plus options.repeat per scheme × (step or
+/// tolerance).
+int run_count(const Options& options);
 /// The reference step options.reference_step resolves to (smallest step / 32 when 0).
 double resolved_reference_step(const Options& options);
 

@@ -1,6 +1,7 @@
 #include "server/cli/commands.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -265,6 +266,8 @@ study::Options study_options(const std::vector<std::string>& args, std::string& 
     const bool has_value = i + 1 < args.size();
     if (args[i] == "--steps" && has_value) {
       for (const auto& h : split_commas(args[++i])) o.steps.push_back(std::stod(h));
+    } else if (args[i] == "--tolerances" && has_value) {
+      for (const auto& tol : split_commas(args[++i])) o.tolerances.push_back(std::stod(tol));
     } else if (args[i] == "--schemes" && has_value) {
       o.schemes.clear();
       for (const auto& name : split_commas(args[++i])) o.schemes.push_back(parse_scheme(name));
@@ -284,6 +287,9 @@ study::Options study_options(const std::vector<std::string>& args, std::string& 
   if (scene_path.empty() || o.steps.empty()) throw std::invalid_argument("a scene and --steps are required");
   for (double h : o.steps)
     if (!(h > 0)) throw std::invalid_argument("--steps: every step must be > 0");
+  for (double tol : o.tolerances)
+    if (!(tol > 0) || !std::isfinite(tol))
+      throw std::invalid_argument("--tolerances: every tolerance must be a finite number > 0");
   return o;
 }
 
@@ -291,9 +297,11 @@ study::Options study_options(const std::vector<std::string>& args, std::string& 
 
 int study_command(const std::vector<std::string>& args) {
   constexpr const char* text =
-      "stoss study SCENE.json --steps h1,h2,... [--schemes energy_momentum,midpoint,hht,generalized_alpha] "
-      "[--reference H] [--repeat N] [--csv|--json]\n"
-      "  wall seconds are the median of N runs of each scheme and step (default 3)";
+      "stoss study SCENE.json --steps h1,h2,... [--tolerances TOL1,TOL2,...] "
+      "[--schemes energy_momentum,midpoint,hht,generalized_alpha] [--reference H] [--repeat N] "
+      "[--csv|--json]\n"
+      "  each scheme at each step, and with --tolerances also with steps chosen by time.tolerance = TOL\n"
+      "  (first step the scene's time.step); wall seconds are the median of N runs of each row (default 3)";
   if (wants_help(args)) {
     std::cout << "usage: " << text << "\n";
     return success;

@@ -14,7 +14,7 @@ namespace stoss::server::http {
 
 namespace {
 
-const char* const study_members[] = {"scene", "steps", "schemes", "reference_step", "repeat"};
+const char* const study_members[] = {"scene", "steps", "tolerances", "schemes", "reference_step", "repeat"};
 
 /// Most runs of each scheme × step (`repeat`).
 constexpr int max_study_repeat = 9;
@@ -49,7 +49,7 @@ void check_members(const nlohmann::json& body, nlohmann::json& errors) {
   for (const auto& [name, value] : body.items())
     if (std::find(std::begin(study_members), std::end(study_members), name) == std::end(study_members))
       add(errors, member_pointer(name),
-          "is not a member of a study (scene, steps, schemes, reference_step, repeat)");
+          "is not a member of a study (scene, steps, tolerances, schemes, reference_step, repeat)");
 }
 
 std::vector<double> check_steps(const nlohmann::json& body, nlohmann::json& errors) {
@@ -73,6 +73,27 @@ std::vector<double> check_steps(const nlohmann::json& body, nlohmann::json& erro
       add(errors, "/steps/" + std::to_string(i), "must be a positive number, got " + describe(h));
   }
   return steps;
+}
+
+/// time.tolerance values to sweep beside the steps (docs/scene.md "Time"): optional, each finite and > 0.
+std::vector<double> check_tolerances(const nlohmann::json& body, nlohmann::json& errors) {
+  auto it = body.find("tolerances");
+  if (it == body.end()) return {};
+  if (!it->is_array() || it->empty() || it->size() > max_study_steps) {
+    add(errors, "/tolerances",
+        "must be an array of 1 to " + std::to_string(max_study_steps) + " tolerances, got " +
+            (it->is_array() ? std::to_string(it->size()) + " items" : describe(*it)));
+    return {};
+  }
+  std::vector<double> tolerances;
+  for (std::size_t i = 0; i < it->size(); ++i) {
+    const auto& tol = (*it)[i];
+    if (positive_number(tol))
+      tolerances.push_back(tol.get<double>());
+    else
+      add(errors, "/tolerances/" + std::to_string(i), "must be a finite number > 0, got " + describe(tol));
+  }
+  return tolerances;
 }
 
 /// "energy_momentum, midpoint, hht, generalized_alpha": every scheme, in model::all_schemes order.
@@ -149,21 +170,45 @@ Problem invalid_study(nlohmann::json errors) {
   return {422, "urn:stoss:problem:invalid-study", "Invalid study", detail, {{"errors", std::move(errors)}}};
 }
 
-/// 413 when the finest run of the study needs more than max_steps time steps.
-void check_run_limit(const study::Options& options, double end, const Limits& limits) {
+/// The smallest step a tolerance run of the study may take: the scene's time.min_step when the scene has a
+/// tolerance of its own, else its default time.step / 1024 (study::run keeps the one, sets the other).
+double tolerance_min_step(const nlohmann::json& time) {
+  if (time.contains("tolerance") && time.value("min_step", 0.0) > 0) return time["min_step"].get<double>();
+  return time.value("step", 0.0) / 1024;
+}
+
+/// The study's run with the most time steps: its name for a message and its step (a bound for a tolerance
+/// run).
+struct FinestRun {
+  std::string name;
+  double step = 0;
+};
+
+FinestRun finest_run(const study::Options& options, const nlohmann::json& time) {
   const double finest_swept = *std::min_element(options.steps.begin(), options.steps.end());
-  const bool reference_finest = options.reference_step <= finest_swept;
-  const double finest = reference_finest ? options.reference_step : finest_swept;
-  const long long value = model::step_count(end, finest);
+  FinestRun finest = options.reference_step <= finest_swept
+                         ? FinestRun{"the reference run", options.reference_step}
+                         : FinestRun{"the run", finest_swept};
+  const double min_step = tolerance_min_step(time);
+  if (!options.tolerances.empty() && min_step > 0 && min_step < finest.step)
+    finest = {"a tolerance run at its min_step", min_step};
+  return finest;
+}
+
+/// 413 when the finest run of the study needs more than max_steps time steps (a tolerance run: end/min_step,
+/// as for a scene with time.tolerance).
+void check_run_limit(const study::Options& options, const nlohmann::json& time, const Limits& limits) {
+  const FinestRun finest = finest_run(options, time);
+  const long long value = model::step_count(time.value("end", 0.0), finest.step);
   if (value <= limits.max_steps) return;
-  const std::string run = reference_finest ? "the reference run" : "the run";
-  throw ProblemError(Problem{
-      413,
-      "urn:stoss:problem:limit-exceeded",
-      "Study exceeds a server limit",
-      "the study's finest run (" + run + ", h = " + format_step(finest) + ") has " + std::to_string(value) +
-          " time steps, more than the server limit max_steps = " + std::to_string(limits.max_steps),
-      {{"limits", {{{"name", "max_steps"}, {"limit", limits.max_steps}, {"value", value}}}}}});
+  throw ProblemError(
+      Problem{413,
+              "urn:stoss:problem:limit-exceeded",
+              "Study exceeds a server limit",
+              "the study's finest run (" + finest.name + ", h = " + format_step(finest.step) + ") has " +
+                  std::to_string(value) +
+                  " time steps, more than the server limit max_steps = " + std::to_string(limits.max_steps),
+              {{"limits", {{{"name", "max_steps"}, {"limit", limits.max_steps}, {"value", value}}}}}});
 }
 
 }  // namespace
@@ -178,6 +223,7 @@ StudyRequest check_study(const nlohmann::json& body, const Limits& limits, const
   check_members(body, errors);
   StudyRequest request;
   request.options.steps = check_steps(body, errors);
+  request.options.tolerances = check_tolerances(body, errors);
   request.options.schemes = check_schemes(body, errors);
   request.options.reference_step = check_reference(body, errors);
   request.options.repeat = check_repeat(body, errors);
@@ -186,9 +232,8 @@ StudyRequest check_study(const nlohmann::json& body, const Limits& limits, const
   if (request.options.reference_step == 0)
     request.options.reference_step =
         *std::min_element(request.options.steps.begin(), request.options.steps.end()) / 32;
-  check_run_limit(request.options, request.scene.value("time", nlohmann::json::object()).value("end", 0.0),
-                  limits);
-  request.runs = jobs::study_run_count(request.options);
+  check_run_limit(request.options, request.scene.value("time", nlohmann::json::object()), limits);
+  request.runs = study::run_count(request.options);
   return request;
 }
 

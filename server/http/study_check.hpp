@@ -18,16 +18,16 @@ struct StudyRequest {
   nlohmann::json scene;    ///< the scene as submitted, every default filled in (what the worker runs)
   study::Options options;  ///< defaults filled in: all three schemes, reference_step = min(steps) / 32
   scene::Summary summary;  ///< of the scene (effects, nodes, …)
-  int runs = 0;            ///< the reference run plus one per scheme and step
+  int runs = 0;  ///< study::run_count: the reference run plus `repeat` per scheme × (step or tolerance)
 };
 
-/// Validates `{"scene": {...}, "steps": [h...], "schemes": [...]?, "reference_step": H?}`. Throws
-/// ProblemError: 422 (`urn:stoss:problem:invalid-study`) listing every error by JSON pointer into the
-/// body (scene errors under `/scene`, `/steps/i`, `/schemes/i`, `/reference_step`, unknown members); 413
-/// naming the limit when the scene exceeds max_nodes or the study's finest run (the reference, unless a
-/// swept step is finer) exceeds max_steps. The scene's own time.step and output frames are not checked
-/// against max_steps and max_frames: a study replaces the step and writes no frames. Mesh ids of the scene
-/// are resolved by `mesh_files`.
+/// Validates `{"scene": {...}, "steps": [h...], "tolerances": [TOL...]?, "schemes": [...]?, "reference_step":
+/// H?, "repeat": N?}`. Throws ProblemError: 422 (`urn:stoss:problem:invalid-study`) listing every error by
+/// JSON pointer into the body (scene errors under `/scene`, `/steps/i`, `/tolerances/i`, `/schemes/i`,
+/// `/reference_step`, unknown members); 413 naming the limit when the scene exceeds max_nodes or the study's
+/// finest run (the reference, a finer swept step, or with tolerances end/min_step) exceeds max_steps. The
+/// scene's own time.step and output frames are not checked against max_steps and max_frames: a study replaces
+/// the step and writes no frames. Mesh ids of the scene are resolved by `mesh_files`.
 StudyRequest check_study(const nlohmann::json& body, const Limits& limits, const scene::MeshFiles& mesh_files = {});
 
 }  // namespace stoss::server::http

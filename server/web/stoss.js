@@ -98,7 +98,7 @@ function unitOf(key) {
 
 // What each plot's y axis measures (by plot id).
 const Y_LABELS = { energy: 'energy (' + UNITS + ')', 'energy-error': 'relative error', 'momentum-error': 'momentum (' + UNITS + ')',
-                   contact: 'count; penetration (' + UNITS + ')', newton: 'iterations', dissipation: 'energy (' + UNITS + ')' };
+                   contact: 'count; penetration (' + UNITS + ')', newton: 'iterations', 'step-size': 'h (' + UNITS + ')', dissipation: 'energy (' + UNITS + ')' };
 
 function duration(seconds) {
   if (seconds === null || seconds === undefined) return '';
@@ -227,9 +227,12 @@ function requestBody() {
   const steps = document.getElementById('study-steps').value.split(',').map((s) => Number(s.trim()));
   const schemes = [...document.querySelectorAll('#study-schemes input:checked')].map((box) => box.value);
   const repeat = Number(document.getElementById('study-repeat').value);
+  const tolerancesText = document.getElementById('study-tolerances').value.trim();
   let scene;
   try { scene = JSON.parse(text); } catch (e) { return { path: '/v1/studies', text, prefix: '/scene' }; }
-  return { path: '/v1/studies', text: JSON.stringify({ scene, steps, schemes, repeat }), prefix: '/scene' };
+  const study = { scene, steps, schemes, repeat };
+  if (tolerancesText) study.tolerances = tolerancesText.split(',').map((s) => Number(s.trim()));
+  return { path: '/v1/studies', text: JSON.stringify(study), prefix: '/scene' };
 }
 
 async function submit(validateOnly) {
@@ -288,6 +291,9 @@ const PLOTS = [
     row: (s, i) => [s.active_contacts[i], s.max_penetration[i]] },
   { id: 'newton', title: 'Newton iterations per step', needs: ['newton_iterations'], labels: ['Newton iterations'], stepPlot: true,
     row: (s, i) => [s.newton_iterations[i]] },
+  // Only where steps are chosen by time.tolerance (docs/scene.md "Time"): with fixed steps h is time.step.
+  { id: 'step-size', title: 'Step size h (chosen by time.tolerance)', needs: ['step_size'], adaptiveOnly: true,
+    labels: ['step size h'], logscale: true, row: (s, i) => [positive(s.step_size[i])] },
   { id: 'dissipation', title: 'Dissipated energy (friction) and H + D', needs: ['dissipated_energy'],
     labels: ['dissipated D', 'H + D'], row: (s, i) => [s.dissipated_energy[i], s.total_energy[i] + s.dissipated_energy[i]] },
 ];
@@ -310,7 +316,7 @@ function plotRows(state, series) {
     for (const [name, values] of Object.entries(series)) if (Array.isArray(values)) state.first[name] = values[0];
   }
   for (const plot of PLOTS) {
-    if (!plot.needs.every((name) => name in series) || (plot.freeOnly && !state.free)) continue;
+    if (!plot.needs.every((name) => name in series) || (plot.freeOnly && !state.free) || (plot.adaptiveOnly && !state.adaptive)) continue;
     if (!state.graphs[plot.id]) {
       const box = el('div', { class: 'plot', id: 'plot-' + plot.id, 'data-points': '0' });
       const legend = el('div', { class: 'legend' });
@@ -336,6 +342,7 @@ async function pollSeries(job) {
   if (job.kind !== 'simulation' || job.status === 'queued') return true;
   if (shown.attempt !== job.attempt) { resetPlots(shown); shown.attempt = job.attempt; }
   shown.free = !job.effects.includes('dirichlet') && !job.effects.includes('gravity');
+  if (shown.adaptive === undefined) shown.adaptive = await stepsByTolerance(job);
   const since = shown.since === null ? '' : '?since=' + shown.since;
   const response = await api(`/v1/jobs/${job.id}/series${since}`);
   if (response.status === 409) return false;              // no step recorded yet
@@ -343,6 +350,12 @@ async function pollSeries(job) {
   plotRows(shown, series);
   if (series.summary) showSummary(series.summary, job.status === 'running' ? 'so far' : '');
   return series.completed !== false || FINAL.includes(job.status);
+}
+
+// Whether the job's steps are chosen by time.tolerance (its scene's time, read once per job shown).
+async function stepsByTolerance(job) {
+  const { status, body } = await apiJson(job.links.scene);
+  return status === 200 && !!body.time && typeof body.time.tolerance === 'number';
 }
 
 // The failed checks of a suspect run, in words (docs/results.md "Verdict"); '' for an ok run.
@@ -427,30 +440,36 @@ async function showStudy(job) {
   if (job.kind !== 'study' || job.status !== 'succeeded' || shown.studyShown) return;
   const { body } = await apiJson(job.links.study);
   shown.studyShown = true;
-  const schemes = [...new Set(body.rows.map((r) => r.scheme))];
+  // A line per scheme at fixed steps, and one per scheme with steps chosen by a tolerance ("adaptive …").
+  const lineOf = (r) => (r.tolerance > 0 ? 'adaptive ' + r.scheme : r.scheme);
+  const labelOf = (r) => (r.tolerance > 0 ? 'TOL=' + r.tolerance : 'h=' + r.step);
+  const lines = [...new Set(body.rows.map(lineOf))];
   const plotted = body.rows.filter((r) => r.completed && r.displacement_error > 0);
   const points = plotted
-    .map((r) => { const row = [r.wall_seconds, ...schemes.map(() => null)]; row[1 + schemes.indexOf(r.scheme)] = r.displacement_error; return row; })
+    .map((r) => { const row = [r.wall_seconds, ...lines.map(() => null)]; row[1 + lines.indexOf(lineOf(r))] = r.displacement_error; return row; })
     .sort((a, b) => a[0] - b[0]);
   const xs = points.map((p) => p[0]);
   const ys = plotted.map((r) => r.displacement_error);
   const timing = body.timing || 'wall seconds: one run';
   const box = document.getElementById('plot-accuracy');
   box.dataset.points = String(points.length);
-  box.dataset.lines = String(schemes.length);
-  box.dataset.pointLabels = JSON.stringify(plotted.map((r) => 'h=' + r.step));
-  const graph = new Dygraph(box, points, { labels: ['wall seconds', ...schemes], title: 'Displacement error at the end against wall time',
+  box.dataset.lines = String(lines.length);
+  box.dataset.pointLabels = JSON.stringify(plotted.map(labelOf));
+  const dashed = Object.fromEntries(lines.filter((l) => l.startsWith('adaptive ')).map((l) => [l, { strokePattern: [6, 3] }]));
+  const graph = new Dygraph(box, points, { labels: ['wall seconds', ...lines], title: 'Displacement error at the end against wall time',
     xlabel: body.repeat > 1 ? `wall seconds (median of ${body.repeat} runs)` : 'wall seconds (one run)', ylabel: 'max nodal displacement error (' + UNITS + ')',
-    logscale: true, connectSeparatedPoints: true, drawPoints: true, pointSize: 3, legend: 'always', height: 300,
+    logscale: true, connectSeparatedPoints: true, drawPoints: true, pointSize: 3, legend: 'always', height: 300, series: dashed,
     labelsDiv: document.getElementById('accuracy-legend'),
     axes: { x: { logscale: true, ticker: logTicks }, y: { axisLabelWidth: 64, ticker: logTicks } },
     dateWindow: [Math.min(...xs) / 1.5, Math.max(...xs) * 1.5], valueRange: [Math.min(...ys) / 1.5, Math.max(...ys) * 1.5] });
-  // Each point says its step size.
-  graph.ready(() => graph.setAnnotations(plotted.map((r) => ({ series: r.scheme, x: r.wall_seconds, shortText: 'h=' + r.step,
-    text: `${r.scheme}, h = ${r.step}`, width: 48, height: 14, cssClass: 'step-label' }))));
+  // Each point says its step size, or its tolerance.
+  graph.ready(() => graph.setAnnotations(plotted.map((r) => ({ series: lineOf(r), x: r.wall_seconds, shortText: labelOf(r),
+    text: r.tolerance > 0 ? `${r.scheme}, time.tolerance = ${r.tolerance}, ${r.steps} steps` : `${r.scheme}, h = ${r.step}`,
+    width: r.tolerance > 0 ? 76 : 48, height: 14, cssClass: 'step-label' }))));
   document.getElementById('study-timing').textContent = timing + ' of each scheme and step.';
   const columns = ['scheme', 'step', 'steps', 'displacement_error', 'energy_error', 'momentum_error', 'wall_seconds', 'newton_per_step'];
-  const unitOfColumn = { step: UNITS, displacement_error: UNITS, energy_error: 'relative', momentum_error: 'relative', wall_seconds: 's' };
+  if (body.rows.some((r) => r.tolerance > 0)) columns.splice(2, 0, 'tolerance');  // step is then the first step
+  const unitOfColumn = { step: UNITS, tolerance: UNITS, displacement_error: UNITS, energy_error: 'relative', momentum_error: 'relative', wall_seconds: 's' };
   const head = el('tr', {}, ...columns.map((c) => el('th', {}, c + (unitOfColumn[c] ? ` (${unitOfColumn[c]})` : ''))));
   const rows = body.rows.map((r) => el('tr', { class: r.completed ? '' : 'failed' },
     ...columns.map((c) => el('td', {}, r[c] === null || r[c] === undefined ? (r.failure || '') : number(r[c])))));

@@ -5,7 +5,8 @@ The system shall serve a page that submits a bundled example, plots its series w
 points grows), reaches `succeeded` with every step plotted once, offers a working download of the result,
 shows validation errors next to the field their JSON pointer names and the scene's warnings, labels log axes by
 decades without repeats, filters the job list by status, plots a study's accuracy against time with its table
-(every point labelled with its h), fits 1280 px without overflow, and asks for the bearer token when the server
+(every point labelled with its h; tolerances as a line of their own, labelled TOL), plots the step size of a
+run with time.tolerance, fits 1280 px without overflow, and asks for the bearer token when the server
 has one.
 
 Starts `stoss serve` on 127.0.0.1 (port 0) and Debian's headless Chromium, drives the page through the
@@ -310,6 +311,54 @@ def study_view(browser, server, source_dir):
     check("2.0 and 2.3 H₀" in note and "4v/h" in note, "the study page says why HHT-α and generalized-α gain energy")
 
 
+def adaptive_run(browser, server, source_dir):
+    """A run with steps chosen by time.tolerance plots its step size against time (issue 22 §5), and its
+    progress goes by simulated time: the finished job shows 100 %."""
+    scene = json.loads((source_dir / "api/examples/tumbling_bar.json").read_text())
+    scene["time"]["tolerance"] = 1e-3
+    scene["output"] = {"every": 40}  # the server counts end/min_step steps: 41 frames at most, under --max-frames
+    job = server.post("/v1/jobs", scene)
+    click_job_row(browser, job["id"])
+    browser.wait_for(f"document.getElementById('job-kind').textContent.includes({js(job['id'])}) &&"
+                     " document.getElementById('job-status').textContent === 'succeeded'", "the adaptive run succeeds")
+    with urllib.request.urlopen(f"{server.url}/v1/jobs/{job['id']}/series", timeout=30) as response:
+        rows = len(json.load(response)["time"])
+    points = "Number(document.getElementById('plot-step-size')?.dataset.points)"
+    browser.wait_for(f"{points} === {rows}", f"the step-size plot holds the {rows} rows of the series", limit=20)
+    plots = browser.run("[...document.querySelectorAll('#plots .plot')].map(p => p.id)")
+    check("plot-step-size" in plots, f"the adaptive run has a step-size plot: {plots}")
+    sizes = browser.run("shown.data['step-size'].map(r => r[1]).filter(v => v > 0)")
+    spread = max(sizes) / min(sizes) if sizes else 0
+    check(spread > 1.5, f"the {len(sizes)} plotted step sizes vary (max/min {spread:.3g})")
+    progress = browser.run("document.getElementById('job-progress').textContent")
+    check("(100 %)" in progress, f"the finished adaptive run's progress is 100 % of its time: {progress!r}")
+
+
+def tolerance_study_view(browser, binary, source_dir, work):
+    """A study with tolerances plots them as a line of their own, each point labelled with its TOL. The table
+    is a real one (`stoss study --tolerances --json`) served to the page in place of GET …/study."""
+    scene = source_dir / "api/examples/tumbling_bar.json"
+    table = json.loads(subprocess.run([binary, "study", str(scene), "--steps", "0.1,0.05", "--tolerances", "1e-3",
+                                       "--schemes", "energy_momentum", "--repeat", "1", "--json"],
+                                      check=True, capture_output=True, text=True).stdout)
+    browser.run(f"""(() => {{ const table = {js(table)}; const real = window.fetch;
+        window.fetch = (path, options) => path === '/stub/study'
+          ? Promise.resolve(new Response(JSON.stringify(table), {{ status: 200, headers: {{ 'Content-Type': 'application/json' }} }}))
+          : real(path, options);
+        shown.studyShown = false;
+        return showStudy({{ kind: 'study', status: 'succeeded', links: {{ study: '/stub/study' }} }}); }})()""")
+    accuracy = "document.getElementById('plot-accuracy').dataset"
+    browser.wait_for(f"{accuracy}.points === '3'", "the tolerance study's plot holds 2 steps and 1 tolerance")
+    check(browser.run(f"{accuracy}.lines") == "2", "a line for the fixed steps and one for the tolerance")
+    legend = browser.run("document.getElementById('accuracy-legend').textContent")
+    check("adaptive energy_momentum" in legend, f"the tolerance's line is named adaptive energy_momentum: {legend!r}")
+    browser.wait_for("document.querySelectorAll('#plot-accuracy .step-label').length === 3", "every point is labelled")
+    labels = browser.run("[...document.querySelectorAll('#plot-accuracy .step-label')].map(a => a.textContent).sort()")
+    check(labels == ["TOL=0.001", "h=0.05", "h=0.1"], f"the tolerance's point is labelled with its TOL: {labels}")
+    head = browser.run("[...document.querySelectorAll('#study-table th')].map(t => t.textContent)")
+    check("tolerance (model units)" in head, f"the table has a tolerance column: {head}")
+
+
 def fits_1280(browser):
     """At 1280 px wide nothing in either column reaches past the column's right edge."""
     browser.call("Emulation.setDeviceMetricsOverride", width=1280, height=2400, deviceScaleFactor=1, mobile=False)
@@ -367,7 +416,11 @@ def main():
         browser.screenshot(out / "page.png")
         study_view(browser, server, source_dir)
         browser.screenshot(out / "study.png")
-        fits_1280(browser)
+        fits_1280(browser)  # the study on show (plots drawn at 1400 px keep their width when the window shrinks)
+        adaptive_run(browser, server, source_dir)
+        browser.screenshot(out / "adaptive.png")
+        tolerance_study_view(browser, binary, source_dir, work)
+        browser.screenshot(out / "study_tolerance.png")
         token_prompt(browser, binary, work)
     finally:
         if browser:

@@ -1,6 +1,7 @@
 #include "server/jobs/reporting/job_observer.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/scene/estimates.hpp"
 
@@ -11,6 +12,7 @@ ProgressObserver::ProgressObserver(ProgressSink sink, const Clock& clock, Millis
 
 void ProgressObserver::begin(const model::Model& model, const model::SeriesLayout&) {
   started_ = clock_.now();
+  adaptive_ = model.time.adaptive();
   // Until a step is measured, the ETA is the estimate made before the run (scene/estimates.hpp, W7).
   current_ = Progress{0, model.time.steps(), 0.0, model.time.end, scene::estimate(model).wall_seconds};
   report(started_);
@@ -20,21 +22,34 @@ void ProgressObserver::step(const model::StepRow& row) {
   current_.step = row.step;
   current_.time = row.time;
   const Millis now = clock_.now();
-  if (row.step > first_step_) {
-    const double per_step = static_cast<double>(now - started_) / 1000.0 / (row.step - first_step_);
-    current_.eta_seconds = per_step * std::max(0, current_.steps - row.step);
-  }
+  estimate(now);
   if (!last_report_ || now - *last_report_ >= interval_) report(now);
+}
+
+void ProgressObserver::estimate(Millis now) {
+  const double elapsed = static_cast<double>(now - started_) / 1000.0;
+  if (!adaptive_) {
+    if (current_.step > first_step_)
+      current_.eta_seconds =
+          elapsed / (current_.step - first_step_) * std::max(0, current_.steps - current_.step);
+    return;
+  }
+  if (current_.time <= 0 || current_.time <= first_time_) return;
+  current_.steps =
+      std::max(current_.step, static_cast<int>(std::lround(current_.step * current_.end / current_.time)));
+  current_.eta_seconds =
+      elapsed / (current_.time - first_time_) * std::max(0.0, current_.end - current_.time);
 }
 
 void ProgressObserver::resumed(int step) {
   started_ = clock_.now();
   first_step_ = step;
+  first_time_ = current_.time;
   current_.eta_seconds.reset();
 }
 
 void ProgressObserver::end(const model::Summary&) {
-  if (current_.step >= current_.steps) current_.eta_seconds = 0.0;
+  if (adaptive_ ? current_.time >= current_.end : current_.step >= current_.steps) current_.eta_seconds = 0.0;
   report(clock_.now());
 }
 

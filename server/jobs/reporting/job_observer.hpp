@@ -11,7 +11,11 @@
 namespace stoss::server::jobs {
 
 /// Reports progress (step, steps, simulated time, ETA) at most once per `interval`, and once at the end:
-/// a run of thousands of steps per second costs a handful of store writes per second.
+/// a run of thousands of steps per second costs a handful of store writes per second. With fixed steps the
+/// ETA is the wall time per step times the steps to go. With time.tolerance the steps are not known ahead:
+/// the fraction done is time/end, the ETA the wall time per unit of simulated time times end − time, and
+/// `steps` the steps the run would take at its mean step so far (step · end/time), so that step/steps is
+/// time/end; before the first step it is end/time.step.
 class ProgressObserver : public model::Observer {
  public:
   ProgressObserver(ProgressSink sink, const Clock& clock, Millis interval = 500);
@@ -28,12 +32,16 @@ class ProgressObserver : public model::Observer {
 
  private:
   void report(Millis now);
+  /// The ETA and, with time.tolerance, the projected steps from the rate since started_.
+  void estimate(Millis now);
 
   ProgressSink sink_;
   const Clock& clock_;
   Millis interval_;
   Millis started_ = 0;
   int first_step_ = 0;  ///< the step the rate counts from: 0, or the checkpoint's when resumed
+  double first_time_ = 0;  ///< the simulated time at first_step_
+  bool adaptive_ = false;  ///< time.tolerance: progress by simulated time
   std::optional<Millis> last_report_;
   Progress current_;
 };

@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "core/output/result_reader.hpp"
+#include "server/cli/progress.hpp"
 #include "tests/server/live_server.hpp"
 
 namespace stoss {
@@ -127,6 +129,56 @@ TEST(Cli, SolverFailureNamesTheStepExits1AndLeavesOnlyAnIncompleteResult) {
   EXPECT_FALSE(fs::exists(dir.path() / "out/result.h5"));
   const output::ResultFile partial = output::ResultFile::open(dir.path() / "out/result.incomplete.h5");
   EXPECT_EQ(partial.attribute_double("complete"), 0);
+}
+
+// `stoss study --tolerances` (issue 22 §2): a row per scheme and tolerance, steps chosen by time.tolerance
+// from the scene's first step; it carries its tolerance and beats the coarse fixed step it sits beside.
+TEST(Cli, StudyTakesTolerancesBesideSteps) {
+  test::TempDir dir;
+  nlohmann::json scene = bar_scene();
+  scene["time"]["end"] = 0.4;
+  const Command c = stoss("study " + write(dir, scene) +
+                          " --steps 0.1 --tolerances 1e-3 --schemes energy_momentum --repeat 1 --json");
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const nlohmann::json table = nlohmann::json::parse(c.output);
+  ASSERT_EQ(table["rows"].size(), 2u) << c.output;
+  const nlohmann::json &fixed = table["rows"][0], &adaptive = table["rows"][1];
+  EXPECT_FALSE(fixed.contains("tolerance"));
+  EXPECT_EQ(adaptive["tolerance"], 1e-3);
+  EXPECT_EQ(adaptive["step"], 0.05) << "the first step is the scene's time.step";
+  ASSERT_TRUE(adaptive["completed"].get<bool>()) << c.output;
+  const double error = adaptive["displacement_error"].get<double>();
+  EXPECT_TRUE(std::isfinite(error));
+  EXPECT_LT(error, fixed["displacement_error"].get<double>()) << c.output;
+  EXPECT_LE(error, 10 * 1e-3) << "within 10 × its tolerance";
+  EXPECT_GT(adaptive["steps"].get<int>(), 4);
+  EXPECT_EQ(stoss("study " + write(dir, scene) + " --steps 0.1 --tolerances 1e-3,0").exit_code, 2);
+  const Command infinite = stoss("study " + write(dir, scene) + " --steps 0.1 --tolerances inf");
+  EXPECT_EQ(infinite.exit_code, 2);
+  EXPECT_NE(infinite.output.find("--tolerances: every tolerance must be a finite number > 0"),
+            std::string::npos)
+      << infinite.output;
+}
+
+// The progress line of `stoss run` (server/cli/progress.hpp): steps of N with fixed steps; with a tolerance
+// the share of simulated time done and an ETA from the time rate.
+TEST(Cli, ProgressLineGoesBySimulatedTimeWithATolerance) {
+  model::Model m;
+  m.time.step = 0.01;
+  m.time.end = 1.0;
+  cli::ProgressObserver fixed(nullptr);
+  fixed.begin(m, {});
+  EXPECT_EQ(fixed.line({25, 0.25, {}}, 2.0), "step 25/100  t = 0.25/1  elapsed 2.0 s  ETA 6.0 s");
+  m.time.tolerance = 1e-3;
+  cli::ProgressObserver adaptive(nullptr);
+  adaptive.begin(m, {});
+  EXPECT_EQ(adaptive.line({250, 0.4, {}}, 2.0), "step 250  t = 0.4/1 (40 %)  elapsed 2.0 s  ETA 3.0 s")
+      << "0.4 of simulated time in 2 s: 0.6 to go in 3 s, whatever the steps";
+  adaptive.step({0, 0, {}});
+  adaptive.step({10, 0.8, {}});
+  adaptive.resumed(10);
+  EXPECT_EQ(adaptive.line({12, 0.9, {}}, 1.0), "step 12  t = 0.9/1 (90 %)  elapsed 1.0 s  ETA 1.0 s")
+      << "a resumed run's rate counts from the checkpoint's time";
 }
 
 TEST(Cli, UnknownCommandAndMissingSceneAreUsageErrors) {

@@ -88,6 +88,55 @@ TEST(ProgressObserver, AResumedRunsEtaCountsFromTheCheckpointNotFromTheRowsGiven
   EXPECT_NEAR(*reports.back().eta_seconds, 3.0, 1e-9);  // 300 steps to go at 10 ms each
 }
 
+// With time.tolerance the steps to go are unknown (issue 22 §2): the fraction done is time/end, the ETA
+// comes from the wall time per unit of simulated time, and `steps` is the count at the mean step so far.
+TEST(ProgressObserver, WithAToleranceProgressAndEtaGoBySimulatedTime) {
+  ManualClock clock;
+  std::vector<Progress> reports;
+  ProgressObserver observer([&](const Progress& p) { reports.push_back(p); }, clock, 500);
+  model::Model m = model_of(100);  // end 1, first step 0.01
+  m.time.tolerance = 1e-3;
+  observer.begin(m, {});
+  EXPECT_EQ(reports[0].steps, 100) << "before a step: end / time.step";
+  double t = 0;
+  for (int step = 1; step <= 50; ++step) {  // 50 steps of 0.005 over 2 s, then 10 of 0.025 over 1 s
+    clock.advance(40);
+    observer.step({step, t += 0.005, {}});
+  }
+  for (int step = 51; step <= 60; ++step) {
+    clock.advance(100);
+    observer.step({step, t += 0.025, {}});
+  }
+  const Progress& p = observer.current();
+  EXPECT_NEAR(p.time, 0.5, 1e-12);
+  EXPECT_EQ(p.steps, 120) << "60 steps to t = 0.5 of 1: step/steps = time/end";
+  ASSERT_TRUE(p.eta_seconds);
+  EXPECT_NEAR(*p.eta_seconds, 3.0, 1e-9)
+      << "3 s for half the time, 3 s for the other half (steps of end/time.step would say 2 s)";
+  for (int step = 61; step <= 80; ++step) {
+    clock.advance(100);
+    observer.step({step, t += 0.025, {}});
+  }
+  observer.end({});
+  EXPECT_EQ(reports.back().steps, 80);
+  EXPECT_EQ(reports.back().eta_seconds, 0.0);
+}
+
+TEST(ProgressObserver, WithAToleranceAResumedRunsEtaCountsTheTimeSinceTheCheckpoint) {
+  ManualClock clock;
+  ProgressObserver observer({}, clock, 500);
+  model::Model m = model_of(100);
+  m.time.tolerance = 1e-3;
+  observer.begin(m, {});
+  for (int step = 0; step <= 10; ++step) observer.step({step, 0.06 * step, {}});  // given back at once
+  observer.resumed(10);
+  clock.advance(1000);
+  observer.step({11, 0.7, {}});  // 0.1 of simulated time in 1 s, 0.3 to go
+  ASSERT_TRUE(observer.current().eta_seconds);
+  EXPECT_NEAR(*observer.current().eta_seconds, 3.0, 1e-9);
+  EXPECT_EQ(observer.current().steps, 16);  // 11 · 1/0.7 = 15.7
+}
+
 TEST(SummaryJson, NamesTheCheckpointStepOfAResumedRun) {
   model::Summary s;
   s.completed = true;
