@@ -62,7 +62,9 @@ class StudyProgress {
 void log_run(std::ostream& log, const Sweep& sweep, const study::Run& run, const model::Summary& summary,
              const std::string& failure) {
   log << "run " << sweep.done + 1 << "/" << sweep.runs << ": " << (run.reference ? "reference " : "")
-      << model::to_string(run.scheme) << " h = " << run.step << ": ";
+      << model::to_string(run.scheme) << " h = " << run.step;
+  if (run.tolerance > 0) log << " (first step), time.tolerance = " << run.tolerance;
+  log << ": ";
   if (failure.empty())
     log << summary.steps << " steps, " << summary.wall_seconds << " s";
   else
@@ -102,10 +104,12 @@ std::optional<model::Scheme> parse_scheme(std::string_view name) { return model:
 nlohmann::json study_params_json(const study::Options& options) {
   nlohmann::json schemes = nlohmann::json::array();
   for (model::Scheme s : options.schemes) schemes.push_back(model::to_string(s));
-  return {{"steps", options.steps},
-          {"schemes", schemes},
-          {"reference_step", options.reference_step},
-          {"repeat", options.repeat}};
+  nlohmann::json params = {{"steps", options.steps},
+                            {"schemes", schemes},
+                            {"reference_step", options.reference_step},
+                            {"repeat", options.repeat}};
+  if (!options.tolerances.empty()) params["tolerances"] = options.tolerances;
+  return params;
 }
 
 study::Options study_options(const nlohmann::json& params) {
@@ -119,12 +123,11 @@ study::Options study_options(const nlohmann::json& params) {
   }
   options.reference_step = params.at("reference_step").get<double>();
   options.repeat = params.value("repeat", 1);  // a study queued before `repeat` ran each point once
+  options.tolerances = params.value("tolerances", std::vector<double>{});
   return options;
 }
 
-int study_run_count(const study::Options& options) {
-  return 1 + static_cast<int>(options.schemes.size() * options.steps.size()) * std::max(1, options.repeat);
-}
+int study_run_count(const study::Options& options) { return study::run_count(options); }
 
 study::Result study_result_from_json(const nlohmann::json& table) { return study::result_from_json(table); }
 

@@ -39,6 +39,11 @@ TEST(StudyJob, ParametersRoundTripThroughTheirJson) {
   thrice.repeat = 3;
   EXPECT_EQ(study_options(study_params_json(thrice)).repeat, 3);
   EXPECT_EQ(study_run_count(thrice), 13);  // the reference once, 2 schemes × 2 steps three times
+  study::Options adaptive = sweep();
+  adaptive.tolerances = {1e-3, 1e-4};
+  EXPECT_EQ(study_options(study_params_json(adaptive)).tolerances, adaptive.tolerances);
+  EXPECT_EQ(study_run_count(adaptive), 9);  // and 2 schemes × 2 tolerances
+  EXPECT_FALSE(study_params_json(sweep()).contains("tolerances"));  // a fixed-step study's JSON as before
   EXPECT_EQ(parse_scheme("hht"), model::Scheme::hht);
   EXPECT_FALSE(parse_scheme("newmark"));
 }
