@@ -18,9 +18,10 @@ using Polygon = std::vector<Point2<T>>;
 inline double value_of(double x) {
   return x;
 }
+/// Nested dual numbers (second derivatives, mortar_pair_derivatives.hpp) unwrap to the innermost value.
 template <class T>
 double value_of(const T& x) {
-  return x.value();
+  return value_of(x.value());
 }
 
 template <class T>

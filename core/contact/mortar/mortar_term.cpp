@@ -1,0 +1,217 @@
+#include "core/contact/mortar/mortar_term.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace stoss::contact {
+namespace {
+
+/// Activation threshold on the nodal gap g̃_j / D_jj, as §3.5: 1e-10 × the mean face size.
+constexpr double activation_gap = 1e-10;
+
+/// The discrete-gradient rule has no mortar form yet: its steps evaluate the midpoint form (4.82).
+time::ForceRule configuration_rule(const time::ForceRule& rule) {
+  return rule.kind == time::ForceRule::Kind::discrete_gradient ? time::ForceRule::midpoint() : rule;
+}
+
+/// Corner box of a face at positions x and x + dx.
+Eigen::AlignedBox3d face_box(const mesh::Quad& q, const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
+  Eigen::AlignedBox3d box;
+  for (int node : q) box.extend(Eigen::Vector3d(x.segment<3>(3 * node))), box.extend(Eigen::Vector3d(y.segment<3>(3 * node)));
+  return box;
+}
+
+double box_size(const Eigen::AlignedBox3d& b) { return b.diagonal().norm(); }
+
+}  // namespace
+
+MortarContactTerm::MortarContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair,
+                                     const time::ForceRule& rule)
+    : ContactTerm(mesh, pair), rule_(configuration_rule(rule)), slave_faces_(mesh.surface(pair.slave)) {
+  if (surfaces_.smooth())
+    throw std::invalid_argument("contact pair " + pair.slave + " / " + pair.master +
+                                ": mortar integrates on the faceted master surface only");
+  const size_t n = surfaces_.slave_nodes.size();
+  active_.assign(n, 0);
+  start_active_ = committed_active_ = active_;
+  toggles_.assign(n, 0);
+  lambda_ = lambda_n_ = target_ = committed_target_ = Eigen::VectorXd::Zero(n);
+  length_ = surfaces_.mean_face_size;
+}
+
+int MortarContactTerm::slave_index(int node) const {
+  const auto it = std::lower_bound(surfaces_.slave_nodes.begin(), surfaces_.slave_nodes.end(), node);
+  return static_cast<int>(it - surfaces_.slave_nodes.begin());
+}
+
+void MortarContactTerm::find_face_pairs(const time::StepContext& step) {
+  const Eigen::VectorXd predicted = step.x_n + step.h * step.v_n;
+  std::vector<Eigen::AlignedBox3d> master_boxes;
+  for (const mesh::Quad& q : surfaces_.faces) master_boxes.push_back(face_box(q, step.x_n, predicted));
+  std::vector<FacePair> pairs;
+  for (size_t s = 0; s < slave_faces_.size(); ++s) {
+    const Eigen::AlignedBox3d box = face_box(slave_faces_[s], step.x_n, predicted);
+    for (size_t m = 0; m < master_boxes.size(); ++m) {
+      const double margin = 0.25 * (box_size(box) + box_size(master_boxes[m]));
+      Eigen::AlignedBox3d grown = box;
+      grown.min().array() -= margin;
+      grown.max().array() += margin;
+      if (!grown.intersects(master_boxes[m])) continue;
+      FacePair p;
+      p.slave_face = static_cast<int>(s);
+      p.master_face = static_cast<int>(m);
+      for (int K = 0; K < 4; ++K) p.slave_index[K] = slave_index(slave_faces_[s][K]);
+      pairs.push_back(p);
+    }
+  }
+  const auto same = [](const FacePair& a, const FacePair& b) {
+    return a.slave_face == b.slave_face && a.master_face == b.master_face;
+  };
+  if (pairs.size() != pairs_.size() || !std::equal(pairs.begin(), pairs.end(), pairs_.begin(), same)) ++generation_;
+  pairs_ = std::move(pairs);
+}
+
+void MortarContactTerm::register_blocks(solve::BlockPattern& pattern) {
+  for (FacePair& p : pairs_) {
+    p.dofs.clear();
+    for (const mesh::Quad* q : {&slave_faces_[p.slave_face], &surfaces_.faces[p.master_face]})
+      for (int node : *q)
+        for (int i = 0; i < 3; ++i) p.dofs.push_back(3 * node + i);
+    for (int j : p.slave_index) p.dofs.push_back(offset_ + j);
+    p.block = pattern.add_block(p.dofs);
+  }
+  diagonal_blocks_.clear();
+  for (int j = 0; j < auxiliary_count(); ++j) diagonal_blocks_.push_back(pattern.add_block({offset_ + j}));
+}
+
+mortar::PairGaps MortarContactTerm::gaps(const FacePair& p, const Eigen::VectorXd& x) const {
+  return mortar::pair_gaps(face_positions(slave_faces_[p.slave_face], x), face_positions(surfaces_.faces[p.master_face], x),
+                           mortar::Multipliers::dual);
+}
+
+void MortarContactTerm::nodal_gaps(const Eigen::VectorXd& x, Eigen::VectorXd& gap, Eigen::VectorXd& weight) const {
+  gap = weight = Eigen::VectorXd::Zero(auxiliary_count());
+  for (const FacePair& p : pairs_) {
+    const mortar::PairGaps g = gaps(p, x);
+    for (int K = 0; K < 4; ++K) gap[p.slave_index[K]] += g.gap[K], weight[p.slave_index[K]] += g.weight[K];
+  }
+}
+
+void MortarContactTerm::prepare_step(const time::StepContext& step) {
+  active_ = committed_active_;
+  lambda_ = lambda_n_;
+  target_ = committed_target_;
+  std::fill(toggles_.begin(), toggles_.end(), 0);
+  broad_.update(surfaces_, step.x_n, step.x_n + step.h * step.v_n);
+  report_ = ContactReport{};
+  find_face_pairs(step);
+  nodal_gaps(step.x_n, gap_n_, weight_n_);
+  start_active_ = active_;
+}
+
+void MortarContactTerm::begin_step(const time::StepContext& step, Eigen::VectorXd& z) {
+  initialize_auxiliaries(step, z);
+}
+
+void MortarContactTerm::initialize_auxiliaries(const time::StepContext&, Eigen::VectorXd& z) {
+  for (int j = 0; j < auxiliary_count(); ++j) z[offset_ + j] = active_[j] ? lambda_[j] : 0.0;
+}
+
+void MortarContactTerm::add_forces(const FacePair& p, const Eigen::VectorXd& x, const Eigen::Vector4d& lambda,
+                                   double factor, Eigen::VectorXd& R) const {
+  if (lambda.isZero(0)) return;
+  const Eigen::Matrix<double, 1, 24> f = lambda.transpose() * gaps(p, x).gradient;
+  for (int a = 0; a < 24; ++a) R[p.dofs[a]] += factor * f[a];  // (4.82)
+}
+
+void MortarContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                            solve::BlockPattern* K) const {
+  const Eigen::VectorXd x_1 = z.head(step.x_n.size());
+  const Eigen::VectorXd x_theta = rule_.evaluation_point(step.x_n, x_1);
+  const double w = step.force_factor * rule_.weight, w_n = step.force_factor * rule_.previous_weight;
+  const bool at_end = rule_.theta == 1;
+  for (const FacePair& p : pairs_) {
+    Eigen::Vector4d lambda, lambda_n;
+    for (int k = 0; k < 4; ++k) lambda[k] = z[offset_ + p.slave_index[k]], lambda_n[k] = lambda_n_[p.slave_index[k]];
+    if (w_n != 0) add_forces(p, step.x_n, lambda_n, w_n, R);  // h w_n λ_n ∂g̃/∂x(x_n) (4.82)
+    mortar::Matrix24 H = mortar::Matrix24::Zero();
+    const bool curved = K && !lambda.isZero(0);
+    const SegmentNodes s = face_positions(slave_faces_[p.slave_face], x_theta);
+    const SegmentNodes m = face_positions(surfaces_.faces[p.master_face], x_theta);
+    const mortar::PairGaps g =
+        curved ? mortar::pair_gaps(s, m, mortar::Multipliers::dual, lambda, H) : mortar::pair_gaps(s, m, mortar::Multipliers::dual);
+    const mortar::PairGaps g_1 = at_end ? g : gaps(p, x_1);
+    const Eigen::Matrix<double, 1, 24> f = lambda.transpose() * g.gradient;
+    for (int a = 0; a < 24; ++a) R[p.dofs[a]] += w * f[a];  // h w λ ∂g̃/∂x(x_θ) (4.82)
+    for (int k = 0; k < 4; ++k)
+      if (active_[p.slave_index[k]]) R[p.dofs[24 + k]] += g_1.gap[k];  // (4.83)
+    if (!K) continue;
+    Eigen::Matrix<double, 28, 28> block = Eigen::Matrix<double, 28, 28>::Zero();
+    block.topLeftCorner<24, 24>() = w * rule_.theta * H;                 // (4.81), (4.82)
+    block.topRightCorner<24, 4>() = w * g.gradient.transpose();          // (4.82)
+    for (int k = 0; k < 4; ++k)
+      if (active_[p.slave_index[k]]) block.block<1, 24>(24 + k, 0) = g_1.gradient.row(k);  // (4.83)
+    K->scatter(p.block, block);
+  }
+  for (int j = 0; j < auxiliary_count(); ++j) {
+    if (active_[j]) {
+      R[offset_ + j] -= target_[j];  // (4.83)
+      continue;
+    }
+    R[offset_ + j] += z[offset_ + j];  // λ_j = 0 (4.83)
+    if (K) K->scatter(diagonal_blocks_[j], Eigen::Matrix<double, 1, 1>::Ones());
+  }
+}
+
+bool MortarContactTerm::update_active_set(const time::StepContext& step, const Eigen::VectorXd& z) {
+  Eigen::VectorXd gap, weight;
+  nodal_gaps(z.head(step.x_n.size()), gap, weight);
+  bool changed = false;
+  for (int j = 0; j < auxiliary_count(); ++j) {
+    lambda_[j] = z[offset_ + j];
+    if (active_[j] && lambda_[j] > 0) {
+      if (toggles_[j] > 0) {  // anti-cycling (§3.5)
+        log(step, "slave node " + std::to_string(surfaces_.slave_nodes[j]) + " kept active with tensile λ = " +
+                      scientific(lambda_[j]) + " (it already changed state in this step)");
+        continue;
+      }
+      active_[j] = 0, lambda_[j] = 0, ++toggles_[j], ++report_.releases, changed = true;
+    } else if (!active_[j] && weight[j] > 0 && gap[j] < -activation_gap * length_ * weight[j] && toggles_[j] == 0) {
+      const bool frozen = impact() == model::ImpactMode::persist || impact() == model::ImpactMode::located;
+      target_[j] = frozen ? std::max(gap_n_[j], 0.0) : 0.0;  // g̃⁰_j (§4.5)
+      active_[j] = 1, lambda_[j] = 0, ++toggles_[j], ++report_.activations, changed = true;
+    }
+  }
+  return changed;
+}
+
+void MortarContactTerm::end_step(const time::StepContext& step, const Eigen::VectorXd& z) {
+  const Eigen::VectorXd x = z.head(step.x_n.size());
+  Eigen::VectorXd gap, weight;
+  nodal_gaps(x, gap, weight);
+  pressure_.clear();
+  report_.energy_jump = 0;
+  report_.active = 0;
+  for (int j = 0; j < auxiliary_count(); ++j) {
+    lambda_[j] = active_[j] ? z[offset_ + j] : 0.0;
+    if (!active_[j]) continue;
+    ++report_.active;
+    if (!start_active_[j]) report_.energy_jump += lambda_[j] * (gap_n_[j] - target_[j]);  // analogue of (4.11)
+    if (!start_active_[j]) report_.max_new_gap_target = std::max(report_.max_new_gap_target, target_[j] / weight[j]);
+    report_.max_own_face_penetration = std::max(report_.max_own_face_penetration, -(gap[j] - target_[j]) / weight[j]);
+    if (weight[j] > 0) pressure_.emplace_back(surfaces_.slave_nodes[j], std::max(-lambda_[j], 0.0) / weight[j]);  // (4.84)
+  }
+  lambda_n_ = lambda_;
+  committed_active_ = active_;
+  committed_target_ = target_;
+  measure_closest_penetration(step, x);
+}
+
+double MortarContactTerm::auxiliary_residual_measure(const Eigen::VectorXd& R, const time::MeasureScales&) const {
+  double worst = 0;
+  for (int j = 0; j < auxiliary_count(); ++j)
+    if (active_[j]) worst = std::max(worst, std::abs(R[offset_ + j]) / (surfaces_.tributary_area[j] * length_));
+  return worst;
+}
+
+}  // namespace stoss::contact

@@ -1,0 +1,77 @@
+#pragma once
+/// @file Frictionless mortar contact of one pair with dual Lagrange multipliers on the slave nodes
+/// (docs/theory.md §4.7, (4.81)–(4.84)), on the faceted master surface, for the configuration force rules
+/// (midpoint, HHT-α, generalized-α); the discrete-gradient rule gets the midpoint form for now.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <vector>
+
+#include "core/contact/contact_term.hpp"
+#include "core/contact/mortar/pair_derivatives.hpp"
+
+namespace stoss::contact {
+
+/// One multiplier λ_j per slave node, after x_{n+1} in z (all slave nodes: the layout never changes).
+/// - momentum rows  h [w Σ_j λ_j ∂g̃_j/∂x (x_θ) + w_n Σ_j λ_j,n ∂g̃_j/∂x (x_n)]   (4.82)
+/// - active j:      g̃_j(x_{n+1}) − g̃⁰_j = 0;  inactive j:  λ_j = 0                    (4.83)
+/// - active set on the weighted gaps: j activates when g̃_j / D_jj < −1e-10 ℓ, releases when λ_j > 0 (once a
+///   step, as §3.5); contact_pressure p_j = −λ_j / D_jj (λ ≤ 0 in compression, §0)    (4.84)
+/// Why dual: the assembled D is diagonal, so g̃_j and λ_j are nodal quantities: the active set is
+/// decided node by node, −λ_j/D_jj is the nodal pressure, and the multipliers could be condensed node by
+/// node (they are kept as unknowns here, like the NTS multipliers).
+/// @note g̃⁰_j: the weighted gap at x_n of a node activated in the step (max 0) with impact persist or
+///       located (the frozen gap of §4.5), else 0. Located events are not cut (the step runs to its end).
+class MortarContactTerm final : public ContactTerm {
+ public:
+  MortarContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair, const time::ForceRule& rule);
+  void register_blocks(solve::BlockPattern& pattern) override;
+  void prepare_step(const time::StepContext& step) override;
+  void begin_step(const time::StepContext& step, Eigen::VectorXd& z) override;
+  void add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+           solve::BlockPattern* K) const override;
+  int auxiliary_count() const override { return static_cast<int>(surfaces_.slave_nodes.size()); }
+  void set_auxiliary_offset(int offset) override { offset_ = offset; }
+  int structure_generation() const override { return generation_; }
+  void initialize_auxiliaries(const time::StepContext& step, Eigen::VectorXd& z) override;
+  bool update_active_set(const time::StepContext& step, const Eigen::VectorXd& z) override;
+  void end_step(const time::StepContext& step, const Eigen::VectorXd& z) override;
+  double auxiliary_residual_measure(const Eigen::VectorXd& R, const time::MeasureScales& s) const override;
+
+  /// Per slave node: active in the current pass.
+  const std::vector<char>& active() const { return active_; }
+  /// Assembled weighted gaps g̃_j and mortar weights D_jj at positions x (the step's face pairs).
+  void nodal_gaps(const Eigen::VectorXd& x, Eigen::VectorXd& gap, Eigen::VectorXd& weight) const;
+
+ private:
+  /// A slave face against a master face that may overlap in this step.
+  struct FacePair {
+    int slave_face = -1, master_face = -1;
+    std::array<int, 4> slave_index;  ///< into surfaces_.slave_nodes
+    std::vector<int> dofs;           ///< 24 position dofs then the 4 multiplier rows
+    int block = -1;
+  };
+  mortar::PairGaps gaps(const FacePair& p, const Eigen::VectorXd& x) const;
+  void find_face_pairs(const time::StepContext& step);
+  void add_forces(const FacePair& p, const Eigen::VectorXd& x, const Eigen::Vector4d& lambda, double factor,
+                  Eigen::VectorXd& R) const;
+
+  time::ForceRule rule_;
+  std::vector<mesh::Quad> slave_faces_;
+  std::vector<FacePair> pairs_;
+  std::vector<int> diagonal_blocks_;  ///< per slave node: its multiplier row's 1 × 1 block
+  int slave_index(int node) const;
+  model::ImpactMode impact() const { return pair_.impact; }
+
+  std::vector<char> active_, start_active_, committed_active_;
+  std::vector<int> toggles_;
+  Eigen::VectorXd lambda_;    ///< latest multipliers (read back after each solve)
+  Eigen::VectorXd lambda_n_;  ///< λ of the last converged step (t_n)
+  Eigen::VectorXd target_, committed_target_;  ///< g̃⁰_j
+  Eigen::VectorXd gap_n_, weight_n_;           ///< g̃_j and D_jj at x_n
+  double length_ = 1;         ///< mean master face size ℓ
+  int offset_ = 0, generation_ = 0;
+};
+
+}  // namespace stoss::contact

@@ -1,0 +1,118 @@
+// The mortar contact term (docs/theory.md §4.7, (4.81)–(4.84)) shall assemble a tangent that matches central
+// differences of its residual, for the midpoint and the end-point force rules, and activate the slave nodes
+// whose weighted gap is negative. Scene: a 2 × 2 cube bottom pressed into a 3 × 3 plate, every node jittered.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/contact/mortar/mortar_term.hpp"
+#include "core/mesh/generators.hpp"
+
+namespace stoss::contact {
+namespace {
+
+struct Fixture {
+  mesh::Mesh mesh;
+  Eigen::VectorXd x_n, v_n, z;
+  int nx = 0;
+  std::unique_ptr<MortarContactTerm> term;
+  std::unique_ptr<time::StepContext> step;
+
+  explicit Fixture(const time::ForceRule& rule, unsigned seed = 3) {
+    mesh.add_body("plate", mesh::box({-1, -1, -0.4}, {1, 1, 0}, {3, 3, 1}));
+    mesh.add_body("cube", mesh::box({-0.55, -0.45, 0.0}, {0.45, 0.5, 0.6}, {2, 2, 1}));
+    model::ContactPair pair;
+    pair.slave = "cube/bottom";
+    pair.master = "plate/top";
+    pair.impact = model::ImpactMode::exact;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> jitter(-0.01, 0.01);
+    x_n = mesh.reference_positions();
+    nx = static_cast<int>(x_n.size());
+    for (int i = 0; i < nx; ++i) x_n[i] += jitter(rng);
+    v_n = Eigen::VectorXd::Zero(nx);
+    for (int I = mesh.bodies[1].node_begin; I < mesh.bodies[1].node_end; ++I) v_n[3 * I + 2] = -3;
+    term = std::make_unique<MortarContactTerm>(mesh, pair, rule);
+    step = std::make_unique<time::StepContext>(time::StepContext{x_n, v_n, 0.01, rule});
+    term->prepare_step(*step);
+    term->set_auxiliary_offset(nx);
+    z = Eigen::VectorXd::Zero(nx + term->auxiliary_count());
+    z.head(nx) = x_n + step->h * v_n;  // 0.03 below the plate's top
+    for (int i = 0; i < nx; ++i) z[i] += 0.2 * jitter(rng);
+    term->begin_step(*step, z);
+    term->update_active_set(*step, z);
+    std::normal_distribution<double> normal(-1, 0.3);
+    for (int i = nx; i < z.size(); ++i) z[i] = normal(rng);  // every multiplier, the inactive rows' too
+  }
+  Eigen::VectorXd residual(const Eigen::VectorXd& at) const {
+    Eigen::VectorXd R = Eigen::VectorXd::Zero(at.size());
+    term->add(*step, at, R, nullptr);
+    return R;
+  }
+  Eigen::MatrixXd tangent() const {
+    solve::BlockPattern pattern;
+    term->register_blocks(pattern);
+    pattern.build(static_cast<int>(z.size()));
+    pattern.zero();
+    Eigen::VectorXd R = Eigen::VectorXd::Zero(z.size());
+    term->add(*step, z, R, &pattern);
+    return Eigen::MatrixXd(pattern.matrix());
+  }
+};
+
+double relative_tangent_error(const Fixture& f) {
+  const Eigen::MatrixXd K = f.tangent();
+  Eigen::MatrixXd fd(K.rows(), K.cols());
+  const double e = 1e-6;
+  for (int c = 0; c < f.z.size(); ++c) {
+    Eigen::VectorXd zp = f.z, zm = f.z;
+    zp[c] += e, zm[c] -= e;
+    fd.col(c) = (f.residual(zp) - f.residual(zm)) / (2 * e);
+  }
+  return (K - fd).norm() / K.norm();
+}
+
+TEST(MortarTerm, EveryPenetratingSlaveNodeIsActivated) {
+  const Fixture f(time::ForceRule::midpoint());
+  int active = 0;
+  for (char a : f.term->active()) active += a;
+  EXPECT_EQ(active, 9);  // the 3 × 3 nodes of the cube's bottom, all 0.03 ± 0.01 deep
+  Eigen::VectorXd gap, weight;
+  f.term->nodal_gaps(f.z.head(f.nx), gap, weight);
+  EXPECT_NEAR(weight.sum(), 0.95, 0.02);  // Σ D_jj = the bottom's area (1.0 × 0.95, jittered)
+  EXPECT_LT(gap.maxCoeff(), 0);
+}
+
+TEST(MortarTerm, MidpointTangentMatchesCentralDifferences) {
+  const double error = relative_tangent_error(Fixture(time::ForceRule::midpoint()));
+  std::printf("mortar midpoint: |K − K_fd| / |K| = %.2e\n", error);
+  EXPECT_LT(error, 1e-6);
+}
+
+TEST(MortarTerm, EndPointTangentMatchesCentralDifferences) {
+  const double error = relative_tangent_error(Fixture(time::ForceRule::end_point(2.0 / 3, 1.0 / 3)));
+  std::printf("mortar end point: |K − K_fd| / |K| = %.2e\n", error);
+  EXPECT_LT(error, 1e-6);
+}
+
+// The kernel's gradient at a slave edge tilted by e against a collinear master edge (what the patch test's
+// rim gives a Newton iterate): central differences give 0.055 or 1.2e-5; the dual numbers give −0.89 at
+// e = 1e-5 and −8.9e3 at e = 1e-9 (∝ 1/e). DISABLED: the known defect the patch test stalls on (report).
+TEST(MortarTerm, DISABLED_GradientStaysBoundedAtNearlyParallelEdges) {
+  SegmentNodes master;
+  master << 1.0 / 3, 2.0 / 3, 0.5, 2.0 / 3, 2.0 / 3, 0.5, 2.0 / 3, 1, 0.5, 1.0 / 3, 1, 0.5;
+  for (double e : {1e-5, 1e-9}) {
+    SegmentNodes slave;
+    slave << 0, 0.5, 0.5 - 4e-5, 0, 1 + e, 0.5 - 4e-5, 0.5, 1, 0.5 - 4e-5, 0.5, 0.5, 0.5 - 4e-5;
+    const mortar::PairGaps g = mortar::pair_gaps(slave, master, mortar::Multipliers::dual);
+    const double d = 1e-4 * e;
+    SegmentNodes up = slave, down = slave;
+    up(2, 1) += d, down(2, 1) -= d;
+    const double fd = (mortar::pair_gaps(up, master, mortar::Multipliers::dual).gap[2] -
+                       mortar::pair_gaps(down, master, mortar::Multipliers::dual).gap[2]) / (2 * d);
+    EXPECT_NEAR(g.gradient(2, 7), fd, 1e-6) << "e = " << e;
+  }
+}
+
+}  // namespace
+}  // namespace stoss::contact
