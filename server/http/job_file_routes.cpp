@@ -115,7 +115,8 @@ void get_series(App& app, const Request& req, Response& res) {
   }
   require_result_file(job);
   const auto path = app.files.served(job).result();
-  if (format == "csv") return res.set_content(jobs::csv_rows_after(output::series_csv(path), since), "text/csv");
+  if (format == "csv")
+    return res.set_content(jobs::csv_rows_after(output::series_csv(path), since), "text/csv");
   send_json(res, 200, jobs::series_after(output::series_json(path), since));
 }
 

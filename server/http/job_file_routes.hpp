@@ -16,7 +16,8 @@ void get_result_xdmf(App& app, const httplib::Request& req, httplib::Response& r
 /// GET /v1/jobs/{id}/result_mesh.xdmf: the sidecar of the mesh.
 void get_result_mesh_xdmf(App& app, const httplib::Request& req, httplib::Response& res);
 
-/// GET /v1/jobs/{id}/series: JSON or CSV, after ?since; partial (Stoss-Completed: false) before the job succeeded.
+/// GET /v1/jobs/{id}/series: JSON or CSV, after ?since; partial (Stoss-Completed: false) before the job
+/// succeeded.
 void get_series(App& app, const httplib::Request& req, httplib::Response& res);
 
 /// A study job's table: JSON as written (study::to_json), CSV or Markdown made from it.

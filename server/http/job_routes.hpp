@@ -1,5 +1,6 @@
 #pragma once
-/// @file The routes of a job itself: submit a scene or a study, list, get, cancel, delete, and the scene it ran.
+/// @file The routes of a job itself: submit a scene or a study, list, get, cancel, delete, and the scene it
+/// ran.
 
 #include "server/http/httplib.hpp"
 #include "server/http/routes.hpp"
@@ -9,11 +10,12 @@ namespace stoss::server::http {
 /// POST /v1/jobs: the scene checked, resolved and queued as a job (201; 200 for a repeated Idempotency-Key).
 void submit_job(App& app, const httplib::Request& req, httplib::Response& res);
 
-/// POST /v1/studies: a study is a job of kind "study": progress counts runs; its table is served by get_study.
+/// POST /v1/studies: a study is a job of kind "study": progress counts runs; its table is served by
+/// get_study.
 void submit_study(App& app, const httplib::Request& req, httplib::Response& res);
 
-/// GET /v1/jobs: ?verdict filters the store's page (the stores keep no verdict column): a page may hold fewer than
-/// `limit` jobs, and next_cursor goes on where the store's page ended.
+/// GET /v1/jobs: ?verdict filters the store's page (the stores keep no verdict column): a page may hold fewer
+/// than `limit` jobs, and next_cursor goes on where the store's page ended.
 void list_jobs(App& app, const httplib::Request& req, httplib::Response& res);
 
 /// GET /v1/jobs/{id}: the job JSON.

@@ -50,16 +50,19 @@ std::filesystem::path find_mesh(App& app, const Request& req) {
   const auto path = meshes::MeshStore::at(app.files.meshes()).path_of(id);
   if (!path)
     fail(404, "unknown-mesh", "Unknown mesh",
-         "no mesh " + id.substr(0, 64) + " (mesh ids are 64 lowercase hex digits, as POST /v1/meshes answers)");
+         "no mesh " + id.substr(0, 64) +
+             " (mesh ids are 64 lowercase hex digits, as POST /v1/meshes answers)");
   return *path;
 }
 
 }  // namespace
 
 void post_mesh(App& app, const Request& req, Response& res) {
-  if (req.body.size() > app.limits.max_body_bytes) throw ProblemError(body_too_large(app.limits.max_body_bytes, req.body.size()));
+  if (req.body.size() > app.limits.max_body_bytes)
+    throw ProblemError(body_too_large(app.limits.max_body_bytes, req.body.size()));
   const std::string format = mesh_format(req);
-  if (req.body.empty()) fail(400, "empty-body", "Empty body", "the body is empty; send the bytes of a .msh or .inp file");
+  if (req.body.empty())
+    fail(400, "empty-body", "Empty body", "the body is empty; send the bytes of a .msh or .inp file");
   meshes::StoredMesh stored;
   try {
     stored = meshes::MeshStore::at(app.files.meshes())

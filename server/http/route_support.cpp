@@ -95,18 +95,17 @@ void stream_file(const Request& req, Response& res, const std::filesystem::path&
   res.status = 200;
   if (range.kind == ByteRange::Kind::partial) {
     res.status = 206;
-    res.set_header("Content-Range", "bytes " + std::to_string(first) + "-" + std::to_string(first + length - 1) +
-                                        "/" + std::to_string(size));
+    res.set_header("Content-Range", "bytes " + std::to_string(first) + "-" +
+                                        std::to_string(first + length - 1) + "/" + std::to_string(size));
   }
-  res.set_content_provider(
-      static_cast<std::size_t>(length), type,
-      [in, first](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
-        char buffer[1 << 16];
-        in->seekg(static_cast<std::streamoff>(first + offset));
-        in->read(buffer, static_cast<std::streamsize>(std::min(length, sizeof buffer)));
-        const auto n = in->gcount();
-        return n > 0 && sink.write(buffer, static_cast<std::size_t>(n));
-      });
+  res.set_content_provider(static_cast<std::size_t>(length), type,
+                           [in, first](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+                             char buffer[1 << 16];
+                             in->seekg(static_cast<std::streamoff>(first + offset));
+                             in->read(buffer, static_cast<std::streamsize>(std::min(length, sizeof buffer)));
+                             const auto n = in->gcount();
+                             return n > 0 && sink.write(buffer, static_cast<std::size_t>(n));
+                           });
 }
 
 }  // namespace stoss::server::http

@@ -1,6 +1,6 @@
 #pragma once
-/// @file What several route files share: problem replies, JSON answers, the job a path names, mesh files for the
-/// scene checks, query parameters, files read whole or streamed with byte ranges.
+/// @file What several route files share: problem replies, JSON answers, the job a path names, mesh files for
+/// the scene checks, query parameters, files read whole or streamed with byte ranges.
 
 #include <cstddef>
 #include <filesystem>

@@ -1,6 +1,6 @@
 #pragma once
-/// @file The routes of the service itself, about no job: the scene check, the scene schema, the OpenAPI document,
-/// health and metrics.
+/// @file The routes of the service itself, about no job: the scene check, the scene schema, the OpenAPI
+/// document, health and metrics.
 
 #include "server/http/httplib.hpp"
 #include "server/http/routes.hpp"
