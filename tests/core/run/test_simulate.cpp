@@ -7,7 +7,7 @@
 
 #include "core/mesh/generators.hpp"
 #include "core/simulate.hpp"
-#include "recording_observer.hpp"
+#include "tests/core/recording_observer.hpp"
 
 namespace stoss {
 namespace {
