@@ -85,6 +85,8 @@ std::vector<std::string> resolve_effects(const Model& m) {
   std::vector<std::string> out{effect::inertia, effect::elasticity};
   if (m.gravity && m.gravity->norm() > 0) out.push_back(effect::gravity);
   if (!m.boundary.empty()) out.push_back(effect::dirichlet);
+  if (std::any_of(m.boundary.begin(), m.boundary.end(), [](const Boundary& b) { return b.moves(); }))
+    out.push_back(effect::prescribed_motion);
   for (const auto kind : {Load::Kind::pressure, Load::Kind::traction})
     if (std::any_of(m.loads.begin(), m.loads.end(), [kind](const Load& l) { return l.kind == kind; }))
       out.push_back(kind == Load::Kind::pressure ? effect::pressure : effect::traction);

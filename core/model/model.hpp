@@ -43,6 +43,10 @@ struct BodySpec {
 struct Boundary {
   std::string surface;                 ///< "body/surface"
   std::array<bool, 3> fix{true, true, true};
+  /// u of x = X + a(t)·u on the held directions (docs/scene.md "boundary"); 0: a support at rest
+  Eigen::Vector3d displacement = Eigen::Vector3d::Zero();
+  std::vector<std::array<double, 2>> amplitude;  ///< a(t) as [[t, factor], …]; empty: the factor is 1
+  bool moves() const { return displacement != Eigen::Vector3d::Zero(); }
 };
 
 /// An external load on a surface (scene `loads[i]`, docs/scene.md; docs/theory.md §5b): a follower
@@ -173,6 +177,7 @@ inline constexpr const char* contact_frictionless = "contact_frictionless";
 inline constexpr const char* contact_frictional = "contact_frictional";
 inline constexpr const char* pressure = "pressure";
 inline constexpr const char* traction = "traction";
+inline constexpr const char* prescribed_motion = "prescribed_motion";
 }  // namespace effect
 
 struct Model {

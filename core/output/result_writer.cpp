@@ -64,6 +64,11 @@ void write_root_attributes(const h5::File& file, const model::Model& model) {
   file.write_attribute("/", "step", model.time.step);
   file.write_attribute("/", "end", model.time.end);
   file.write_attribute("/", "effects", model.effects);
+  if (!model.boundary.empty()) {  // the second axis of series/reaction_force (docs/results.md)
+    std::vector<std::string> entries;
+    for (const model::Boundary& b : model.boundary) entries.push_back(b.surface);
+    file.write_attribute("/", "boundary_entries", entries);
+  }
   file.write_attribute("/", "scene", model.scene.dump());
   file.write_attribute("/", "complete", 0);
 }

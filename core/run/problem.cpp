@@ -38,6 +38,38 @@ std::vector<char> fixed_dofs(const model::Model& m) {
   return fixed;
 }
 
+/// The dofs each entry holds, a dof held by several entries given to the first.
+std::vector<std::vector<int>> held_dofs_by_entry(const model::Model& m) {
+  std::vector<char> taken(m.dof_count(), 0);
+  std::vector<std::vector<int>> out;
+  for (const model::Boundary& b : m.boundary) {
+    std::vector<int>& dofs = out.emplace_back();
+    for (int node : m.mesh.named_nodes(b.surface))
+      for (int k = 0; k < 3; ++k)
+        if (b.fix[k] && !taken[3 * node + k]) {
+          taken[3 * node + k] = 1;
+          dofs.push_back(3 * node + k);
+        }
+  }
+  return out;
+}
+
+/// The moving supports (docs/theory.md (5b.9)): each held dof follows the entry it counts in; none if no
+/// displacement is non-zero.
+std::unique_ptr<PrescribedMotion> make_supports(const model::Model& m, const std::vector<std::vector<int>>& held) {
+  if (!m.has_effect(model::effect::prescribed_motion)) return nullptr;
+  const Eigen::VectorXd X = m.mesh.reference_positions();
+  std::vector<PrescribedDof> dofs;
+  std::vector<loads::Amplitude> amplitudes;
+  for (size_t e = 0; e < m.boundary.size(); ++e) {
+    amplitudes.emplace_back(m.boundary[e].amplitude);
+    for (int dof : held[e])
+      if (m.boundary[e].displacement[dof % 3] != 0)
+        dofs.push_back({dof, X[dof], m.boundary[e].displacement[dof % 3], int(e)});
+  }
+  return std::make_unique<PrescribedMotion>(std::move(dofs), std::move(amplitudes));
+}
+
 /// v_I = v_0 + ω × (X_I − c), c the given centre or the body's centre of mass; zero on fixed dofs.
 Eigen::VectorXd initial_velocity(const model::Model& m, const Problem& p, const Eigen::VectorXd& X) {
   Eigen::VectorXd v = Eigen::VectorXd::Zero(X.size());
@@ -67,6 +99,7 @@ std::vector<time::Term*> Problem::terms() const {
   std::vector<time::Term*> out{elasticity.get()};
   if (gravity) out.push_back(gravity.get());
   for (const auto& l : loads) out.push_back(l.get());
+  if (supports) out.push_back(supports.get());
   for (const auto& c : contact) out.push_back(c.get());
   return out;
 }
@@ -74,7 +107,16 @@ std::vector<time::Term*> Problem::terms() const {
 double Problem::external_work() const {
   double work = 0;
   for (const auto& l : loads) work += l->work();
+  if (supports) work += supports->work();
   return work;
+}
+
+std::vector<Eigen::Vector3d> Problem::entry_reactions(const Eigen::VectorXd& reaction) const {
+  std::vector<Eigen::Vector3d> out(held_dofs.size(), Eigen::Vector3d::Zero());
+  if (reaction.size() == 0) return out;
+  for (size_t e = 0; e < held_dofs.size(); ++e)
+    for (int dof : held_dofs[e]) out[e][dof % 3] += reaction[dof];
+  return out;
 }
 
 Problem build_problem(const model::Model& m) {
@@ -98,6 +140,8 @@ Problem build_problem(const model::Model& m) {
     p.gravity = std::make_unique<fem::GravityTerm>(p.mass, *m.gravity);
   for (const model::Load& l : m.loads) p.loads.push_back(make_load(m, l));
   p.fixed = fixed_dofs(m);
+  p.held_dofs = held_dofs_by_entry(m);
+  p.supports = make_supports(m, p.held_dofs);
   p.total_mass = p.mass.sum() / 3;
   p.length_scale = bounding_box_diagonal(m.mesh);
   p.setup_seconds = seconds_since(t1);

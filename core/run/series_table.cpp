@@ -25,8 +25,14 @@ const SeriesColumn table[] = {
      [](S s, int, double* v) { v[0] = s.balance.total(); }},
     {"dissipated_energy", Shape::scalar, false, Presence::friction,  // §5.2 item 7
      [](S s, int, double* v) { v[0] = s.balance.dissipated; }},
-    {"external_work", Shape::scalar, false, Presence::loads,  // (5b.5): the loads' work since t_0
+    {"external_work", Shape::scalar, false, Presence::loads,  // (5b.5), (5b.9): loads' and supports' work since t_0
      [](S s, int, double* v) { v[0] = s.balance.external_work; }},
+    {"reaction_force", Shape::item_vectors, false, Presence::boundary,  // (5b.8): per boundary entry, row 0 is 0
+     [](S s, int k, double* v) {
+       for (int e = 0; e < k; ++e)
+         put3(s.reactions && !s.reactions->empty() ? (*s.reactions)[size_t(e)] : Eigen::Vector3d::Zero(), v + 3 * e);
+     },
+     [](const model::Model& m) { return int(m.boundary.size()); }},
     {"linear_momentum", Shape::vector, false, Presence::always,
      [](S s, int, double* v) { put3(s.balance.linear, v); }},
     {"angular_momentum", Shape::vector, false, Presence::always,
@@ -102,7 +108,9 @@ bool is_present(Presence presence, const model::Model& m) {
     case Presence::smooth_master:
       return any_smooth_master(m);
     case Presence::loads:
-      return !m.loads.empty();
+      return !m.loads.empty() || m.has_effect(model::effect::prescribed_motion);
+    case Presence::boundary:
+      return !m.boundary.empty();
   }
   return false;
 }
@@ -120,7 +128,9 @@ std::string presence_text(Presence presence) {
     case Presence::smooth_master:
       return "a pair with a smooth master surface";
     case Presence::loads:
-      return "loads";
+      return "loads or prescribed motion";
+    case Presence::boundary:
+      return "boundary";
   }
   return "";
 }

@@ -26,6 +26,9 @@ struct StepMeasures {
   double seconds;
   double step_size = 0;
   int rejections = 0;
+  /// The force each boundary entry exerted on its body in the step (Problem::entry_reactions); null or
+  /// empty in row 0, where it is 0.
+  const std::vector<Eigen::Vector3d>* reactions = nullptr;
 };
 
 /// The shape of one row of a series; k (the items) is taken from the scene.
@@ -43,7 +46,8 @@ enum class Presence {
   contact,        ///< at least one contact pair
   friction,       ///< a pair with friction > 0
   smooth_master,  ///< a pair with a smooth master surface
-  loads,          ///< at least one entry in the scene's loads
+  loads,          ///< at least one entry in the scene's loads, or a boundary entry with a non-zero displacement
+  boundary,       ///< at least one entry in the scene's boundary
 };
 
 /// One series: a row of the table.
@@ -63,7 +67,7 @@ std::span<const SeriesColumn> series_columns();
 
 bool is_present(Presence presence, const model::Model& model);
 /// The words of docs/results.md's "present" column: "always", "gravity", "contact", "a frictional pair",
-/// "a pair with a smooth master surface".
+/// "a pair with a smooth master surface", "loads or prescribed motion", "boundary".
 std::string presence_text(Presence presence);
 /// The type and shape as docs/results.md writes them: "float64 [S]", "int32 [S]", "float64 [S,3]",
 /// "float64 [S,k,3]", "float64 [S,k]".

@@ -122,8 +122,9 @@ class Run {
     const auto t_out = Clock::now();
     const Balance b = balance(problem_, s_);
     update_summary(sum_, b0_, b, step.contact);
-    recorder_.step(series_.row(
-        s_.step, s_.t, {b, step.contact, &step.newton, seconds_since(t0), step.h, step.rejections}));
+    const std::vector<Eigen::Vector3d> reactions = problem_.entry_reactions(integrator_.reaction());
+    recorder_.step(series_.row(s_.step, s_.t,
+                               {b, step.contact, &step.newton, seconds_since(t0), step.h, step.rejections, &reactions}));
     const bool last = done();
     if (frame_due(n, last, s_.t == landing)) recorder_.frame(n, frame_of(s_, problem_));
     keep_checkpoint(n, last);

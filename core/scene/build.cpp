@@ -44,9 +44,12 @@ model::BodySpec body_spec(const json& b) {
 
 model::Boundary boundary(const json& e) {
   const auto fix = e["fix"].get<std::string>();
-  return {e["surface"].get<std::string>(),
-          {fix.find('x') != std::string::npos, fix.find('y') != std::string::npos,
-           fix.find('z') != std::string::npos}};
+  model::Boundary b{e["surface"].get<std::string>(),
+                    {fix.find('x') != std::string::npos, fix.find('y') != std::string::npos,
+                     fix.find('z') != std::string::npos}};
+  if (e.contains("displacement")) b.displacement = vector3(e["displacement"]);
+  if (e.contains("amplitude")) b.amplitude = e["amplitude"].get<std::vector<std::array<double, 2>>>();
+  return b;
 }
 
 model::Load load(const json& e) {

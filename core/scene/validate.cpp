@@ -327,12 +327,35 @@ void check_fix(const json& fix, const std::string& p, Checker& c) {
   if (!ok) c.fail(p, "must be distinct letters from \"xyz\", got " + shown(fix));
 }
 
+void check_amplitude(const json& a, const std::string& p, loads::AmplitudeUse use, Checker& c);
+
+/// A prescribed displacement (docs/scene.md "boundary"): three finite numbers, non-zero only in the
+/// directions `fix` holds.
+void check_displacement(const json& u, const std::string& p, const json* fix, Checker& c) {
+  if (u.is_array() && u.size() == 3)
+    for (size_t k = 0; k < 3; ++k)
+      if (u[k].is_number() && !std::isfinite(u[k].get<double>())) {
+        c.fail(child(p, k), "must be a finite number, got " + shown(u[k]));
+        return;
+      }
+  const auto value = vector3(u, p, c);
+  if (!value || !fix || !fix->is_string()) return;
+  const std::string held = fix->get<std::string>();
+  for (int k = 0; k < 3; ++k)
+    if ((*value)[k] != 0 && held.find(char('x' + k)) == std::string::npos)
+      c.fail(child(p, size_t(k)), std::string("must be 0: fix does not hold direction ") + char('x' + k) +
+                                      " (fix is " + shown(*fix) + "), got " + shown(u[k]));
+}
+
 void check_boundary_condition(json& e, const std::string& p, const SurfaceIndex& index, Checker& c) {
-  if (!object_with(e, p, {"surface", "fix"}, c)) return;
+  if (!object_with(e, p, {"surface", "fix", "displacement", "amplitude"}, c)) return;
   if (const json* surface = member(e, "surface", p, Presence::must(), c))
     check_surface_ref(*surface, child(p, "surface"), index, c);
-  if (const json* fix = member(e, "fix", p, Presence::or_default("xyz"), c))
-    check_fix(*fix, child(p, "fix"), c);
+  const json* fix = member(e, "fix", p, Presence::or_default("xyz"), c);
+  if (fix) check_fix(*fix, child(p, "fix"), c);
+  if (e.contains("displacement")) check_displacement(e["displacement"], child(p, "displacement"), fix, c);
+  if (e.contains("amplitude"))
+    check_amplitude(e["amplitude"], child(p, "amplitude"), loads::AmplitudeUse::displacement, c);
 }
 
 /// An amplitude [[t0, f0], [t1, f1], …] (docs/theory.md (5b.1)): pairs of finite numbers, times increasing.

@@ -50,7 +50,9 @@ Integrator::Integrator(const solve::SparseMatrix& mass, std::vector<Term*> terms
       options_(options),
       length_scale_(length_scale),
       total_mass_(total_mass),
-      term_seconds_(terms_.size(), 0.0) {}
+      term_seconds_(terms_.size(), 0.0) {
+  any_fixed_ = std::find(fixed_.begin(), fixed_.end(), char(1)) != fixed_.end();
+}
 
 double Integrator::potential_energy(const Eigen::VectorXd& x) const {
   double V = 0;
@@ -155,6 +157,10 @@ class Integrator::StepEquations final : public solve::NonlinearSystem {
       owner_.terms_[k]->add(context_, z, R, A);
     }
     Stopwatch assembly(owner_.inertia_seconds_);
+    if (owner_.any_fixed_) {  // the held rows, before elimination: the reaction (Integrator::reaction)
+      owner_.held_rows_ = R.head(state_.x.size());
+      owner_.held_rows_at_ = z.head(state_.x.size());
+    }
     for (Eigen::Index i = 0; i < R.size(); ++i)
       if (owner_.fixed_[i]) R[i] = 0;
     if (A) A->eliminate(owner_.fixed_);
@@ -269,9 +275,25 @@ solve::NewtonResult Integrator::step(State& s, double h, const LogFunction& log)
   }
 }
 
-void Integrator::finish(State& s, const StepEquations& equations, const Eigen::VectorXd& z) {
+void Integrator::take_reaction(StepEquations& equations, const Eigen::VectorXd& z) {
+  const Eigen::Index nx = mass_.rows();
+  if (held_rows_at_.size() != nx || held_rows_at_ != z.head(nx)) {  // the last evaluation was elsewhere
+    Eigen::VectorXd R;
+    equations.evaluate(z, R, nullptr);
+  }
+  reaction_ = Eigen::VectorXd::Zero(nx);
+  const double factor = equations.context().force_factor;
+  for (Eigen::Index i = 0; i < nx; ++i)
+    if (fixed_[i]) reaction_[i] = held_rows_[i] / factor;  // R_i = h r_i at a held dof (docs/theory.md (5b.8))
+}
+
+void Integrator::finish(State& s, StepEquations& equations, const Eigen::VectorXd& z) {
   const StepContext& step = equations.context();
   const double h = step.h;
+  if (any_fixed_) {
+    take_reaction(equations, z);
+    for (size_t k = 0; k < terms_.size(); ++k) terms_[k]->take_reaction(step, z, reaction_);
+  }
   Eigen::VectorXd impulse = Eigen::VectorXd::Zero(s.x.size());
   double jump = 0;
   for (size_t k = 0; k < terms_.size(); ++k) {

@@ -67,6 +67,11 @@ class Integrator {
   const solve::LinearSolver& linear_solver() const { return solver_; }
   /// Newton solves in the last step (1 + active-set changes).
   int active_set_passes() const { return passes_; }
+  /// The force the supports exerted on the held dofs in the last converged step (3 per node, 0 on free
+  /// dofs): the step's residual at the held rows over the scheme's force factor, R_i / h (docs/theory.md
+  /// (5b.8)), the discrete force whose work enters external_work. Empty before the first step and
+  /// without held dofs.
+  const Eigen::VectorXd& reaction() const { return reaction_; }
   /// Kinetic energy added by the velocity correction (4.12) in the last step (0 if none).
   double velocity_correction_energy() const { return correction_energy_; }
 
@@ -85,7 +90,9 @@ class Integrator {
   /// The smallest step fraction the terms ask to cut the step to (Term::requested_cut), or 1.
   double requested_cut() const;
   /// After a converged step: the impact impulse and end_step of every term, the scheme's advance of s by h.
-  void finish(State& s, const StepEquations& equations, const Eigen::VectorXd& z);
+  void finish(State& s, StepEquations& equations, const Eigen::VectorXd& z);
+  /// reaction_ at the converged z from the residual the last evaluation left at the held rows.
+  void take_reaction(StepEquations& equations, const Eigen::VectorXd& z);
   /// (4.12): v_{n+1} += γ M⁻¹b for the terms' impact impulse b, restoring their energy jump.
   void correct_velocity(State& s, Eigen::VectorXd impulse, double energy_jump);
   /// v ← P v and a ← P a (set_velocity_map), when P is set.
@@ -110,6 +117,10 @@ class Integrator {
   double advanced_ = 0;
   solve::SparseMatrix velocity_map_;  ///< set_velocity_map
   double correction_energy_ = 0;
+  bool any_fixed_ = false;        ///< some position dof is held: the reaction is measured
+  Eigen::VectorXd held_rows_;     ///< the last evaluation's residual at the position rows, before elimination
+  Eigen::VectorXd held_rows_at_;  ///< the positions of that evaluation
+  Eigen::VectorXd reaction_;      ///< reaction()
 
   // Timing hooks (wall clock, for the summary's split of the run time).
   std::vector<double> term_seconds_;

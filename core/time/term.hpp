@@ -146,6 +146,9 @@ class Term {
   /// nothing.
   virtual void add_impact_impulse(const StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& b,
                                   double& energy_jump) const {}
+  /// After a converged step, before end_step, when some dof is held: `reaction` (3 per node) is the force the
+  /// supports exert on the held dofs in the step's discrete form (Integrator::reaction); 0 on free dofs.
+  virtual void take_reaction(const StepContext& step, const Eigen::VectorXd& z, const Eigen::VectorXd& reaction) {}
   /// After a converged step: commit history (friction slip, active sets).
   virtual void end_step(const StepContext& step, const Eigen::VectorXd& z) {}
   /// After end_step: the largest position offset the term's own model put in during the last converged
