@@ -25,14 +25,6 @@ void ContactTerm::contact_pressure(Eigen::VectorXd& p) const {
   for (const auto& [node, value] : pressure_) p[node] = value;
 }
 
-void ContactTerm::measure_slave_force(const time::StepContext& step, const Eigen::VectorXd& z) {
-  Eigen::VectorXd R = Eigen::VectorXd::Zero(z.size());
-  add(step, z, R, nullptr);  // force_factor · f_alg in the position rows (term.hpp)
-  report_.slave_force.setZero();
-  for (int node : surfaces_.slave_nodes) report_.slave_force -= R.segment<3>(3 * node);
-  if (step.force_factor != 0) report_.slave_force /= step.force_factor;
-}
-
 void ContactTerm::log(const time::StepContext& step, const std::string& line) const {
   if (step.log && *step.log) (*step.log)(name() + ": " + line);
 }

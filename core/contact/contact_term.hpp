@@ -36,9 +36,6 @@ struct ContactReport {
   double max_faceted_penetration = 0;  ///< smooth master: near slave nodes against the mesh's own faces
   int slipping = 0;    ///< closed penalty contacts on the Coulomb cone (5.3) in the step; 0 if frictionless
   double max_new_gap_target = 0;  ///< largest gap target f_3 of the elements activated or switched in the step
-  /// The step's discrete force of the master on the slave, friction included: −Σ over the slave nodes of
-  /// the pair's f_alg (the force whose impulse is h f_alg; docs/results.md series/contact_force).
-  Eigen::Vector3d slave_force = Eigen::Vector3d::Zero();
   double contact_area = 0;  ///< Σ of the tributary areas A_I of the slave nodes in contact (series/contact_area)
 };
 
@@ -75,9 +72,6 @@ class ContactTerm : public time::Term {
     pressure_.clear();
     report_.contact_area = 0;
   }
-  /// Sets the report's slave_force from the converged step's z: call it first in end_step, while the
-  /// term's state is still that of the solve.
-  void measure_slave_force(const time::StepContext& step, const Eigen::VectorXd& z);
   /// Sets the report's max_penetration and unassigned at x (§3.4): every near slave node (broad_)
   /// against the closest master face that accepts it, whichever it is; a node level with the surface
   /// that no face accepts counts as unassigned (the NTS blind spot) and is logged.

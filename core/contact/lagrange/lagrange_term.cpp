@@ -212,7 +212,6 @@ bool LagrangeContactTerm::update_active_set(const time::StepContext& step, const
 }
 
 void LagrangeContactTerm::end_step(const time::StepContext& step, const Eigen::VectorXd& z) {
-  measure_slave_force(step, z);
   const Eigen::VectorXd x = z.head(step.x_n.size());
   report_.energy_jump = 0;
   clear_pressure();

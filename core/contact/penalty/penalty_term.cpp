@@ -140,7 +140,6 @@ void PenaltyContactTerm::add(const time::StepContext& step, const Eigen::VectorX
 
 void PenaltyContactTerm::end_step(const time::StepContext& step, const Eigen::VectorXd& z) {
   report_ = ContactReport{};
-  measure_slave_force(step, z);
   const Eigen::VectorXd x = z.head(step.x_n.size());
   std::vector<PenaltyNodeState> next(surfaces_.slave_nodes.size());
   clear_pressure();

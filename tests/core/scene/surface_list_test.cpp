@@ -4,6 +4,8 @@
 // smooth master surface across the edges its surfaces share (docs/scene.md, "Contact").
 #include <gtest/gtest.h>
 
+#include "tests/core/scene/scene_issues.hpp"
+
 #include <algorithm>
 #include <set>
 
@@ -30,14 +32,7 @@ json block_on_box(const json& master) {
           {"time", {{"step", 0.01}, {"end", 0.1}}}};
 }
 
-std::vector<Issue> issues_of(const json& scene) {
-  try {
-    load(scene);
-  } catch (const SceneError& e) {
-    return e.issues;
-  }
-  return {};
-}
+using testing::issues_of;
 
 std::set<std::array<int, 4>> sorted_faces(const std::vector<mesh::Quad>& faces) {
   std::set<std::array<int, 4>> out;

@@ -4,6 +4,8 @@
 #include <limits>
 #include <gtest/gtest.h>
 
+#include "tests/core/scene/scene_issues.hpp"
+
 #include "core/scene/scene.hpp"
 
 namespace stoss::scene {
@@ -22,14 +24,7 @@ json block_with(json boundary) {
   return scene;
 }
 
-std::vector<Issue> issues_of(const json& scene) {
-  try {
-    load(scene);
-  } catch (const SceneError& e) {
-    return e.issues;
-  }
-  return {};
-}
+using testing::issues_of;
 
 TEST(BoundaryDisplacement, ReachesTheModelWithItsEffect) {
   const model::Model m = load(block_with(json::parse(R"([

@@ -2,6 +2,8 @@
 // with its effect named, and every bad input is one issue at the entry's JSON pointer naming the rule.
 #include <gtest/gtest.h>
 
+#include "tests/core/scene/scene_issues.hpp"
+
 #include "core/scene/scene.hpp"
 
 namespace stoss::scene {
@@ -21,14 +23,7 @@ json block_with(json loads) {
   return scene;
 }
 
-std::vector<Issue> issues_of(const json& scene) {
-  try {
-    load(scene);
-  } catch (const SceneError& e) {
-    return e.issues;
-  }
-  return {};
-}
+using testing::issues_of;
 
 TEST(SceneLoads, PressureAndTractionEntriesReachTheModelWithTheirEffects) {
   const model::Model m = load(block_with(json::parse(R"([

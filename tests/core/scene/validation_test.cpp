@@ -2,6 +2,8 @@
 // with its JSON pointer and exact message; several problems are all reported.
 #include <gtest/gtest.h>
 
+#include "tests/core/scene/scene_issues.hpp"
+
 #include <limits>
 
 #include "core/scene/scene.hpp"
@@ -54,14 +56,7 @@ void apply(json& scene, const Edit& e) {
     scene[p] = e.value;
 }
 
-std::vector<Issue> issues_of(const json& scene) {
-  try {
-    load(scene);
-  } catch (const SceneError& e) {
-    return e.issues;
-  }
-  return {};
-}
+using testing::issues_of;
 
 std::string listed(const std::vector<Issue>& issues) {
   std::string out;
