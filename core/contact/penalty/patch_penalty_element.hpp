@@ -7,7 +7,7 @@
 /// Element vector [x_s; y_0 … y_{M−1}] (3M + 3 entries) on a local patch whose node K is entry K + 1
 /// (local_patch, local_positions in elements/patch_nts_element.hpp). Tangent analytic, with the third
 /// derivatives of the patch in Σ_α t_α ∂D_α; checked against central differences in
-/// tests/core/contact/test_patch_penalty_element.cpp.
+/// tests/core/contact/penalty/test_patch_penalty_element.cpp.
 
 #include <Eigen/Core>
 

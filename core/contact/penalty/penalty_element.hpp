@@ -9,7 +9,7 @@
 /// Tangent: analytic (no finite differences). ∂D_α/∂x, the second derivative of the CPP that
 /// (5.2) needs, is the derivative of (3.7) at fixed traction, built from (3.4), (3.8) and (3.9);
 /// everything is fixed-size, no heap allocation. Checked against central differences in
-/// tests/core/contact/test_penalty_element.cpp.
+/// tests/core/contact/penalty/test_penalty_element.cpp.
 
 #include <Eigen/Core>
 

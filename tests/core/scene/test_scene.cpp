@@ -402,7 +402,7 @@ TEST(SceneSchema, DefaultsAgreeWithTheValidator) {
   const std::vector<Path> rich_paths{
       {"time", "alpha"},     {"contact", "enforcement"},       {"contact", "friction"},
       {"contact", "impact"}, {"contact", "switch_hysteresis"}, {"contact", "normal_traction"},
-      {"boundary", "fix"}};  // contact/switch_gap: resolved from the surface (master_surface_test.cpp)
+      {"boundary", "fix"}};  // contact/switch_gap: resolved from the surface (test_master_surface.cpp)
   auto expect_default = [&](const json& filled, const Path& path) {
     const std::string where = json(path).dump();
     const json& parent = schema_at(s, Path(path.begin(), path.end() - 1));

@@ -15,7 +15,7 @@
 #include "core/contact/geometry/patch_projection.hpp"
 #include "core/contact/penalty/patch_penalty_element.hpp"
 #include "core/contact/penalty/penalty_element.hpp"
-#include "smooth_test_utils.hpp"
+#include "tests/core/contact/smooth_test_utils.hpp"
 
 namespace stoss::contact {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "core/contact/geometry/patch_projection.hpp"
 #include "core/contact/geometry/smooth_surface.hpp"
-#include "smooth_test_utils.hpp"
+#include "tests/core/contact/smooth_test_utils.hpp"
 
 namespace stoss::contact {
 namespace {
