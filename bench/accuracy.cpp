@@ -23,23 +23,28 @@ namespace fs = std::filesystem;
 const fs::path source_dir = STOSS_SOURCE_DIR;
 const fs::path results_dir = source_dir / "bench" / "results";
 
-void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+void write(const fs::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
 
 /// Two panels, log-log: displacement error and energy error against wall seconds, one colour per
 /// scheme, the legend inside each panel.
 void plot(const std::string& name, const stoss::study::Result& r, bool tolerances) {
-  const fs::path csv = results_dir / ("accuracy_" + name + ".csv"), png = results_dir / ("accuracy_" + name + ".png");
+  const fs::path csv = results_dir / ("accuracy_" + name + ".csv"),
+                 png = results_dir / ("accuracy_" + name + ".png");
   const fs::path script = results_dir / ("accuracy_" + name + ".gnuplot");
-  const std::pair<const char*, const char*> schemes[] = {
-      {"energy_momentum", "#1f77b4"}, {"midpoint", "#d62728"}, {"hht", "#2ca02c"}, {"generalized_alpha", "#9467bd"}};
+  const std::pair<const char*, const char*> schemes[] = {{"energy_momentum", "#1f77b4"},
+                                                         {"midpoint", "#d62728"},
+                                                         {"hht", "#2ca02c"},
+                                                         {"generalized_alpha", "#9467bd"}};
   const auto panel = [&](const char* column, const char* label, const char* key) {
     std::string lines;
     // Column 11 (tolerance) is there only when a row has one: empty for the fixed steps.
     const std::string fixed = tolerances ? " && strcol(11) eq ''" : "", adaptive = " && strcol(11) ne ''";
     for (const auto& [scheme, colour] : schemes) {
-      lines += std::string(lines.empty() ? "" : ", ") + "'" + csv.string() + "' using (strcol(1) eq '" + scheme +
-               "' && $4 == 1" + fixed + " ? $8 : 1/0):" + column + " with linespoints lw 2 pt 7 lc rgb '" + colour +
-               "' title '" + scheme + "'";
+      lines += std::string(lines.empty() ? "" : ", ") + "'" + csv.string() + "' using (strcol(1) eq '" +
+               scheme + "' && $4 == 1" + fixed + " ? $8 : 1/0):" + column +
+               " with linespoints lw 2 pt 7 lc rgb '" + colour + "' title '" + scheme + "'";
       if (tolerances)
         lines += ", '" + csv.string() + "' using (strcol(1) eq '" + scheme + "' && $4 == 1" + adaptive +
                  " ? $8 : 1/0):" + column + " with linespoints lw 2 dt 2 pt 5 lc rgb '" + colour +
@@ -48,16 +53,20 @@ void plot(const std::string& name, const stoss::study::Result& r, bool tolerance
     return std::string("set title '") + label + "'\nset ylabel '" + label + "'\nset key inside " + key +
            " box opaque\nplot " + lines + "\n";
   };
-  write(script, "set datafile separator ','\nset terminal pngcairo size 1200,480 noenhanced font ',11'\nset output '" +
-                    png.string() + "'\nset multiplot layout 1,2 title 'accuracy against time: " + name +
-                    "'\nset logscale xy\nset format y '%.0e'\nset grid\n"
-                    "set xlabel 'wall seconds'\n" +
-                    panel("5", "displacement error", "top right") + panel("6", "energy error (relative)", "right center") + "unset multiplot\n");
+  write(
+      script,
+      "set datafile separator ','\nset terminal pngcairo size 1200,480 noenhanced font ',11'\nset output '" +
+          png.string() + "'\nset multiplot layout 1,2 title 'accuracy against time: " + name +
+          "'\nset logscale xy\nset format y '%.0e'\nset grid\n"
+          "set xlabel 'wall seconds'\n" +
+          panel("5", "displacement error", "top right") +
+          panel("6", "energy error (relative)", "right center") + "unset multiplot\n");
   if (std::system(("gnuplot '" + script.string() + "' 2>/dev/null").c_str()) != 0)
     std::cerr << "gnuplot not available: " << png << " not written\n";
 }
 
-void run_case(const std::string& name, stoss::model::Model m, bool quick, const std::vector<double>& tolerances) {
+void run_case(const std::string& name, stoss::model::Model m, bool quick,
+              const std::vector<double>& tolerances) {
   stoss::study::Options o;
   o.tolerances = tolerances;
   o.steps = quick ? std::vector<double>{0.04, 0.02} : std::vector<double>{0.04, 0.02, 0.01, 0.005};
@@ -93,7 +102,8 @@ int main(int argc, char** argv) {
   // Contact-free: the B4 bar. (The 432-element sphere is no convergence case at these steps: its
   // through-thickness modes, ω ≈ 2000 rad/s, stay unresolved even at h/32, so every scheme's error
   // plateaus at the amplitude of those vibrations, ~3e-4.)
-  run_case("tumbling_bar", stoss::scene::load_file(source_dir / "api/examples/tumbling_bar.json"), quick, tolerances);
+  run_case("tumbling_bar", stoss::scene::load_file(source_dir / "api/examples/tumbling_bar.json"), quick,
+           tolerances);
   const fs::path paper = source_dir / "api/examples/hollow_ball_plate.json";
   if (!fs::exists(paper)) return 0;
   try {

@@ -11,6 +11,8 @@
 //   the results go to scaling_<linear>.csv, with the Krylov iterations per solve and the most one took.
 //   scaling.png draws every scaling*.csv there is, one line per linear solver.
 //   stoss defaults to the stoss next to this executable (build it first: --target stoss).
+#include <unistd.h>
+
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -24,8 +26,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 namespace {
 
@@ -77,13 +77,14 @@ fs::path write_scene(const Size& size, const fs::path& dir, const Options& o) {
   auto& sphere = scene["bodies"][0]["mesh"]["hollow_sphere"];
   sphere["divisions"] = size.divisions;
   sphere["layers"] = size.layers;
-  scene["name"] = "scaling: tumbling hollow sphere " + std::to_string(size.divisions) + "x" +
-                  std::to_string(size.layers);
+  scene["name"] =
+      "scaling: tumbling hollow sphere " + std::to_string(size.divisions) + "x" + std::to_string(size.layers);
   scene["time"]["step"] = 0.01;
   scene["time"]["end"] = 0.01 * o.steps;
   scene["output"]["every"] = o.steps;
   scene["solver"]["linear"] = o.linear;
-  const fs::path path = dir / ("sphere_" + std::to_string(size.divisions) + "_" + std::to_string(size.layers) + ".json");
+  const fs::path path =
+      dir / ("sphere_" + std::to_string(size.divisions) + "_" + std::to_string(size.layers) + ".json");
   std::ofstream(path) << scene.dump(2);
   return path;
 }
@@ -103,7 +104,8 @@ Row measure(const fs::path& stoss, const Size& size, const fs::path& work, const
   r.dofs = int(match(validated, R"(dofs (\d+))"));
   const fs::path out = work / ("out_" + std::to_string(size.divisions));
   // The log (stderr) carries the Krylov line; the progress line's carriage returns do no harm.
-  const std::string ran = run_capture(stoss.string() + " run " + scene.string() + " -o " + out.string() + " 2>&1", status);
+  const std::string ran =
+      run_capture(stoss.string() + " run " + scene.string() + " -o " + out.string() + " 2>&1", status);
   if (status != 0) {
     std::cerr << "bench_scaling: stoss run failed (status " << status << "):\n" << ran;
     std::exit(1);
@@ -136,11 +138,13 @@ void write_plot(const fs::path& png) {
   for (size_t k = 0; k < series.size(); ++k) {
     const fs::path csv = results_dir / series[k].first;
     if (!fs::exists(csv)) continue;
-    const std::string c = "'" + csv.string() + "'", style = " with linespoints lw 2 lc rgb '" + colours[k] + "'";
-    time_plot += std::string(time_plot.empty() ? "plot " : ", ") + c + " using 3:8" + style + " pt 7 title '" +
-                 series[k].second + "', " + c + " using 3:($8*$10)" + style + " dt 2 pt 6 title '  its linear solver'";
-    memory_plot += std::string(memory_plot.empty() ? "plot " : ", ") + c + " using 3:14" + style + " pt 7 title '" +
-                   series[k].second + "'";
+    const std::string c = "'" + csv.string() + "'",
+                      style = " with linespoints lw 2 lc rgb '" + colours[k] + "'";
+    time_plot += std::string(time_plot.empty() ? "plot " : ", ") + c + " using 3:8" + style +
+                 " pt 7 title '" + series[k].second + "', " + c + " using 3:($8*$10)" + style +
+                 " dt 2 pt 6 title '  its linear solver'";
+    memory_plot += std::string(memory_plot.empty() ? "plot " : ", ") + c + " using 3:14" + style +
+                   " pt 7 title '" + series[k].second + "'";
   }
   fs::path script = png;
   script.replace_extension(".gnuplot");
@@ -148,7 +152,8 @@ void write_plot(const fs::path& png) {
       << "set datafile separator ','\n"
       << "set terminal pngcairo size 1200,480 noenhanced font ',11'\n"
       << "set output '" << png.string() << "'\n"
-      << "set multiplot layout 1,2 title 'tumbling hollow sphere, energy_momentum, h = 0.01 (2 shared cores)'\n"
+      << "set multiplot layout 1,2 title 'tumbling hollow sphere, energy_momentum, h = 0.01 (2 shared "
+         "cores)'\n"
       << "set logscale xy\nset grid\nset xlabel 'elements (hex8)'\nset key inside bottom right box opaque\n"
       << "set title 'seconds per step'\nset ylabel 's/step'\n"
       << time_plot << "\n"
@@ -156,7 +161,8 @@ void write_plot(const fs::path& png) {
       << memory_plot << "\n"
       << "unset multiplot\n";
   const std::string command = "gnuplot " + script.string();
-  if (std::system(command.c_str()) != 0) std::cerr << "bench_scaling: gnuplot failed; the CSV files are written\n";
+  if (std::system(command.c_str()) != 0)
+    std::cerr << "bench_scaling: gnuplot failed; the CSV files are written\n";
 }
 
 }  // namespace
@@ -167,13 +173,19 @@ int main(int argc, char** argv) {
   fs::path stoss = fs::read_symlink("/proc/self/exe").parent_path() / "stoss";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--large") large = true;
-    else if (a == "--only-large") large = only_large = true;
-    else if (a == "--linear" && i + 1 < argc) o.linear = argv[++i];
-    else if (a == "--steps" && i + 1 < argc) o.steps = std::atoi(argv[++i]);
-    else if (a == "--stoss" && i + 1 < argc) stoss = argv[++i];
+    if (a == "--large")
+      large = true;
+    else if (a == "--only-large")
+      large = only_large = true;
+    else if (a == "--linear" && i + 1 < argc)
+      o.linear = argv[++i];
+    else if (a == "--steps" && i + 1 < argc)
+      o.steps = std::atoi(argv[++i]);
+    else if (a == "--stoss" && i + 1 < argc)
+      stoss = argv[++i];
     else {
-      std::cerr << "usage: bench_scaling [--linear direct|iterative|petsc_gamg] [--large | --only-large] [--steps N] "
+      std::cerr << "usage: bench_scaling [--linear direct|iterative|petsc_gamg] [--large | --only-large] "
+                   "[--steps N] "
                    "[--stoss PATH]\n";
       return 2;
     }
@@ -197,18 +209,21 @@ int main(int argc, char** argv) {
   const bool append = only_large && fs::exists(csv);
   std::ofstream out(csv, append ? std::ios::app : std::ios::trunc);
   if (!append)
-    out << "divisions,layers,elements,dofs,steps,wall_seconds,newton_per_step,s_per_step,linear_solver_seconds,"
+    out << "divisions,layers,elements,dofs,steps,wall_seconds,newton_per_step,s_per_step,linear_solver_"
+           "seconds,"
            "linear_solver_share,assembly_share,contact_share,output_share,peak_memory_mb,krylov_per_solve,"
            "krylov_max_per_solve,krylov_fallbacks\n";
-  std::printf("| elements | dofs | s/step | Newton its/step | peak memory MB | linear solver | assembly | output | "
-              "Krylov its/solve (max) |\n");
+  std::printf(
+      "| elements | dofs | s/step | Newton its/step | peak memory MB | linear solver | assembly | output | "
+      "Krylov its/solve (max) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   for (const Size& size : sizes) {
     const Row r = measure(stoss, size, work, o);
     const double per_step = r.wall / r.steps;
     char line[512];
-    std::snprintf(line, sizeof line, "%d,%d,%d,%d,%d,%.4f,%.3f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%.1f,%.1f,%.0f,%.0f\n",
-                  r.divisions, r.layers, r.elements, r.dofs, r.steps, r.wall, r.newton_per_step, per_step, r.linear,
+    std::snprintf(line, sizeof line,
+                  "%d,%d,%d,%d,%d,%.4f,%.3f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%.1f,%.1f,%.0f,%.0f\n", r.divisions,
+                  r.layers, r.elements, r.dofs, r.steps, r.wall, r.newton_per_step, per_step, r.linear,
                   r.linear / r.wall, r.assembly / r.wall, r.contact / r.wall, r.output / r.wall, r.peak_mb,
                   r.krylov_per_solve, r.krylov_max, r.krylov_fallbacks);
     out << line << std::flush;

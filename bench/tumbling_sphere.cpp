@@ -24,12 +24,17 @@ void run(benchmark::State& state, stoss::model::Scheme scheme, const char* examp
 }  // namespace
 
 BENCHMARK_CAPTURE(run, energy_momentum, stoss::model::Scheme::energy_momentum, "tumbling_sphere.json")
-    ->Unit(benchmark::kSecond)->Iterations(1);
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
 BENCHMARK_CAPTURE(run, midpoint, stoss::model::Scheme::midpoint, "tumbling_sphere.json")
-    ->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK_CAPTURE(run, energy_momentum_h005, stoss::model::Scheme::energy_momentum, "tumbling_sphere_hard.json")
-    ->Unit(benchmark::kSecond)->Iterations(1);
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(run, energy_momentum_h005, stoss::model::Scheme::energy_momentum,
+                  "tumbling_sphere_hard.json")
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
 BENCHMARK_CAPTURE(run, midpoint_h005, stoss::model::Scheme::midpoint, "tumbling_sphere_hard.json")
-    ->Unit(benchmark::kSecond)->Iterations(1);
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
 
 BENCHMARK_MAIN();

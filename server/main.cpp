@@ -13,7 +13,8 @@
 namespace {
 constexpr const char* usage_text =
     "usage: stoss <command> [args]\n"
-    "  run SCENE.json [-o DIR]     simulate; writes DIR/result.h5 and DIR/result.xdmf (exit 0 ok, 1 solver, 2 scene)\n"
+    "  run SCENE.json [-o DIR]     simulate; writes DIR/result.h5 and DIR/result.xdmf (exit 0 ok, 1 solver, "
+    "2 scene)\n"
     "  run --resume DIR            go on from DIR's checkpoint after a crash; writes the same result\n"
     "  validate SCENE.json [--json] check a scene: effects, node/DOF counts, steps, or every error\n"
     "  study SCENE.json --steps h1,h2,... [--schemes a,b] [--reference H] [--csv|--json]\n"

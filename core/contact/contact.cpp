@@ -32,14 +32,17 @@ double master_youngs_modulus(const model::Model& m, const model::ContactPair& pa
 std::unique_ptr<ContactTerm> make_lagrange_term(const mesh::Mesh& mesh, const model::ContactPair& pair,
                                                 model::Scheme scheme) {
   if (pair.friction > 0)
-    throw std::invalid_argument(pair_label(pair) +
-                                "enforcement \"lagrange\" is frictionless; friction > 0 needs enforcement \"penalty\"");
+    throw std::invalid_argument(
+        pair_label(pair) +
+        "enforcement \"lagrange\" is frictionless; friction > 0 needs enforcement \"penalty\"");
   const time::ForceRule rule = time::make_scheme(model::TimeSpec{scheme})->force_rule();
-  if (rule.kind == time::ForceRule::Kind::discrete_gradient) return std::make_unique<MixedContactTerm>(mesh, pair);
-  if (rule.is_midpoint() || rule.is_end_point()) return std::make_unique<NtsContactTerm>(mesh, pair, rule);  // (4.2), (2.11)
-  throw std::invalid_argument(pair_label(pair) + "no Lagrange contact element evaluates forces at θ = " +
-                              std::to_string(rule.theta) + " with a t_n force (time.scheme " +
-                              model::to_string(scheme) + ")");
+  if (rule.kind == time::ForceRule::Kind::discrete_gradient)
+    return std::make_unique<MixedContactTerm>(mesh, pair);
+  if (rule.is_midpoint() || rule.is_end_point())
+    return std::make_unique<NtsContactTerm>(mesh, pair, rule);  // (4.2), (2.11)
+  throw std::invalid_argument(
+      pair_label(pair) + "no Lagrange contact element evaluates forces at θ = " + std::to_string(rule.theta) +
+      " with a t_n force (time.scheme " + model::to_string(scheme) + ")");
 }
 
 }  // namespace

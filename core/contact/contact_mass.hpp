@@ -9,8 +9,9 @@
 
 namespace stoss::contact {
 
-/// Nodes made massless by the model's pairs: the slave and master nodes of every Lagrange pair with impact located,
-/// when the scheme is energy_momentum or midpoint (the end-point schemes need M regular for a_0). Sorted.
+/// Nodes made massless by the model's pairs: the slave and master nodes of every Lagrange pair with impact
+/// located, when the scheme is energy_momentum or midpoint (the end-point schemes need M regular for a_0).
+/// Sorted.
 std::vector<int> massless_nodes(const model::Model& m);
 
 /// M' = Pᵀ M P (§4.6.1): P copies to each massless node the mean velocity of its nearest (reference

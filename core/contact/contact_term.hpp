@@ -32,11 +32,14 @@ struct ContactReport {
   double energy_jump = 0;
   int activations = 0, releases = 0, switches = 0;
   int unassigned = 0;  ///< near slave nodes level with the surface that no face accepts (NTS blind spot)
-  int outside_footprint = 0;  ///< those of `unassigned` beyond the master's boundary: no blind spot, not logged
+  int outside_footprint =
+      0;  ///< those of `unassigned` beyond the master's boundary: no blind spot, not logged
   double max_faceted_penetration = 0;  ///< smooth master: near slave nodes against the mesh's own faces
-  int slipping = 0;    ///< closed penalty contacts on the Coulomb cone (5.3) in the step; 0 if frictionless
-  double max_new_gap_target = 0;  ///< largest gap target f_3 of the elements activated or switched in the step
-  double contact_area = 0;  ///< Σ of the tributary areas A_I of the slave nodes in contact (series/contact_area)
+  int slipping = 0;  ///< closed penalty contacts on the Coulomb cone (5.3) in the step; 0 if frictionless
+  double max_new_gap_target =
+      0;  ///< largest gap target f_3 of the elements activated or switched in the step
+  double contact_area =
+      0;  ///< Σ of the tributary areas A_I of the slave nodes in contact (series/contact_area)
 };
 
 /// A contact pair as a time::Term, with what the run reports of it: the pair, its surfaces and broad

@@ -40,7 +40,8 @@ void for_each_element(int begin, int end, int threads, const Body& body) {
 }
 
 /// Elements per chunk of ElasticityTerm::add: its forces and tangents are held until summed (a chunk of
-/// 512 tangents is 2.4 MB), and each chunk starts its threads anew (~50 µs), so residual-only chunks are larger.
+/// 512 tangents is 2.4 MB), and each chunk starts its threads anew (~50 µs), so residual-only chunks are
+/// larger.
 constexpr int tangent_chunk = 512, force_chunk = 4096;
 
 }  // namespace
@@ -51,7 +52,9 @@ int element_threads() {
   return n > 0 ? n : from_environment;
 }
 
-void set_element_threads(int threads) { threads_override.store(std::max(threads, 0)); }
+void set_element_threads(int threads) {
+  threads_override.store(std::max(threads, 0));
+}
 
 std::vector<ElementGeometry> precompute_mesh(const mesh::Mesh& mesh) {
   std::vector<ElementGeometry> out;
@@ -88,7 +91,8 @@ solve::SparseMatrix assemble_mass(const mesh::Mesh& mesh, const std::vector<Elem
     const Matrix8 M = consistent_mass(geometry[e], element_density[e]);
     for (int I = 0; I < 8; ++I)
       for (int J = 0; J < 8; ++J)
-        for (int k = 0; k < 3; ++k) entries.emplace_back(3 * mesh.hex8[e][I] + k, 3 * mesh.hex8[e][J] + k, M(I, J));
+        for (int k = 0; k < 3; ++k)
+          entries.emplace_back(3 * mesh.hex8[e][I] + k, 3 * mesh.hex8[e][J] + k, M(I, J));
   }
   const int n = 3 * mesh.node_count();
   solve::SparseMatrix M(n, n);
@@ -102,7 +106,8 @@ ElasticityTerm::ElasticityTerm(const mesh::Mesh& mesh, std::vector<ElementGeomet
 
 double ElasticityTerm::energy(const Eigen::VectorXd& x) const {
   double V = 0;
-  for (size_t e = 0; e < hex8_.size(); ++e) V += strain_energy(geometry_[e], *material_[e], gather(hex8_[e], x));
+  for (size_t e = 0; e < hex8_.size(); ++e)
+    V += strain_energy(geometry_[e], *material_[e], gather(hex8_[e], x));
   return V;
 }
 
@@ -130,8 +135,8 @@ void ElasticityTerm::begin_step(const time::StepContext& step, Eigen::VectorXd&)
     internal_force(geometry_[e], *material_[e], gather(hex8_[e], step.x_n), force_n_[e], nullptr);
 }
 
-void ElasticityTerm::element_step(const time::StepContext& step, int e, const Eigen::VectorXd& x_1, Vector24& f,
-                                  Matrix24* K) const {
+void ElasticityTerm::element_step(const time::StepContext& step, int e, const Eigen::VectorXd& x_1,
+                                  Vector24& f, Matrix24* K) const {
   const Matrix83 xe_1 = gather(hex8_[e], x_1);
   const time::ForceRule& rule = step.rule;
   if (rule.kind == time::ForceRule::Kind::discrete_gradient) {
@@ -148,7 +153,8 @@ void ElasticityTerm::add(const time::StepContext& step, const Eigen::VectorXd& z
                          solve::BlockPattern* K) const {
   // Threads compute whole elements into the chunk's buffers; this thread sums them in element order, so
   // R and K are the same bits for every thread count.
-  const int n = static_cast<int>(hex8_.size()), chunk = K ? tangent_chunk : force_chunk, threads = element_threads();
+  const int n = static_cast<int>(hex8_.size()), chunk = K ? tangent_chunk : force_chunk,
+            threads = element_threads();
   chunk_force_.resize(std::min(n, chunk));
   if (K) chunk_tangent_.resize(std::min(n, chunk));
   for (int first = 0; first < n; first += chunk) {

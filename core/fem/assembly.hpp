@@ -1,5 +1,6 @@
 #pragma once
-/// @file Whole-mesh pieces built from the element kernels: geometry, mass, and the elasticity and gravity terms.
+/// @file Whole-mesh pieces built from the element kernels: geometry, mass, and the elasticity and gravity
+/// terms.
 
 #include <memory>
 #include <vector>

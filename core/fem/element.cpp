@@ -52,7 +52,8 @@ Eigen::Matrix3d deformation_gradient(const Matrix83& x, const GaussPoint& gp) {
 
 double strain_energy(const ElementGeometry& e, const Material& m, const Matrix83& x) {
   double V = 0;
-  for (const GaussPoint& gp : e.gp) V += gp.wJ * m.energy_density(green_lagrange_strain(deformation_gradient(x, gp)));
+  for (const GaussPoint& gp : e.gp)
+    V += gp.wJ * m.energy_density(green_lagrange_strain(deformation_gradient(x, gp)));
   return V;  // (1.7)
 }
 
@@ -87,8 +88,8 @@ void discrete_gradient_force(const ElementGeometry& e, const Material& m, const 
     add_nodal_force(gp.dN_dX, S_alg, F_m, gp.wJ, f);  // (2.6)
     if (!K) continue;
     const Matrix6x24 B_m = strain_displacement(F_m, gp.dN_dX), B_1 = strain_displacement(F_1, gp.dN_dX);
-    K->noalias() += gp.wJ * B_m.transpose() * D_alg * B_1;  // (2.9), material part
-    add_geometric_stiffness(gp.dN_dX, S_alg, 0.5 * gp.wJ, *K);                    // (2.9), ½ ∂F_m/∂x_1
+    K->noalias() += gp.wJ * B_m.transpose() * D_alg * B_1;      // (2.9), material part
+    add_geometric_stiffness(gp.dN_dX, S_alg, 0.5 * gp.wJ, *K);  // (2.9), ½ ∂F_m/∂x_1
   }
 }
 

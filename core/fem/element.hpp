@@ -23,8 +23,7 @@ Eigen::Matrix3d deformation_gradient(const Matrix83& x, const GaussPoint& gp);
 double strain_energy(const ElementGeometry& e, const Material& m, const Matrix83& x);
 
 /// f_e (1.6) at x, and K_e = ∂f/∂x (1.8) if K is not null. Dof order 3I + i.
-void internal_force(const ElementGeometry& e, const Material& m, const Matrix83& x, Vector24& f,
-                    Matrix24* K);
+void internal_force(const ElementGeometry& e, const Material& m, const Matrix83& x, Vector24& f, Matrix24* K);
 
 /// Energy–momentum force f̄ (2.6) for the step x_n → x_1, and K̄ = ∂f̄/∂x_1 (2.9) if K is not null.
 void discrete_gradient_force(const ElementGeometry& e, const Material& m, const Matrix83& x_n,

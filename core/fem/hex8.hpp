@@ -21,9 +21,9 @@ const std::array<Eigen::Vector3d, 8>& gauss_points();
 
 /// Precomputed reference data of one Gauss point (docs/theory.md (1.2)).
 struct GaussPoint {
-  double wJ = 0;     ///< weight × det J0
-  Vector8 N;         ///< shape values
-  Matrix83 dN_dX;    ///< ∇_X N_I as rows
+  double wJ = 0;   ///< weight × det J0
+  Vector8 N;       ///< shape values
+  Matrix83 dN_dX;  ///< ∇_X N_I as rows
 };
 
 /// Reference geometry of one element: its 8 Gauss points.

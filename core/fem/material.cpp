@@ -25,7 +25,8 @@ const std::vector<std::string_view>& material_models() {
 std::shared_ptr<const Material> make_material(const model::Material& spec) {
   if (spec.model == "saint_venant_kirchhoff")
     return std::make_shared<SaintVenantKirchhoff>(spec.youngs_modulus, spec.poisson_ratio);
-  if (spec.model == "neo_hookean") return std::make_shared<NeoHookean>(spec.youngs_modulus, spec.poisson_ratio);
+  if (spec.model == "neo_hookean")
+    return std::make_shared<NeoHookean>(spec.youngs_modulus, spec.poisson_ratio);
   throw std::invalid_argument("material model \"" + spec.model + "\" is unknown");
 }
 

@@ -7,7 +7,9 @@
 namespace stoss::fem {
 namespace {
 
-Eigen::Matrix3d right_cauchy_green(const Eigen::Matrix3d& E) { return 2 * E + Eigen::Matrix3d::Identity(); }
+Eigen::Matrix3d right_cauchy_green(const Eigen::Matrix3d& E) {
+  return 2 * E + Eigen::Matrix3d::Identity();
+}
 
 /// Ḡ = (cof C_a + 4 cof C_m + cof C_b)/6: Simpson's rule, exact for the quadratic cof, so that
 /// det C_b − det C_a = Ḡ : (C_b − C_a) (2.15).
@@ -57,13 +59,12 @@ NeoHookean::VolumetricQuotient NeoHookean::volumetric_quotient(double a, double 
   const double log_quotient = x == 0 ? 1 / a : std::log1p(x) / delta;  // (L_b − L_a)/(b − a)
   const double s = -0.5 * lame_.mu + 0.125 * lame_.lambda * (L_a + L_b);
   // ∂/∂b of (L_b − L_a)/(b − a): (1/b − quotient)/(b − a), by its series where that would cancel.
-  const double dq_db =
-      std::abs(x) < 1e-5 ? (-0.5 + 2 * x / 3) / (a * a) : (1 / b - log_quotient) / delta;
+  const double dq_db = std::abs(x) < 1e-5 ? (-0.5 + 2 * x / 3) / (a * a) : (1 / b - log_quotient) / delta;
   return {log_quotient * s, dq_db * s + log_quotient * 0.125 * lame_.lambda / b};
 }
 
 Eigen::Matrix3d NeoHookean::evaluate_discrete_stress(const Eigen::Matrix3d& E_a, const Eigen::Matrix3d& E_b,
-                                                      Matrix6d* tangent) const {
+                                                     Matrix6d* tangent) const {
   const Eigen::Matrix3d C_a = right_cauchy_green(E_a), C_b = right_cauchy_green(E_b);
   const Eigen::Matrix3d G = mean_cofactor(C_a, C_b);
   const VolumetricQuotient w = volumetric_quotient(C_a.determinant(), C_b.determinant());

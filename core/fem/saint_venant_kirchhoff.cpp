@@ -21,7 +21,8 @@ Eigen::Matrix3d SaintVenantKirchhoff::evaluate_stress(const Eigen::Matrix3d& E, 
   return lame_.lambda * E.trace() * Eigen::Matrix3d::Identity() + 2 * lame_.mu * E;  // (1.4)
 }
 
-Eigen::Matrix3d SaintVenantKirchhoff::evaluate_discrete_stress(const Eigen::Matrix3d& E_a, const Eigen::Matrix3d& E_b,
+Eigen::Matrix3d SaintVenantKirchhoff::evaluate_discrete_stress(const Eigen::Matrix3d& E_a,
+                                                               const Eigen::Matrix3d& E_b,
                                                                Matrix6d* tangent) const {
   if (tangent) *tangent = 0.5 * tangent_;
   return 0.5 * (stress(E_a) + stress(E_b));  // (2.6): exact for an energy quadratic in E

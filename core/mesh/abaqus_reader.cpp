@@ -32,7 +32,8 @@ std::vector<std::string> fields(const std::string& text) {
   size_t start = 0;
   while (true) {
     const size_t comma = text.find(',', start);
-    out.push_back(trimmed(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
+    out.push_back(
+        trimmed(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
@@ -170,7 +171,7 @@ class LineReader {
 };
 
 struct Keyword {
-  std::string name;  ///< upper case, without '*'
+  std::string name;                           ///< upper case, without '*'
   std::map<std::string, std::string> params;  ///< upper-case key → value as written ("" for flags)
   Where where;
   bool has(const std::string& key) const { return params.contains(key); }
@@ -196,11 +197,13 @@ Keyword parse_keyword(const Where& where, const std::string& text) {
 }
 
 bool is_integer_text(const std::string& s) {
-  return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+  return !s.empty() &&
+         std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
 }
 
 /// Abaqus C3D8 face S1..S6 → local face of hex_faces() (ζ−, ζ+, η−, η+, ξ−, ξ+):
-/// S1 = 1-2-3-4 (ζ−), S2 = 5-8-7-6 (ζ+), S3 = 1-5-6-2 (η−), S4 = 2-6-7-3 (ξ+), S5 = 3-7-8-4 (η+), S6 = 4-8-5-1 (ξ−).
+/// S1 = 1-2-3-4 (ζ−), S2 = 5-8-7-6 (ζ+), S3 = 1-5-6-2 (η−), S4 = 2-6-7-3 (ξ+), S5 = 3-7-8-4 (η+), S6 =
+/// 4-8-5-1 (ξ−).
 constexpr int abaqus_face[6] = {0, 1, 2, 5, 3, 4};
 
 /// Abaqus 2D and 1D element families (plane stress/strain, axisymmetric, shells, membranes, surface

@@ -17,37 +17,57 @@ namespace {
 /// Nodes per element of the MSH element types Stoss can meet (and skip); 0 = unknown.
 int nodes_of_type(int type) {
   switch (type) {
-    case 1: return 2;    // 2-node line
-    case 2: return 3;    // 3-node triangle
-    case 3: return 4;    // 4-node quadrangle
-    case 4: return 4;    // 4-node tetrahedron
-    case 5: return 8;    // 8-node hexahedron
-    case 6: return 6;    // 6-node prism
-    case 7: return 5;    // 5-node pyramid
-    case 8: return 3;    // 3-node line
-    case 9: return 6;    // 6-node triangle
-    case 10: return 9;   // 9-node quadrangle
-    case 11: return 10;  // 10-node tetrahedron
-    case 12: return 27;  // 27-node hexahedron
-    case 13: return 18;  // 18-node prism
-    case 14: return 14;  // 14-node pyramid
-    case 15: return 1;   // point
-    case 16: return 8;   // 8-node quadrangle
-    case 17: return 20;  // 20-node hexahedron
-    case 18: return 15;  // 15-node prism
-    case 19: return 13;  // 13-node pyramid
-    default: return 0;
+    case 1:
+      return 2;  // 2-node line
+    case 2:
+      return 3;  // 3-node triangle
+    case 3:
+      return 4;  // 4-node quadrangle
+    case 4:
+      return 4;  // 4-node tetrahedron
+    case 5:
+      return 8;  // 8-node hexahedron
+    case 6:
+      return 6;  // 6-node prism
+    case 7:
+      return 5;  // 5-node pyramid
+    case 8:
+      return 3;  // 3-node line
+    case 9:
+      return 6;  // 6-node triangle
+    case 10:
+      return 9;  // 9-node quadrangle
+    case 11:
+      return 10;  // 10-node tetrahedron
+    case 12:
+      return 27;  // 27-node hexahedron
+    case 13:
+      return 18;  // 18-node prism
+    case 14:
+      return 14;  // 14-node pyramid
+    case 15:
+      return 1;  // point
+    case 16:
+      return 8;  // 8-node quadrangle
+    case 17:
+      return 20;  // 20-node hexahedron
+    case 18:
+      return 15;  // 15-node prism
+    case 19:
+      return 13;  // 13-node pyramid
+    default:
+      return 0;
   }
 }
 
 std::string type_name(int type) {
   static const std::map<int, std::string> names{
-      {1, "2-node line"},          {2, "3-node triangle"},       {3, "4-node quadrangle"},
-      {4, "4-node tetrahedron"},   {5, "8-node hexahedron"},     {6, "6-node prism"},
-      {7, "5-node pyramid"},       {8, "3-node line"},           {9, "6-node triangle"},
-      {10, "9-node quadrangle"},   {11, "10-node tetrahedron"},  {12, "27-node hexahedron"},
-      {13, "18-node prism"},       {14, "14-node pyramid"},      {15, "point"},
-      {16, "8-node quadrangle"},   {17, "20-node hexahedron"},   {18, "15-node prism"},
+      {1, "2-node line"},        {2, "3-node triangle"},      {3, "4-node quadrangle"},
+      {4, "4-node tetrahedron"}, {5, "8-node hexahedron"},    {6, "6-node prism"},
+      {7, "5-node pyramid"},     {8, "3-node line"},          {9, "6-node triangle"},
+      {10, "9-node quadrangle"}, {11, "10-node tetrahedron"}, {12, "27-node hexahedron"},
+      {13, "18-node prism"},     {14, "14-node pyramid"},     {15, "point"},
+      {16, "8-node quadrangle"}, {17, "20-node hexahedron"},  {18, "15-node prism"},
       {19, "13-node pyramid"}};
   const auto it = names.find(type);
   return "type " + std::to_string(type) + (it == names.end() ? "" : " (" + it->second + ")");
@@ -117,7 +137,8 @@ class Cursor {
   }
 
   long long parse_integer(const std::string& w, const std::string& what) const {
-    if (w.empty()) fail("unexpected end of file in " + section_ + ", expected " + what + " (truncated file?)");
+    if (w.empty())
+      fail("unexpected end of file in " + section_ + ", expected " + what + " (truncated file?)");
     try {
       size_t used = 0;
       const long long v = std::stoll(w, &used);
@@ -129,7 +150,8 @@ class Cursor {
 
   double real(const std::string& what) {
     const std::string w = word();
-    if (w.empty()) fail("unexpected end of file in " + section_ + ", expected " + what + " (truncated file?)");
+    if (w.empty())
+      fail("unexpected end of file in " + section_ + ", expected " + what + " (truncated file?)");
     try {
       size_t used = 0;
       const double v = std::stod(w, &used);
@@ -178,8 +200,9 @@ class Cursor {
     const std::string end = "$End" + section_.substr(1);
     const std::string w = word();
     if (w != end)
-      fail(w.empty() ? "unexpected end of file, expected " + end + " (truncated file?)"
-                     : "expected " + end + ", got '" + w.substr(0, 40) + "' (wrong counts in " + section_ + "?)");
+      fail(w.empty()
+               ? "unexpected end of file, expected " + end + " (truncated file?)"
+               : "expected " + end + ", got '" + w.substr(0, 40) + "' (wrong counts in " + section_ + "?)");
   }
   /// Skips an unknown section up to and including its $End line.
   void skip_section(const std::string& section) {
@@ -234,10 +257,12 @@ struct Reader {
     if (c.word() != "$MeshFormat") c.fail("not a Gmsh mesh file: it must start with $MeshFormat");
     const std::string version = c.word();
     if (version != "4.1")
-      c.fail("MSH format version " + version + " is not supported; Stoss reads version 4.1 (gmsh -format msh41)");
+      c.fail("MSH format version " + version +
+             " is not supported; Stoss reads version 4.1 (gmsh -format msh41)");
     const long long file_type = c.integer("file type");
     const long long data_size = c.integer("data size");
-    if (file_type != 0 && file_type != 1) c.fail("file type must be 0 (ASCII) or 1 (binary), got " + std::to_string(file_type));
+    if (file_type != 0 && file_type != 1)
+      c.fail("file type must be 0 (ASCII) or 1 (binary), got " + std::to_string(file_type));
     if (data_size != 8) c.fail("data size must be 8, got " + std::to_string(data_size));
     if (file_type == 1) {
       c.rest_of_line();
@@ -274,7 +299,8 @@ struct Reader {
       c.skip_space();
       std::string name = c.rest_of_line();
       while (!name.empty() && std::isspace(static_cast<unsigned char>(name.back()))) name.pop_back();
-      if (name.size() >= 2 && name.front() == '"' && name.back() == '"') name = name.substr(1, name.size() - 2);
+      if (name.size() >= 2 && name.front() == '"' && name.back() == '"')
+        name = name.substr(1, name.size() - 2);
       if (name.empty()) c.fail("physical group " + std::to_string(tag) + " has an empty name");
       physical_names[{dim, tag}] = name;
     }
@@ -339,7 +365,8 @@ struct Reader {
       seen += n;
     }
     if (seen != total)
-      c.fail("$Nodes header says " + std::to_string(total) + " nodes, its blocks hold " + std::to_string(seen));
+      c.fail("$Nodes header says " + std::to_string(total) + " nodes, its blocks hold " +
+             std::to_string(seen));
     c.leave();
     have_nodes = true;
   }
@@ -371,17 +398,20 @@ struct Reader {
       const long long n = c.size_value("number of elements in block");
       count_records(n, "elements");
       const int per = nodes_of_type(type);
-      if (per == 0) c.fail("element block of entity " + std::to_string(entity) + ": unsupported element " + type_name(type));
+      if (per == 0)
+        c.fail("element block of entity " + std::to_string(entity) + ": unsupported element " +
+               type_name(type));
       static const std::vector<int> none;
       const auto known = entity_physicals.find({dim, entity});
       const std::vector<int>& phys = known == entity_physicals.end() ? none : known->second;
       if (dim == 3 && type != 5)
-        c.fail("unsupported volume element " + type_name(type) +
-               " in volume " + std::to_string(entity) + "; Stoss needs 8-node hexahedra (type 5): use Recombine and a "
+        c.fail("unsupported volume element " + type_name(type) + " in volume " + std::to_string(entity) +
+               "; Stoss needs 8-node hexahedra (type 5): use Recombine and a "
                "transfinite or extruded mesh");
       if (dim == 2 && type != 3 && !phys.empty())
         c.fail("unsupported surface element " + type_name(type) + " in physical surface '" +
-               physical_name(2, phys.front()) + "'; surfaces must be 4-node quadrangles (type 3): use Recombine");
+               physical_name(2, phys.front()) +
+               "'; surfaces must be 4-node quadrangles (type 3): use Recombine");
       for (long long i = 0; i < n; ++i) {
         long tag = 0;
         std::vector<long> node_tags;
@@ -395,9 +425,11 @@ struct Reader {
           tag = static_cast<long>(c.parse_integer(words.front(), "element tag"));
           if (static_cast<int>(words.size()) != per + 1)
             throw MeshFileError(mesh.file, line,
-                                "element " + std::to_string(tag) + " has " + std::to_string(words.size() - 1) +
-                                    " node tags, " + type_name(type) + " needs " + std::to_string(per));
-          for (int k = 0; k < per; ++k) node_tags.push_back(static_cast<long>(c.parse_integer(words[k + 1], "node tag")));
+                                "element " + std::to_string(tag) + " has " +
+                                    std::to_string(words.size() - 1) + " node tags, " + type_name(type) +
+                                    " needs " + std::to_string(per));
+          for (int k = 0; k < per; ++k)
+            node_tags.push_back(static_cast<long>(c.parse_integer(words[k + 1], "node tag")));
         }
         if (!tags_seen.insert(tag).second)
           throw MeshFileError(mesh.file, line, "duplicate element tag " + std::to_string(tag));
@@ -423,7 +455,8 @@ struct Reader {
       seen += n;
     }
     if (seen != total)
-      c.fail("$Elements header says " + std::to_string(total) + " elements, its blocks hold " + std::to_string(seen));
+      c.fail("$Elements header says " + std::to_string(total) + " elements, its blocks hold " +
+             std::to_string(seen));
     c.leave();
     have_elements = true;
   }
@@ -454,8 +487,8 @@ struct Reader {
       const auto& found = faces.at(key);
       if (found.empty())
         throw MeshFileError(mesh.file, q.line,
-                            "quadrangle " + std::to_string(q.tag) + " of physical surface '" + q.surfaces.front() +
-                                "' is not a face of any hexahedron");
+                            "quadrangle " + std::to_string(q.tag) + " of physical surface '" +
+                                q.surfaces.front() + "' is not a face of any hexahedron");
       count_members(static_cast<long long>(found.size() * q.surfaces.size()), q.line);
       for (const std::string& s : q.surfaces)
         for (const ElementFace& f : found) mesh.surfaces[s].push_back(f);
@@ -472,7 +505,8 @@ struct Reader {
     read_format();
     while (!c.at_end()) {
       const std::string section = c.word();
-      if (section.empty() || section[0] != '$') c.fail("expected a section such as $Nodes, got '" + section.substr(0, 40) + "'");
+      if (section.empty() || section[0] != '$')
+        c.fail("expected a section such as $Nodes, got '" + section.substr(0, 40) + "'");
       if (section == "$PhysicalNames") {
         c.enter(section);
         // $PhysicalNames is ASCII in binary files too.

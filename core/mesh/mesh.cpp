@@ -52,7 +52,8 @@ const std::vector<Quad>& Mesh::surface(const std::string& body_slash_surface) co
   const auto& surfaces = bodies[b].surfaces;
   const auto it = surfaces.find(body_slash_surface.substr(slash + 1));
   if (it == surfaces.end())
-    throw std::out_of_range("body '" + bodies[b].name + "' has no surface '" + body_slash_surface.substr(slash + 1) + "'");
+    throw std::out_of_range("body '" + bodies[b].name + "' has no surface '" +
+                            body_slash_surface.substr(slash + 1) + "'");
   return it->second;
 }
 
@@ -65,8 +66,8 @@ std::string Mesh::add_surface_union(const std::vector<std::string>& body_slash_s
   std::set<std::array<int, 4>> seen;
   for (const std::string& ref : body_slash_surfaces) {
     if (ref.substr(0, ref.find('/')) != body_name)
-      throw std::invalid_argument("surfaces of one union must belong to one body: " + ref + " is not on body '" +
-                                  body_name + "'");
+      throw std::invalid_argument("surfaces of one union must belong to one body: " + ref +
+                                  " is not on body '" + body_name + "'");
     name += (name.empty() ? "" : "+") + ref.substr(ref.find('/') + 1);
     for (const Quad& q : surface(ref)) {
       std::array<int, 4> key = q;

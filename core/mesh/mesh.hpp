@@ -28,14 +28,14 @@ struct Body {
   int element_begin = 0, element_end = 0;  ///< [begin, end) in Mesh::hex8
   std::map<std::string, std::vector<Quad>> surfaces;
   std::map<std::string, std::vector<int>> node_sets;  ///< sorted global node indices
-  std::string skipped_note;  ///< BodyMesh::skipped_note
+  std::string skipped_note;                           ///< BodyMesh::skipped_note
 };
 
 /// All bodies of a scene in one node and element numbering.
 struct Mesh {
   std::vector<Eigen::Vector3d> nodes;  ///< reference coordinates X_I
   std::vector<Hex> hex8;
-  std::vector<int> element_body;       ///< body index of each element
+  std::vector<int> element_body;  ///< body index of each element
   std::vector<Body> bodies;
 
   int node_count() const { return static_cast<int>(nodes.size()); }
@@ -50,7 +50,8 @@ struct Mesh {
   /// Adds the union of surfaces `body_slash_surfaces` (all "body/…" of one body) to that body as one surface
   /// named "body/a+b+…" and returns the name: faces in list order, a face named twice (same nodes) kept
   /// once. A single name is returned as it is. '+' is not allowed in surface names, so the union's name
-  /// cannot clash with a named surface. Throws std::out_of_range / std::invalid_argument naming what is wrong.
+  /// cannot clash with a named surface. Throws std::out_of_range / std::invalid_argument naming what is
+  /// wrong.
   std::string add_surface_union(const std::vector<std::string>& body_slash_surfaces);
   /// Sorted unique node indices of a surface.
   std::vector<int> surface_nodes(const std::string& body_slash_surface) const;

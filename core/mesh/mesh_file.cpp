@@ -67,8 +67,9 @@ ImportedMesh read_mesh_file(const std::filesystem::path& path, const std::string
   const std::string ext = lower_extension(path);
   if (ext == ".msh") return read_gmsh(path, shown_name, limits);
   if (ext == ".inp") return read_abaqus(path, shown_name, limits);
-  throw MeshFileError(shown_name.empty() ? path.string() : shown_name, 0,
-                      "unknown mesh file type '" + ext + "' (Stoss reads Gmsh .msh 4.1 and Abaqus/CalculiX .inp)");
+  throw MeshFileError(
+      shown_name.empty() ? path.string() : shown_name, 0,
+      "unknown mesh file type '" + ext + "' (Stoss reads Gmsh .msh 4.1 and Abaqus/CalculiX .inp)");
 }
 
 ImportedMesh parse_mesh_bytes(std::string_view bytes, const std::string& format,
@@ -116,14 +117,15 @@ Selection select_body(const ImportedMesh& mesh, const std::optional<std::string>
   Selection out;
   if (element_set) {
     auto it = mesh.element_sets.find(*element_set);
-    for (auto other = mesh.element_sets.begin(); it == mesh.element_sets.end() && other != mesh.element_sets.end(); ++other)
+    for (auto other = mesh.element_sets.begin();
+         it == mesh.element_sets.end() && other != mesh.element_sets.end(); ++other)
       if (upper(other->first) == upper(*element_set)) it = other;  // Abaqus names ignore case
     if (it == mesh.element_sets.end()) {
       std::string known;
       for (const auto& [name, ignored] : mesh.element_sets) known += (known.empty() ? "" : ", ") + name;
-      throw MeshFileError(mesh.file, 0,
-                          "has no element set '" + *element_set + "' (it has " + (known.empty() ? "none" : known) +
-                              ")");
+      throw MeshFileError(
+          mesh.file, 0,
+          "has no element set '" + *element_set + "' (it has " + (known.empty() ? "none" : known) + ")");
     }
     if (it->second.empty()) throw MeshFileError(mesh.file, 0, "element set '" + it->first + "' is empty");
     out.elements = it->second;
@@ -151,7 +153,8 @@ Selection select_body(const ImportedMesh& mesh, const std::optional<std::string>
   for (const auto& [name, faces] : mesh.surfaces) {
     std::vector<Quad> quads;
     for (const ElementFace& f : faces)
-      if (local_element[f.element] >= 0) quads.push_back(hex_faces(out.body.hex8[local_element[f.element]])[f.face]);
+      if (local_element[f.element] >= 0)
+        quads.push_back(hex_faces(out.body.hex8[local_element[f.element]])[f.face]);
     if (quads.empty())
       out.empty_surfaces.push_back(name);
     else
@@ -159,7 +162,8 @@ Selection select_body(const ImportedMesh& mesh, const std::optional<std::string>
   }
   refuse_interior_faces(mesh.file, out.body);
   if (mesh.skipped_elements > 0)
-    for (const std::string& note : mesh.notes) out.body.skipped_note += (out.body.skipped_note.empty() ? mesh.file + ": " : "; ") + note;
+    for (const std::string& note : mesh.notes)
+      out.body.skipped_note += (out.body.skipped_note.empty() ? mesh.file + ": " : "; ") + note;
   for (const auto& [name, members] : mesh.node_sets) {
     std::vector<int> local;
     for (int n : members)

@@ -40,7 +40,7 @@ struct ImportedMesh {
   std::vector<Hex> hex8;  ///< indices into nodes, VTK_HEXAHEDRON order (= Gmsh and Abaqus C3D8 order)
   std::vector<long> element_ids;
   std::vector<long> element_lines;  ///< line of each element's definition (0 in binary files)
-  std::map<std::string, std::vector<int>> element_sets;     ///< name → element indices (ascending)
+  std::map<std::string, std::vector<int>> element_sets;      ///< name → element indices (ascending)
   std::map<std::string, std::vector<ElementFace>> surfaces;  ///< name → faces, in outward order via hex_faces
   std::map<std::string, std::vector<int>> node_sets;  ///< name → node indices (ascending): Abaqus *NSET
   /// What the reader left out or turned into something else, one sentence each (e.g. the 2D elements of a

@@ -8,10 +8,14 @@ namespace stoss::model {
 
 std::string to_string(Scheme s) {
   switch (s) {
-    case Scheme::midpoint: return "midpoint";
-    case Scheme::energy_momentum: return "energy_momentum";
-    case Scheme::hht: return "hht";
-    case Scheme::generalized_alpha: return "generalized_alpha";
+    case Scheme::midpoint:
+      return "midpoint";
+    case Scheme::energy_momentum:
+      return "energy_momentum";
+    case Scheme::hht:
+      return "hht";
+    case Scheme::generalized_alpha:
+      return "generalized_alpha";
   }
   return "unknown";
 }
@@ -42,10 +46,12 @@ std::optional<LinearSolver> linear_solver_from_string(std::string_view name) {
   return std::nullopt;
 }
 
-std::optional<SchemeConflict> contact_scheme_conflict(Scheme scheme, Enforcement enforcement, ImpactMode impact) {
+std::optional<SchemeConflict> contact_scheme_conflict(Scheme scheme, Enforcement enforcement,
+                                                      ImpactMode impact) {
   const std::string name = "\"" + to_string(scheme) + "\"";
   if (impact == ImpactMode::velocity_correction && scheme != Scheme::energy_momentum)
-    return SchemeConflict{"impact", "\"velocity_correction\" needs time.scheme \"energy_momentum\", got " + name};
+    return SchemeConflict{"impact",
+                          "\"velocity_correction\" needs time.scheme \"energy_momentum\", got " + name};
   if (enforcement == Enforcement::penalty && (scheme == Scheme::hht || scheme == Scheme::generalized_alpha))
     return SchemeConflict{"enforcement", "\"penalty\" is not implemented with time.scheme " + name +
                                              "; use energy_momentum or midpoint"};
@@ -61,7 +67,8 @@ long long step_count(double end, double step) {
   return std::max(1LL, static_cast<long long>(std::ceil(quotient - tolerance)));
 }
 
-long long step_bound(double end, double step, std::optional<double> min_step, std::optional<double> interval) {
+long long step_bound(double end, double step, std::optional<double> min_step,
+                     std::optional<double> interval) {
   const long long steps = min_step && *min_step > 0 ? step_count(end, *min_step) : step_count(end, step);
   if (!interval || !(*interval > 0)) return steps;
   return std::min(max_step_count, steps + step_count(end, *interval));  // a clipped step per frame at most
@@ -90,10 +97,10 @@ std::vector<std::string> resolve_effects(const Model& m) {
   for (const auto kind : {Load::Kind::pressure, Load::Kind::traction})
     if (std::any_of(m.loads.begin(), m.loads.end(), [kind](const Load& l) { return l.kind == kind; }))
       out.push_back(kind == Load::Kind::pressure ? effect::pressure : effect::traction);
-  const bool frictionless = std::any_of(m.contact.begin(), m.contact.end(),
-                                        [](const ContactPair& c) { return c.friction == 0; });
-  const bool frictional = std::any_of(m.contact.begin(), m.contact.end(),
-                                      [](const ContactPair& c) { return c.friction > 0; });
+  const bool frictionless =
+      std::any_of(m.contact.begin(), m.contact.end(), [](const ContactPair& c) { return c.friction == 0; });
+  const bool frictional =
+      std::any_of(m.contact.begin(), m.contact.end(), [](const ContactPair& c) { return c.friction > 0; });
   if (frictionless) out.push_back(effect::contact_frictionless);
   if (frictional) out.push_back(effect::contact_frictional);
   for (const ContactPair& c : m.contact)  // which pairs: "contact_frictional:<slave>,<master>"

@@ -41,7 +41,7 @@ struct BodySpec {
 
 /// Dirichlet condition: the nodes of a surface keep their initial position in the fixed directions.
 struct Boundary {
-  std::string surface;                 ///< "body/surface"
+  std::string surface;  ///< "body/surface"
   std::array<bool, 3> fix{true, true, true};
   /// u of x = X + a(t)·u on the held directions (docs/scene.md "boundary"); 0: a support at rest
   Eigen::Vector3d displacement = Eigen::Vector3d::Zero();
@@ -53,9 +53,9 @@ struct Boundary {
 /// pressure or a dead traction per unit reference area, scaled by a piecewise-linear amplitude (5b.1).
 struct Load {
   enum class Kind { pressure, traction };
-  std::string surface;                           ///< "body/surface"
+  std::string surface;  ///< "body/surface"
   Kind kind = Kind::pressure;
-  double pressure = 0;                           ///< positive pushes into the body
+  double pressure = 0;  ///< positive pushes into the body
   Eigen::Vector3d traction = Eigen::Vector3d::Zero();
   std::vector<std::array<double, 2>> amplitude;  ///< [[t, factor], …]; empty: the factor is 1
 };
@@ -70,7 +70,7 @@ enum class NormalTraction { discrete_derivative, midpoint };
 /// Gap target of an active element that moves to another master face (docs/theory.md §3.4).
 enum class SwitchGap {
   clamp,  ///< f_3 := min(max(g_N^new(x_n), 0), f_3^old): no frozen penetration; the step may jump in energy
-  keep,   ///< f_3 := g_N^new(x_n): energy exact; the node may stay below the new face (≤ kink × ε_sw × ℓ/2)
+  keep,  ///< f_3 := g_N^new(x_n): energy exact; the node may stay below the new face (≤ kink × ε_sw × ℓ/2)
 };
 
 /// The master surface contact sees (docs/smooth_master_surface.md §1).
@@ -81,16 +81,16 @@ enum class MasterSurface {
 
 /// One contact pair (docs/theory.md §3–5). Slave nodes against master faces.
 struct ContactPair {
-  std::string slave;                   ///< "body/surface"
-  std::string master;                  ///< "body/surface"
+  std::string slave;   ///< "body/surface"
+  std::string master;  ///< "body/surface"
   Enforcement enforcement = Enforcement::lagrange;
-  double friction = 0;                 ///< Coulomb μ; > 0 makes the pair frictional (penalty)
+  double friction = 0;  ///< Coulomb μ; > 0 makes the pair frictional (penalty)
   ImpactMode impact = ImpactMode::persist;
-  double switch_hysteresis = 0.05;     ///< ε_sw of §3.4
+  double switch_hysteresis = 0.05;  ///< ε_sw of §3.4
   SwitchGap switch_gap = SwitchGap::clamp;
   MasterSurface master_surface = MasterSurface::faceted;  ///< scenes resolve it (scene/master_surface.hpp)
-  std::optional<double> normal_stiffness;      ///< ε_N; unset: 10 E ℓ (§5.1)
-  std::optional<double> tangential_stiffness;  ///< ε_T; unset: 10 E ℓ
+  std::optional<double> normal_stiffness;                 ///< ε_N; unset: 10 E ℓ (§5.1)
+  std::optional<double> tangential_stiffness;             ///< ε_T; unset: 10 E ℓ
   NormalTraction normal_traction = NormalTraction::discrete_derivative;
 };
 
@@ -104,7 +104,8 @@ struct SchemeConflict {
 /// The conflict of a pair with `enforcement` and `impact` under `scheme`, or nullopt. Rules: the velocity
 /// correction (4.12) restores the identity (4.11) of the mixed energy–momentum form only; penalty contact
 /// has no α-weighted (hht, generalized_alpha) form.
-std::optional<SchemeConflict> contact_scheme_conflict(Scheme scheme, Enforcement enforcement, ImpactMode impact);
+std::optional<SchemeConflict> contact_scheme_conflict(Scheme scheme, Enforcement enforcement,
+                                                      ImpactMode impact);
 
 /// Time steps from t = 0 to `end` with steps of `step` (docs/scene.md, "Time"): ceil(end / step), a
 /// quotient within round-off of an integer counting as that integer (a relative 1e-15 or an absolute
@@ -121,16 +122,16 @@ long long step_bound(double end, double step, std::optional<double> min_step, st
 
 struct TimeSpec {
   Scheme scheme = Scheme::energy_momentum;
-  double step = 0;                     ///< the fixed step, or with a tolerance the first step
+  double step = 0;  ///< the fixed step, or with a tolerance the first step
   double end = 0;
-  double alpha = -0.05;                ///< HHT-α only
-  double rho_infinity = 0.9;           ///< generalized-α only: spectral radius at infinite frequency
+  double alpha = -0.05;       ///< HHT-α only
+  double rho_infinity = 0.9;  ///< generalized-α only: spectral radius at infinite frequency
   /// time.tolerance: the final largest nodal position error the step controller aims at (a length,
   /// docs/scene.md "Time"); unset: fixed steps.
   std::optional<double> tolerance;
-  double min_step = 0, max_step = 0;   ///< with a tolerance: the steps the controller may choose
+  double min_step = 0, max_step = 0;  ///< with a tolerance: the steps the controller may choose
   bool adaptive() const { return tolerance.has_value(); }
-  int steps() const;                   ///< step_count(end, step); a validated scene has at most 1e9
+  int steps() const;  ///< step_count(end, step); a validated scene has at most 1e9
 };
 
 /// solver.linear (docs/scene.md): auto picks direct or petsc_gamg by the element count (SolverSpec).
@@ -144,7 +145,7 @@ std::string to_string(LinearSolver s);
 std::optional<LinearSolver> linear_solver_from_string(std::string_view name);
 
 struct SolverSpec {
-  double tolerance = 1e-10;            ///< relative residual and increment tolerance of Newton
+  double tolerance = 1e-10;  ///< relative residual and increment tolerance of Newton
   int max_iterations = 25;
   LinearSolver linear = LinearSolver::automatic;  ///< solver.linear
   /// auto picks petsc_gamg from this many elements on. Estimated from loaded-machine tables; measured
@@ -154,12 +155,12 @@ struct SolverSpec {
 };
 
 struct OutputSpec {
-  int every = 1;                       ///< a frame every this many steps (plus the first and last)
+  int every = 1;  ///< a frame every this many steps (plus the first and last)
   /// output.interval: frames at t = k·interval exactly (steps are clipped to land there) and at the end;
   /// unset: frames by `every`.
   std::optional<double> interval;
-  double checkpoint_seconds = 60;      ///< a checkpoint this often (wall time) when checkpoint_every is 0
-  int checkpoint_every = 0;            ///< a checkpoint every this many steps; 0: by checkpoint_seconds
+  double checkpoint_seconds = 60;  ///< a checkpoint this often (wall time) when checkpoint_every is 0
+  int checkpoint_every = 0;        ///< a checkpoint every this many steps; 0: by checkpoint_seconds
   /// Whether step `step` of `steps` writes a frame: step 0, every `every`-th step and the last.
   bool frame_due(int step, int steps) const { return step % std::max(every, 1) == 0 || step == steps; }
   /// Frames a run of `steps` steps to `end` writes: frame_due counted, or with an interval
@@ -182,9 +183,9 @@ inline constexpr const char* prescribed_motion = "prescribed_motion";
 
 struct Model {
   std::string name;
-  nlohmann::json scene;                ///< the scene as submitted, defaults filled in
+  nlohmann::json scene;  ///< the scene as submitted, defaults filled in
   mesh::Mesh mesh;
-  std::vector<BodySpec> bodies;        ///< same order as mesh.bodies
+  std::vector<BodySpec> bodies;  ///< same order as mesh.bodies
   std::vector<Boundary> boundary;
   std::vector<Load> loads;
   std::optional<Eigen::Vector3d> gravity;
@@ -192,7 +193,7 @@ struct Model {
   TimeSpec time;
   SolverSpec solver;
   OutputSpec output;
-  std::vector<std::string> effects;    ///< resolved effect list, e.g. {"inertia","elasticity","gravity"}
+  std::vector<std::string> effects;  ///< resolved effect list, e.g. {"inertia","elasticity","gravity"}
 
   bool has_effect(const std::string& e) const;
   int dof_count() const { return 3 * mesh.node_count(); }

@@ -37,8 +37,8 @@ struct Check {
 
 /// What a finished (or stopped) run reports: the job summary of docs/api.md.
 struct Summary {
-  bool completed = false;  ///< false when canceled or failed
-  int steps = 0;           ///< converged steps
+  bool completed = false;     ///< false when canceled or failed
+  int steps = 0;              ///< converged steps
   int resumed_from_step = 0;  ///< the checkpoint's step when the run went on from one (0: from the start)
   double end_time = 0;
   double initial_energy = 0;
@@ -90,7 +90,8 @@ inline bool has_check(const Summary& s, const std::string& name) {
 /// The checks as JSON: [{name, value, bound, passed}] (the job JSON's `checks`, result.h5's `checks`).
 inline nlohmann::json checks_json(const std::vector<Check>& checks) {
   nlohmann::json out = nlohmann::json::array();
-  for (const Check& c : checks) out.push_back({{"name", c.name}, {"value", c.value}, {"bound", c.bound}, {"passed", c.passed}});
+  for (const Check& c : checks)
+    out.push_back({{"name", c.name}, {"value", c.value}, {"bound", c.bound}, {"passed", c.passed}});
   return out;
 }
 

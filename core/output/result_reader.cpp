@@ -112,13 +112,15 @@ std::vector<std::string> ResultFile::body_names() const {
 Eigen::VectorXi ResultFile::element_bodies() const {
   h5::silence_errors();
   const auto values = file_->read_doubles("/mesh/body");
-  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size())).cast<int>();
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()))
+      .cast<int>();
 }
 
 Eigen::VectorXi ResultFile::node_bodies() const {
   h5::silence_errors();
   const auto values = file_->read_doubles("/mesh/node_body");
-  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size())).cast<int>();
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()))
+      .cast<int>();
 }
 
 std::map<std::string, Eigen::Matrix<std::int64_t, Eigen::Dynamic, 4>> ResultFile::surfaces() const {
@@ -158,8 +160,8 @@ Eigen::MatrixXd ResultFile::frame_rows(const std::string& name, int k, int width
     return as_matrix(values, static_cast<Eigen::Index>(values.size() / width), width);
   }
   if (k >= frame_count())
-    throw std::out_of_range("frame " + std::to_string(k) + " is outside the " + std::to_string(frame_count()) +
-                            " frames of " + path().string());
+    throw std::out_of_range("frame " + std::to_string(k) + " is outside the " +
+                            std::to_string(frame_count()) + " frames of " + path().string());
   const std::string dataset = frame_dataset(k, name);
   if (!file_->exists(dataset)) throw std::out_of_range("no dataset " + dataset + " in " + path().string());
   const auto values = file_->read_doubles(dataset);

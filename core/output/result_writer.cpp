@@ -87,7 +87,8 @@ void write_mesh(const h5::File& file, const mesh::Mesh& mesh) {
   file.write_attribute("/mesh/body", "names", body_names(mesh));
   std::vector<std::int32_t> node_body(N, -1);
   for (size_t b = 0; b < mesh.bodies.size(); ++b)
-    for (int n = mesh.bodies[b].node_begin; n < mesh.bodies[b].node_end; ++n) node_body[n] = static_cast<std::int32_t>(b);
+    for (int n = mesh.bodies[b].node_begin; n < mesh.bodies[b].node_end; ++n)
+      node_body[n] = static_cast<std::int32_t>(b);
   file.write_dataset("/mesh/node_body", H5T_STD_I32LE, H5T_NATIVE_INT32, {N}, node_body.data());
   file.create_group("/mesh/surfaces", true);
   for (const auto& body : mesh.bodies) {

@@ -14,7 +14,8 @@ inline constexpr const char* result_file_name = "result.h5";                 ///
 inline constexpr const char* partial_file_name = "result.h5.partial";        ///< while a run writes
 inline constexpr const char* incomplete_file_name = "result.incomplete.h5";  ///< canceled or failed runs
 inline constexpr const char* xdmf_file_name = "result.xdmf";  ///< time series sidecar, complete runs
-inline constexpr const char* xdmf_mesh_file_name = "result_mesh.xdmf";  ///< reference mesh sidecar, complete runs
+inline constexpr const char* xdmf_mesh_file_name =
+    "result_mesh.xdmf";  ///< reference mesh sidecar, complete runs
 /// The run's checkpoints (core/run/checkpoint.hpp) while it goes (a job's directory, stoss run's -o DIR).
 inline constexpr const char* checkpoint_directory_name = "checkpoint";
 

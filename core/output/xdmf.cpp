@@ -35,14 +35,19 @@ std::string escaped(const std::string& text) {
   return out;
 }
 
-std::string dims(long a) { return std::to_string(a); }
-std::string dims(long a, long b) { return std::to_string(a) + " " + std::to_string(b); }
+std::string dims(long a) {
+  return std::to_string(a);
+}
+std::string dims(long a, long b) {
+  return std::to_string(a) + " " + std::to_string(b);
+}
 
 /// A DataItem for a whole HDF5 dataset.
 std::string hdf_item(const XdmfLayout& l, const std::string& dataset, const std::string& dimensions,
                      const std::string& number_type, int precision) {
   return "<DataItem Dimensions=\"" + dimensions + "\" NumberType=\"" + number_type + "\" Precision=\"" +
-         std::to_string(precision) + "\" Format=\"HDF\">" + escaped(l.h5_file) + ":" + dataset + "</DataItem>";
+         std::to_string(precision) + "\" Format=\"HDF\">" + escaped(l.h5_file) + ":" + dataset +
+         "</DataItem>";
 }
 
 std::string attribute(const std::string& name, const std::string& type, const std::string& center,
@@ -52,9 +57,9 @@ std::string attribute(const std::string& name, const std::string& type, const st
 }
 
 std::string topology(const XdmfLayout& l) {
-  return "        <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"" + std::to_string(l.element_count) +
-         "\" NodesPerElement=\"8\">\n          " + hdf_item(l, "/mesh/hex8", dims(l.element_count, 8), "Int", 8) +
-         "\n        </Topology>\n";
+  return "        <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"" +
+         std::to_string(l.element_count) + "\" NodesPerElement=\"8\">\n          " +
+         hdf_item(l, "/mesh/hex8", dims(l.element_count, 8), "Int", 8) + "\n        </Topology>\n";
 }
 
 std::string geometry(const XdmfLayout& l, const std::string& dataset) {
@@ -69,15 +74,19 @@ std::string frame_grid(const XdmfLayout& l, long k) {
   out << "      <Grid Name=\"frame_" << k << "\" GridType=\"Uniform\">\n"
       << "        <Time Value=\"" << shortest_text(l.frame_times[k]) << "\"/>\n"
       << topology(l) << geometry(l, field("position"))
-      << attribute("displacement", "Vector", "Node", hdf_item(l, field("displacement"), dims(N, 3), "Float", 8))
+      << attribute("displacement", "Vector", "Node",
+                   hdf_item(l, field("displacement"), dims(N, 3), "Float", 8))
       << attribute("velocity", "Vector", "Node", hdf_item(l, field("velocity"), dims(N, 3), "Float", 8));
   if (l.contact_pressure)
-    out << attribute("contact_pressure", "Scalar", "Node", hdf_item(l, field("contact_pressure"), dims(N), "Float", 8));
+    out << attribute("contact_pressure", "Scalar", "Node",
+                     hdf_item(l, field("contact_pressure"), dims(N), "Float", 8));
   if (l.stress)
     out << attribute("von_mises", "Scalar", "Cell", hdf_item(l, field("von_mises"), dims(E), "Float", 8))
-        << attribute("cauchy_stress", "Tensor6", "Cell", hdf_item(l, field("cauchy_stress"), dims(E, 6), "Float", 8));
+        << attribute("cauchy_stress", "Tensor6", "Cell",
+                     hdf_item(l, field("cauchy_stress"), dims(E, 6), "Float", 8));
   out << attribute("reference_position", "Vector", "Node", hdf_item(l, "/mesh/nodes", dims(N, 3), "Float", 8))
-      << attribute("body", "Scalar", "Cell", hdf_item(l, "/mesh/body", dims(E), "Int", 4)) << "      </Grid>\n";
+      << attribute("body", "Scalar", "Cell", hdf_item(l, "/mesh/body", dims(E), "Int", 4))
+      << "      </Grid>\n";
   return out.str();
 }
 
@@ -101,7 +110,8 @@ std::string xdmf_mesh_document(const XdmfLayout& l) {
   out << header << "    <Grid Name=\"mesh\" GridType=\"Uniform\">\n"
       << topology(l) << geometry(l, "/mesh/nodes")
       << attribute("body", "Scalar", "Cell", hdf_item(l, "/mesh/body", dims(l.element_count), "Int", 4))
-      << attribute("node_body", "Scalar", "Node", hdf_item(l, "/mesh/node_body", dims(l.node_count), "Int", 4))
+      << attribute("node_body", "Scalar", "Node",
+                   hdf_item(l, "/mesh/node_body", dims(l.node_count), "Int", 4))
       << "    </Grid>\n  </Domain>\n</Xdmf>\n";
   return out.str();
 }

@@ -243,7 +243,8 @@ Checkpoint CheckpointStore::read() const {
   c.state.v = read_vector(file, "/state/v");
   c.state.a = read_vector(file, "/state/a");
   // A checkpoint written before last_step existed: 0, the next step's h stands in (scheme.hpp).
-  c.state.last_step = file.has_attribute("/state", "last_step") ? file.read_double_attribute("/state", "last_step") : 0;
+  c.state.last_step =
+      file.has_attribute("/state", "last_step") ? file.read_double_attribute("/state", "last_step") : 0;
   c.terms = read_terms(file);
   c.rows = read_series(file);
   for (std::int64_t step : read_integers(file, "/frames/step"))

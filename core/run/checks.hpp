@@ -11,8 +11,8 @@
 
 namespace stoss::run {
 
-/// Whether the model's momenta are conserved: no boundary condition, no load and no gravity, so no body is held
-/// and no external force acts (contact between free bodies is internal).
+/// Whether the model's momenta are conserved: no boundary condition, no load and no gravity, so no body is
+/// held and no external force acts (contact between free bodies is internal).
 bool is_free(const model::Model& m);
 
 /// The bound of (V6) newton_iterations_per_step (docs/results.md, "Verdict"): 0.6 · solver.max_iterations,

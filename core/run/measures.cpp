@@ -59,7 +59,8 @@ void add_substep(ContactRow& step, const ContactRow& sub) {
 void update_summary(model::Summary& sum, const Balance& b0, const Balance& b, const ContactRow& c) {
   sum.max_abs_energy = std::max({sum.max_abs_energy, std::abs(b.total()), std::abs(b0.total())});
   // H_n − W_n against H_0 (docs/results.md): loaded runs scale by max |H_k| so far, for a start at rest
-  const double scale = b.external_work != 0 || b0.external_work != 0 ? sum.max_abs_energy : std::abs(b0.total());
+  const double scale =
+      b.external_work != 0 || b0.external_work != 0 ? sum.max_abs_energy : std::abs(b0.total());
   const double H0 = scale > 0 ? scale : 1.0;
   sum.energy_drift = std::max(sum.energy_drift, std::abs(b.total() - b.external_work - b0.total()) / H0);
   sum.external_work = b.external_work;

@@ -26,7 +26,8 @@ std::unique_ptr<loads::SurfaceLoad> make_load(const model::Model& m, const model
   loads::Amplitude amplitude(l.amplitude);
   if (l.kind == model::Load::Kind::pressure)
     return std::make_unique<loads::PressureLoad>(faces, l.pressure, std::move(amplitude));
-  return std::make_unique<loads::TractionLoad>(faces, m.mesh.reference_positions(), l.traction, std::move(amplitude));
+  return std::make_unique<loads::TractionLoad>(faces, m.mesh.reference_positions(), l.traction,
+                                               std::move(amplitude));
 }
 
 std::vector<char> fixed_dofs(const model::Model& m) {
@@ -56,7 +57,8 @@ std::vector<std::vector<int>> held_dofs_by_entry(const model::Model& m) {
 
 /// The moving supports (docs/theory.md (5b.9)): each held dof follows the entry it counts in; none if no
 /// displacement is non-zero.
-std::unique_ptr<PrescribedMotion> make_supports(const model::Model& m, const std::vector<std::vector<int>>& held) {
+std::unique_ptr<PrescribedMotion> make_supports(const model::Model& m,
+                                                const std::vector<std::vector<int>>& held) {
   if (!m.has_effect(model::effect::prescribed_motion)) return nullptr;
   const Eigen::VectorXd X = m.mesh.reference_positions();
   std::vector<PrescribedDof> dofs;

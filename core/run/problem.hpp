@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "core/contact/contact.hpp"
-#include "core/loads/surface_load.hpp"
 #include "core/fem/assembly.hpp"
+#include "core/loads/surface_load.hpp"
 #include "core/model/model.hpp"
 #include "core/model/observer.hpp"
 #include "core/run/supports.hpp"
@@ -23,11 +23,13 @@ struct Problem {
   solve::SparseMatrix velocity_map;  ///< P of docs/theory.md (4.13), empty unless a node is massless
   std::unique_ptr<fem::ElasticityTerm> elasticity;
   std::unique_ptr<fem::GravityTerm> gravity;
-  std::vector<std::unique_ptr<loads::SurfaceLoad>> loads;  ///< one per scene load; none without loads
+  std::vector<std::unique_ptr<loads::SurfaceLoad>> loads;      ///< one per scene load; none without loads
   std::vector<std::unique_ptr<contact::ContactTerm>> contact;  ///< one per pair; none without contact
-  std::unique_ptr<PrescribedMotion> supports;  ///< the supports that move; none unless a displacement is non-zero
+  std::unique_ptr<PrescribedMotion>
+      supports;  ///< the supports that move; none unless a displacement is non-zero
   std::vector<char> fixed;
-  /// The held dofs of each boundary entry, a dof held by several counted in the first (series/reaction_force).
+  /// The held dofs of each boundary entry, a dof held by several counted in the first
+  /// (series/reaction_force).
   std::vector<std::vector<int>> held_dofs;
   double total_mass = 0;
   double length_scale = 1;
@@ -39,8 +41,8 @@ struct Problem {
   std::vector<time::Term*> terms() const;
   /// Index of the first contact term in terms().
   size_t first_contact_term() const { return (gravity ? 2 : 1) + loads.size() + (supports ? 1 : 0); }
-  /// Σ of the loads' and the moving supports' work so far in each step's discrete form (docs/theory.md (5b.5),
-  /// (5b.9)): series/external_work.
+  /// Σ of the loads' and the moving supports' work so far in each step's discrete form (docs/theory.md
+  /// (5b.5), (5b.9)): series/external_work.
   double external_work() const;
   /// The force each boundary entry exerted on its body in the step whose held-dof reaction is `reaction`
   /// (Integrator::reaction; empty: 0): series/reaction_force.

@@ -25,12 +25,15 @@ const SeriesColumn table[] = {
      [](S s, int, double* v) { v[0] = s.balance.total(); }},
     {"dissipated_energy", Shape::scalar, false, Presence::friction,  // §5.2 item 7
      [](S s, int, double* v) { v[0] = s.balance.dissipated; }},
-    {"external_work", Shape::scalar, false, Presence::loads,  // (5b.5), (5b.9): loads' and supports' work since t_0
+    {"external_work", Shape::scalar, false,
+     Presence::loads,  // (5b.5), (5b.9): loads' and supports' work since t_0
      [](S s, int, double* v) { v[0] = s.balance.external_work; }},
-    {"reaction_force", Shape::item_vectors, false, Presence::boundary,  // (5b.8): per boundary entry, row 0 is 0
+    {"reaction_force", Shape::item_vectors, false,
+     Presence::boundary,  // (5b.8): per boundary entry, row 0 is 0
      [](S s, int k, double* v) {
        for (int e = 0; e < k; ++e)
-         put3(s.reactions && !s.reactions->empty() ? (*s.reactions)[size_t(e)] : Eigen::Vector3d::Zero(), v + 3 * e);
+         put3(s.reactions && !s.reactions->empty() ? (*s.reactions)[size_t(e)] : Eigen::Vector3d::Zero(),
+              v + 3 * e);
      },
      [](const model::Model& m) { return int(m.boundary.size()); }},
     {"linear_momentum", Shape::vector, false, Presence::always,

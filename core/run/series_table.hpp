@@ -46,8 +46,8 @@ enum class Presence {
   contact,        ///< at least one contact pair
   friction,       ///< a pair with friction > 0
   smooth_master,  ///< a pair with a smooth master surface
-  loads,          ///< at least one entry in the scene's loads, or a boundary entry with a non-zero displacement
-  boundary,       ///< at least one entry in the scene's boundary
+  loads,     ///< at least one entry in the scene's loads, or a boundary entry with a non-zero displacement
+  boundary,  ///< at least one entry in the scene's boundary
 };
 
 /// One series: a row of the table.

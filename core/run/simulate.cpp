@@ -45,8 +45,9 @@ std::string time_text(double t) {
 std::string below_min_step_message(int step, double t, double h, const std::string& reason,
                                    const ContactEvents& events, double min_step) {
   std::ostringstream out;
-  out << "step " << step + 1 << " (t = " << time_text(t) << ") would need a step below time.min_step = "
-      << time_text(min_step) << ": the try at h = " << time_text(h) << " was rejected (" << reason << ")";
+  out << "step " << step + 1 << " (t = " << time_text(t)
+      << ") would need a step below time.min_step = " << time_text(min_step)
+      << ": the try at h = " << time_text(h) << " was rejected (" << reason << ")";
   if (events.changed_nodes > 0 || events.offset > 0)
     out << "; forced by contact: " << (events.pair.empty() ? "a contact term" : events.pair) << ", "
         << events.changed_nodes << " nodes changed state";
@@ -123,8 +124,9 @@ class Run {
     const Balance b = balance(problem_, s_);
     update_summary(sum_, b0_, b, step.contact);
     const std::vector<Eigen::Vector3d> reactions = problem_.entry_reactions(integrator_.reaction());
-    recorder_.step(series_.row(s_.step, s_.t,
-                               {b, step.contact, &step.newton, seconds_since(t0), step.h, step.rejections, &reactions}));
+    recorder_.step(
+        series_.row(s_.step, s_.t,
+                    {b, step.contact, &step.newton, seconds_since(t0), step.h, step.rejections, &reactions}));
     const bool last = done();
     if (frame_due(n, last, s_.t == landing)) recorder_.frame(n, frame_of(s_, problem_));
     keep_checkpoint(n, last);
@@ -156,7 +158,8 @@ class Run {
     observer_.resumed(s_.step);
     observer_.log("resumed from step " + std::to_string(s_.step) + " (t = " + std::to_string(s_.t) +
                   ") of the checkpoint " + store_->state_file().string() + ": computing steps " +
-                  std::to_string(s_.step + 1) + (by_time() ? " to t = " + time_text(end_) : " to " + std::to_string(steps_)));
+                  std::to_string(s_.step + 1) +
+                  (by_time() ? " to t = " + time_text(end_) : " to " + std::to_string(steps_)));
   }
 
   /// A step: its Newton solves, contact row, h and the controller's rejections before it.
@@ -205,7 +208,8 @@ class Run {
   /// Today's fixed step: time.step (or the rest to the landing time), halved when Newton fails.
   SolvedStep solve_fixed(double landing) {
     SolvedStep out;
-    out.h = by_time() ? fixed_step_to(m_.time.step, s_.t, landing) : std::min(m_.time.step, m_.time.end - s_.t);
+    out.h =
+        by_time() ? fixed_step_to(m_.time.step, s_.t, landing) : std::min(m_.time.step, m_.time.end - s_.t);
     const int step0 = s_.step;
     const double time0 = s_.t;
     const auto log = [&](const std::string& line) { observer_.log(line); };
@@ -294,7 +298,8 @@ class Run {
     const int steps = last ? n : steps_after(n);
     if (!store_ || !schedule_.may_land(n, steps)) return;
     if (schedule_.due(n, steps)) {
-      store_->write(checkpoint_of(m_, s_, terms_, sum_, recorder_, controller_ ? &controller_->state() : nullptr));
+      store_->write(
+          checkpoint_of(m_, s_, terms_, sum_, recorder_, controller_ ? &controller_->state() : nullptr));
       schedule_.written();
     }
     integrator_.forget_factorization();  // the next step as a run resumed from here computes it
@@ -339,7 +344,7 @@ class Run {
   const SeriesRows series_;
   CheckpointSchedule schedule_;
   const int steps_ = m_.time.steps();
-  const double end_;  ///< where a run stepping by time ends (run_end)
+  const double end_;                          ///< where a run stepping by time ends (run_end)
   std::optional<StepController> controller_;  ///< with time.tolerance
   int next_frame_ = 1;                        ///< with output.interval: k of the next frame time
   Balance b0_;

@@ -26,7 +26,8 @@ time::TermState PrescribedMotion::save_state() const {
   return state;
 }
 
-void PrescribedMotion::restore_state(const time::TermState& state, const Eigen::VectorXd&, const Eigen::VectorXd&) {
+void PrescribedMotion::restore_state(const time::TermState& state, const Eigen::VectorXd&,
+                                     const Eigen::VectorXd&) {
   t_ = state.real("time", 1)[0];
   work_ = state.real("work", 1)[0];
 }

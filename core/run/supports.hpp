@@ -28,14 +28,17 @@ class PrescribedMotion final : public time::Term {
   void register_blocks(solve::BlockPattern&) override {}
   /// x_{n+1} = X + a(t_n + h) u on the prescribed dofs (the integrator leaves them there).
   void begin_step(const time::StepContext& step, Eigen::VectorXd& z) override;
-  void add(const time::StepContext&, const Eigen::VectorXd&, Eigen::VectorXd&, solve::BlockPattern*) const override {}
+  void add(const time::StepContext&, const Eigen::VectorXd&, Eigen::VectorXd&,
+           solve::BlockPattern*) const override {}
   /// Adds Σ r_i Δx_i over the prescribed dofs to the work (5b.9).
-  void take_reaction(const time::StepContext& step, const Eigen::VectorXd& z, const Eigen::VectorXd& reaction) override;
+  void take_reaction(const time::StepContext& step, const Eigen::VectorXd& z,
+                     const Eigen::VectorXd& reaction) override;
   /// Advances the clock by h.
   void end_step(const time::StepContext& step, const Eigen::VectorXd& z) override;
   /// "time" and "work": the clock and the supports' work so far.
   time::TermState save_state() const override;
-  void restore_state(const time::TermState& state, const Eigen::VectorXd& x, const Eigen::VectorXd& v) override;
+  void restore_state(const time::TermState& state, const Eigen::VectorXd& x,
+                     const Eigen::VectorXd& v) override;
   /// Σ over the converged steps of the supports' work (5b.9): their part of series/external_work.
   double work() const { return work_; }
 

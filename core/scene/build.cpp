@@ -1,12 +1,10 @@
 #include "core/scene/build.hpp"
 
-#include <algorithm>
-
-#include "core/fem/hex8.hpp"
-
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 
+#include "core/fem/hex8.hpp"
 #include "core/mesh/generators.hpp"
 #include "core/scene/checks.hpp"
 #include "core/scene/file_mesh.hpp"
@@ -141,7 +139,8 @@ mesh::BodyMesh body_mesh(const json& m, const MeshFiles& mesh_files) {
   if (m.contains("file") || m.contains("id")) return file_body_mesh(m, mesh_files);
   if (m.contains("box")) {
     const json& b = m["box"];
-    return with_boundary(mesh::box(vector3(b["min"]), vector3(b["max"]), b["divisions"].get<std::array<int, 3>>()));
+    return with_boundary(
+        mesh::box(vector3(b["min"]), vector3(b["max"]), b["divisions"].get<std::array<int, 3>>()));
   }
   if (m.contains("hollow_sphere")) {
     const json& s = m["hollow_sphere"];

@@ -4,8 +4,8 @@
 
 #include <Eigen/Core>
 #include <filesystem>
-#include <map>
 #include <initializer_list>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>

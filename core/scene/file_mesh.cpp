@@ -24,7 +24,8 @@ void check_scale(const json& scale, const std::string& p, Checker& c) {
     return;
   }
   const auto v = vector3(scale, p, c);
-  if (v && !(v->array() > 0).all()) c.fail(p, "must be > 0 in every component (no mirroring), got " + shown(scale));
+  if (v && !(v->array() > 0).all())
+    c.fail(p, "must be > 0 in every component (no mirroring), got " + shown(scale));
 }
 
 void check_transform(json& t, const std::string& p, Checker& c) {
@@ -51,7 +52,8 @@ mesh::Transform transform_of(const json& mesh) {
     t.degrees = j["rotate"]["degrees"].get<double>();
   }
   if (j.contains("scale"))
-    t.scale = j["scale"].is_number() ? Eigen::Vector3d::Constant(j["scale"].get<double>()) : vector_of(j["scale"]);
+    t.scale =
+        j["scale"].is_number() ? Eigen::Vector3d::Constant(j["scale"].get<double>()) : vector_of(j["scale"]);
   return t;
 }
 
@@ -87,12 +89,15 @@ std::shared_ptr<const mesh::ImportedMesh> imported_of(const Source& source, cons
     if (where.directory)
       return std::make_shared<const mesh::ImportedMesh>(
           mesh::read_mesh_file(resolved(source.text, *where.directory), label, limits));
-    why = "mesh files are read only for a scene given as a file (stoss validate|run SCENE.json), relative to "
-          "it; through the HTTP API, POST the file to /v1/meshes and name it by \"id\"";
+    why =
+        "mesh files are read only for a scene given as a file (stoss validate|run SCENE.json), relative to "
+        "it; through the HTTP API, POST the file to /v1/meshes and name it by \"id\"";
     return nullptr;
   }
   if (!where.stored && !where.parsed) {
-    why = "mesh ids name meshes stored by the service (POST /v1/meshes); a scene file names its mesh by \"file\"";
+    why =
+        "mesh ids name meshes stored by the service (POST /v1/meshes); a scene file names its mesh by "
+        "\"file\"";
     return nullptr;
   }
   std::shared_ptr<const mesh::ImportedMesh> imported;
@@ -136,7 +141,8 @@ std::string label_of(const Source& source) {
 }  // namespace
 
 std::optional<std::set<std::string>> check_file_mesh(json& mesh, const std::string& p,
-                                                     const std::optional<std::string>& body_name, Checker& c) {
+                                                     const std::optional<std::string>& body_name,
+                                                     Checker& c) {
   const size_t start = c.mark();
   const std::string key = mesh.contains("id") ? "id" : "file";
   const std::string fp = child(p, key);
@@ -150,7 +156,8 @@ std::optional<std::set<std::string>> check_file_mesh(json& mesh, const std::stri
     const auto elements = string(*e, child(p, "elements"), c);
     if (elements && elements->empty()) c.fail(child(p, "elements"), "must not be empty");
   }
-  if (json* t = member(mesh, "transform", p, Presence::may(), c)) check_transform(*t, child(p, "transform"), c);
+  if (json* t = member(mesh, "transform", p, Presence::may(), c))
+    check_transform(*t, child(p, "transform"), c);
   if (c.mark() != start) return std::nullopt;
   const Source source = source_of(mesh);
   const std::string file = label_of(source);
@@ -178,8 +185,8 @@ std::optional<std::set<std::string>> check_file_mesh(json& mesh, const std::stri
       c.fail(fp, imported->where_element(selection.elements[i]) + ": " + jacobian_problem(*det));
   }
   if (bad > max_element_issues)
-    c.fail(fp, file + ": " + std::to_string(bad - max_element_issues) +
-                                 " more inverted or degenerate hexahedra");
+    c.fail(fp,
+           file + ": " + std::to_string(bad - max_element_issues) + " more inverted or degenerate hexahedra");
   check_surface_names(selection.body.surfaces, file, fp, c);
   if (c.mark() != start) return std::nullopt;
   std::set<std::string> names;
@@ -188,7 +195,8 @@ std::optional<std::set<std::string>> check_file_mesh(json& mesh, const std::stri
     for (const std::string& name : selection.empty_surfaces)
       c.surface_notes[*body_name + "/" + name] =
           file + " defines surface '" + name + "', but none of its faces is on " +
-          (mesh.contains("elements") ? "an element of '" + mesh["elements"].get<std::string>() + "'" : "an element");
+          (mesh.contains("elements") ? "an element of '" + mesh["elements"].get<std::string>() + "'"
+                                     : "an element");
   return names;
 }
 

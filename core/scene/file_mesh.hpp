@@ -1,6 +1,6 @@
 #pragma once
-/// @file Scene bodies meshed from a file: "mesh": {"file": "part.msh", "elements": "NAME", "transform": {...}},
-/// or {"id": "<sha256>", ...} for a mesh stored by the service (POST /v1/meshes). "file" is resolved
+/// @file Scene bodies meshed from a file: "mesh": {"file": "part.msh", "elements": "NAME", "transform":
+/// {...}}, or {"id": "<sha256>", ...} for a mesh stored by the service (POST /v1/meshes). "file" is resolved
 /// relative to the scene file's directory, "id" by the store (Checker::mesh_files, see MeshFiles); a scene
 /// posted to the HTTP API names its meshes by id.
 
@@ -19,7 +19,8 @@ namespace stoss::scene::detail {
 /// surfaces of the file without a face on the body are noted in checker.surface_notes under
 /// "<body>/<surface>", so that a reference to one says why it is missing.
 std::optional<std::set<std::string>> check_file_mesh(json& mesh, const std::string& pointer,
-                                                     const std::optional<std::string>& body_name, Checker& checker);
+                                                     const std::optional<std::string>& body_name,
+                                                     Checker& checker);
 
 /// The body mesh of a validated file mesh member.
 mesh::BodyMesh file_body_mesh(const json& mesh, const MeshFiles& mesh_files);

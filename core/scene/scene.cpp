@@ -85,9 +85,11 @@ Summary summarize(const model::Model& model) {
   s.dofs = model.dof_count();
   const model::TimeSpec& t = model.time;
   s.steps = static_cast<int>(std::min<long long>(
-      model::step_bound(t.end, t.step, t.adaptive() ? std::optional(t.min_step) : std::nullopt, model.output.interval),
+      model::step_bound(t.end, t.step, t.adaptive() ? std::optional(t.min_step) : std::nullopt,
+                        model.output.interval),
       std::numeric_limits<int>::max()));
-  s.frames = static_cast<int>(std::min<long long>(model.output.frame_count(s.steps, t.end), std::numeric_limits<int>::max()));
+  s.frames = static_cast<int>(
+      std::min<long long>(model.output.frame_count(s.steps, t.end), std::numeric_limits<int>::max()));
   s.estimates = estimate(model);
   s.warnings = warnings(model, s.estimates);
   s.choices = resolved_choices(model);

@@ -154,9 +154,11 @@ Surfaces check_inline_mesh(json& mesh, const std::string& p, Checker& c) {
   return c.mark() == start ? Surfaces(names) : std::nullopt;
 }
 
-Surfaces check_mesh(json& mesh, const std::string& p, const std::optional<std::string>& body_name, Checker& c) {
-  if (!object_with(mesh, p, {"box", "hollow_sphere", "nodes", "hex8", "surfaces", "file", "id", "elements", "transform"},
-                   c))
+Surfaces check_mesh(json& mesh, const std::string& p, const std::optional<std::string>& body_name,
+                    Checker& c) {
+  if (!object_with(
+          mesh, p,
+          {"box", "hollow_sphere", "nodes", "hex8", "surfaces", "file", "id", "elements", "transform"}, c))
     return std::nullopt;
   const bool inline_mesh = mesh.contains("nodes") || mesh.contains("hex8") || mesh.contains("surfaces");
   if (mesh.contains("box") + mesh.contains("hollow_sphere") + inline_mesh + mesh.contains("file") +
@@ -205,7 +207,8 @@ std::optional<NamedSurfaces> check_body(json& b, const std::string& p, Checker& 
   const json* name_value = member(b, "name", p, Presence::must(), c);
   const auto body_name = name_value ? name(*name_value, child(p, "name"), c) : std::nullopt;
   Surfaces surfaces;
-  if (json* m = member(b, "mesh", p, Presence::must(), c)) surfaces = check_mesh(*m, child(p, "mesh"), body_name, c);
+  if (json* m = member(b, "mesh", p, Presence::must(), c))
+    surfaces = check_mesh(*m, child(p, "mesh"), body_name, c);
   if (json* m = member(b, "material", p, Presence::must(), c)) check_material(*m, child(p, "material"), c);
   vector3_field(b, "initial_velocity", p, Presence::or_default(zero3), c);
   vector3_field(b, "initial_angular_velocity", p, Presence::or_default(zero3), c);
@@ -259,8 +262,8 @@ std::optional<std::string> check_surface_ref(const json& value, const std::strin
 
 /// A contact side: one "body/surface" reference, or a non-empty list of them on one body without repeats
 /// (their union, docs/scene.md "Contact"). Returns the body name when every reference was good.
-std::optional<std::string> check_surface_refs(const json& value, const std::string& p, const SurfaceIndex& index,
-                                              Checker& c) {
+std::optional<std::string> check_surface_refs(const json& value, const std::string& p,
+                                              const SurfaceIndex& index, Checker& c) {
   if (!value.is_array()) return check_surface_ref(value, p, index, c);
   if (!non_empty_array(value, p, c)) return std::nullopt;
   const size_t start = c.mark();
@@ -272,7 +275,8 @@ std::optional<std::string> check_surface_refs(const json& value, const std::stri
     if (!this_body) continue;
     if (const auto [it, fresh] = first_pointer.try_emplace(value[k].get<std::string>(), at); !fresh)
       c.fail(at, "must not repeat a surface, got " + shown(value[k]) + " (also " + it->second + ")");
-    if (!body) body = this_body;
+    if (!body)
+      body = this_body;
     else if (*this_body != *body)
       c.fail(at, "must be a surface of body " + shown(*body) + " like " + child(p, 0) +
                      " (the surfaces of one list belong to one body), got " + shown(value[k]));
@@ -383,9 +387,11 @@ void check_load(json& e, const std::string& p, const SurfaceIndex& index, Checke
     c.fail(p, std::string("must give exactly one of \"pressure\" and \"traction\", got ") +
                   (pressure ? "both" : "neither"));
   const double largest = std::numeric_limits<double>::max();
-  if (pressure) number_field(e, "pressure", p, Presence::must(), between(-largest, largest, true, true, "finite"), c);
+  if (pressure)
+    number_field(e, "pressure", p, Presence::must(), between(-largest, largest, true, true, "finite"), c);
   if (traction) vector3_field(e, "traction", p, Presence::must(), c);
-  if (e.contains("amplitude")) check_amplitude(e["amplitude"], child(p, "amplitude"), loads::AmplitudeUse::load, c);
+  if (e.contains("amplitude"))
+    check_amplitude(e["amplitude"], child(p, "amplitude"), loads::AmplitudeUse::load, c);
 }
 
 template <class CheckEntry>
@@ -402,7 +408,8 @@ void check_step_control(json& t, const std::string& p, std::optional<double> ste
                         Checker& c) {
   if (!t.contains("tolerance")) {
     for (const char* key : {"min_step", "max_step"})
-      if (t.contains(key)) c.fail(child(p, key), "is allowed only with time.tolerance (steps chosen by a tolerance)");
+      if (t.contains(key))
+        c.fail(child(p, key), "is allowed only with time.tolerance (steps chosen by a tolerance)");
     return;
   }
   const size_t start = c.mark();
@@ -412,17 +419,21 @@ void check_step_control(json& t, const std::string& p, std::optional<double> ste
   const auto high = number_field(t, "max_step", p, Presence::or_default(*end), above(0), c);
   if (!low || !high || c.mark() != start) return;
   if (*low > *high)
-    c.fail(child(p, "min_step"), "must be <= max_step (" + shown(t["max_step"]) + "), got " + shown(t["min_step"]));
-  if (*low >= *end) c.fail(child(p, "min_step"), "must be < end (" + shown(t["end"]) + "), got " + shown(t["min_step"]));
+    c.fail(child(p, "min_step"),
+           "must be <= max_step (" + shown(t["max_step"]) + "), got " + shown(t["min_step"]));
+  if (*low >= *end)
+    c.fail(child(p, "min_step"), "must be < end (" + shown(t["end"]) + "), got " + shown(t["min_step"]));
   else if (*end / *low > 1e9)
-    c.fail(child(p, "min_step"), "must give at most 1e9 steps, got end / min_step = " + number_text(*end / *low));
+    c.fail(child(p, "min_step"),
+           "must give at most 1e9 steps, got end / min_step = " + number_text(*end / *low));
   if (c.mark() == start && (*step < *low || *step > *high))
     c.fail(child(p, "step"), "must be in [min_step, max_step] = [" + shown(t["min_step"]) + ", " +
                                  shown(t["max_step"]) + "] (the first step), got " + shown(t["step"]));
 }
 
 void check_time(json& t, const std::string& p, Checker& c) {
-  if (!object_with(t, p, {"scheme", "step", "end", "alpha", "rho_infinity", "tolerance", "min_step", "max_step"}, c))
+  if (!object_with(
+          t, p, {"scheme", "step", "end", "alpha", "rho_infinity", "tolerance", "min_step", "max_step"}, c))
     return;
   std::vector<std::string> names;
   for (model::Scheme s : model::all_schemes) names.push_back(model::to_string(s));
@@ -456,13 +467,15 @@ void check_output(json& o, const std::string& p, Checker& c) {
   if (!object_with(o, p, {"every", "interval", "checkpoint_seconds", "checkpoint_every"}, c)) return;
   if (o.contains("interval")) {
     if (o.contains("every"))
-      c.fail(child(p, "interval"), "cannot be given together with output.every: frames come at times (interval) "
-                                   "or every so many steps (every), not both");
+      c.fail(child(p, "interval"),
+             "cannot be given together with output.every: frames come at times (interval) "
+             "or every so many steps (every), not both");
     number_field(o, "interval", p, Presence::must(), above(0), c);
   } else {
     integer_field(o, "every", p, Presence::or_default(1), at_least(1), c);
   }
-  number_field(o, "checkpoint_seconds", p, Presence::or_default(60.0), between(0, 1e7, false, true, "0, 1e7"), c);
+  number_field(o, "checkpoint_seconds", p, Presence::or_default(60.0), between(0, 1e7, false, true, "0, 1e7"),
+               c);
   integer_field(o, "checkpoint_every", p, Presence::may(), at_least(1), c);
 }
 
@@ -477,10 +490,11 @@ void check_contact_scheme(const json& scene, Checker& c) {
   if (!scheme) return;
   for (size_t i = 0; i < contact.size(); ++i) {
     if (!contact[i].is_object()) continue;
-    const auto enforcement =
-        contact[i].value("enforcement", "") == "penalty" ? model::Enforcement::penalty : model::Enforcement::lagrange;
-    const auto impact = contact[i].value("impact", "") == "velocity_correction" ? model::ImpactMode::velocity_correction
-                                                                               : model::ImpactMode::persist;
+    const auto enforcement = contact[i].value("enforcement", "") == "penalty" ? model::Enforcement::penalty
+                                                                              : model::Enforcement::lagrange;
+    const auto impact = contact[i].value("impact", "") == "velocity_correction"
+                            ? model::ImpactMode::velocity_correction
+                            : model::ImpactMode::persist;
     if (const auto conflict = model::contact_scheme_conflict(*scheme, enforcement, impact))
       c.fail(child(child(child("", "contact"), i), conflict->field), conflict->reason);
   }
@@ -493,8 +507,8 @@ void check_format(const json& format, const std::string& p, Checker& c) {
 }  // namespace
 
 void check_scene(json& scene, Checker& c) {
-  const std::initializer_list<std::string_view> fields{"format",   "name", "bodies", "contact", "gravity",
-                                                       "boundary", "loads", "time", "solver", "output"};
+  const std::initializer_list<std::string_view> fields{"format",   "name",  "bodies", "contact", "gravity",
+                                                       "boundary", "loads", "time",   "solver",  "output"};
   if (!object_with(scene, "", fields, c)) return;
   if (const json* format = member(scene, "format", "", Presence::must(), c))
     check_format(*format, "/format", c);

@@ -79,7 +79,9 @@ int BlockPattern::slot(int row, int col) const {
   return static_cast<int>(it - matrix_.innerIndexPtr());
 }
 
-void BlockPattern::zero() { matrix_.coeffs().setZero(); }
+void BlockPattern::zero() {
+  matrix_.coeffs().setZero();
+}
 
 void BlockPattern::scatter(int block, const Eigen::Ref<const Eigen::MatrixXd>& values) {
   const Block& b = blocks_[block];
@@ -89,7 +91,9 @@ void BlockPattern::scatter(int block, const Eigen::Ref<const Eigen::MatrixXd>& v
     for (Eigen::Index i = 0; i < nr; ++i) data[b.slots[i + j * nr]] += values(i, j);
 }
 
-void BlockPattern::add_diagonal(int i, double value) { matrix_.valuePtr()[diagonal_slots_[i]] += value; }
+void BlockPattern::add_diagonal(int i, double value) {
+  matrix_.valuePtr()[diagonal_slots_[i]] += value;
+}
 
 void BlockPattern::eliminate(const std::vector<char>& fixed) {
   for (int c = 0; c < matrix_.outerSize(); ++c)

@@ -144,8 +144,9 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) const {
     // No convergence (an indefinite or badly scaled system, e.g. contact multipliers): this matrix is
     // solved directly rather than handing Newton a poor increment.
     Eigen::VectorXd x = krylov_->bicgstab.solve(b);  // before asking for its iterations and info
-    x = checked_krylov(std::move(x), int(krylov_->bicgstab.iterations()), krylov_->bicgstab.info() == Eigen::Success,
-                       [this] { return krylov_->A; }, krylov_->lu_ready, b);
+    x = checked_krylov(
+        std::move(x), int(krylov_->bicgstab.iterations()), krylov_->bicgstab.info() == Eigen::Success,
+        [this] { return krylov_->A; }, krylov_->lu_ready, b);
     solve_seconds_ += seconds_since(t0);
     return x;
   }
@@ -174,8 +175,9 @@ Eigen::VectorXd LinearSolver::solve_amg(const Eigen::VectorXd& b) const {
   const auto t0 = std::chrono::steady_clock::now();
   Eigen::VectorXd x;
   const KrylovOutcome outcome = amg_->solver->solve(b, x);
-  x = checked_krylov(std::move(x), outcome.iterations, outcome.converged, [this] { return amg_->solver->matrix(); },
-                     amg_->lu_ready, b);
+  x = checked_krylov(
+      std::move(x), outcome.iterations, outcome.converged, [this] { return amg_->solver->matrix(); },
+      amg_->lu_ready, b);
   solve_seconds_ += seconds_since(t0);
   return x;
 }

@@ -12,8 +12,8 @@
 namespace stoss::solve {
 
 /// How LinearSolver solves. `iterative` is BiCGSTAB with a Jacobi preconditioner on a copy of the
-/// factorised matrix (no AMG: see docs/measurements.md, "Performance"); a solve that does not reach its tolerance
-/// falls back to an LU of the same matrix, so Newton always receives a solution of that matrix.
+/// factorised matrix (no AMG: see docs/measurements.md, "Performance"); a solve that does not reach its
+/// tolerance falls back to an LU of the same matrix, so Newton always receives a solution of that matrix.
 /// `petsc_gamg` is GMRES preconditioned by PETSc's algebraic multigrid (GAMG) with the rigid-body
 /// modes as near-null space (core/solve/petsc_solver.hpp), with the same LU fallback.
 enum class LinearMethod { direct, iterative, petsc_gamg };

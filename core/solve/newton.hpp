@@ -49,15 +49,16 @@ struct NewtonOptions {
 
 struct NewtonResult {
   bool converged = false;
-  int iterations = 0;                 ///< linear solves (with a fresh or a reused factorisation)
-  int backtracks = 0;                 ///< step halvings taken
-  std::vector<double> residuals;      ///< residual_measure after each evaluation
-  std::string failure;                ///< why it stopped, when not converged
+  int iterations = 0;             ///< linear solves (with a fresh or a reused factorisation)
+  int backtracks = 0;             ///< step halvings taken
+  std::vector<double> residuals;  ///< residual_measure after each evaluation
+  std::string failure;            ///< why it stopped, when not converged
 };
 
 /// Runs Newton from z (updated in place). `log` receives a line whenever backtracking acts.
 NewtonResult newton_solve(NonlinearSystem& system, Eigen::VectorXd& z, BlockPattern& A, LinearSolver& solver,
-                          const NewtonOptions& options, const std::function<void(const std::string&)>& log = {});
+                          const NewtonOptions& options,
+                          const std::function<void(const std::string&)>& log = {});
 
 /// "1.20e+00 3.40e-05 ..." for error messages.
 std::string format_history(const std::vector<double>& residuals);

@@ -43,8 +43,9 @@ Factory load_factory() {
     if (auto factory = reinterpret_cast<Factory>(dlsym(handle, factory_symbol))) return factory;
     errors += " " + path + ": no symbol " + factory_symbol + ";";
   }
-  throw std::runtime_error("solver.linear petsc_gamg: cannot load the PETSc module (" + std::string(module_name) +
-                           "):" + errors + " install petsc-dev (deploy/packages.txt) and rebuild");
+  throw std::runtime_error("solver.linear petsc_gamg: cannot load the PETSc module (" +
+                           std::string(module_name) + "):" + errors +
+                           " install petsc-dev (deploy/packages.txt) and rebuild");
 }
 
 }  // namespace

@@ -53,7 +53,8 @@ Outcome run_once(model::Model m, const Run& run, const Options& options) {
 double max_nodal_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   if (a.size() != b.size()) return NAN;
   double worst = 0;
-  for (Eigen::Index I = 0; I < a.size() / 3; ++I) worst = std::max(worst, (a.segment<3>(3 * I) - b.segment<3>(3 * I)).norm());
+  for (Eigen::Index I = 0; I < a.size() / 3; ++I)
+    worst = std::max(worst, (a.segment<3>(3 * I) - b.segment<3>(3 * I)).norm());
   return worst;
 }
 
@@ -84,7 +85,9 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
 }
 
-bool canceled(const Options& options) { return options.cancel && options.cancel->load(); }
+bool canceled(const Options& options) {
+  return options.cancel && options.cancel->load();
+}
 
 double number_or_nan(const nlohmann::json& j, const char* key) {
   auto it = j.find(key);
@@ -154,15 +157,16 @@ Result run(const model::Model& model, const Options& options) {
 std::string to_csv(const Result& result) {
   std::ostringstream out;
   // The column tolerance only when a row has one: tables of fixed steps keep their columns.
-  const bool tolerances = std::any_of(result.rows.begin(), result.rows.end(), [](const Row& r) { return r.tolerance > 0; });
+  const bool tolerances =
+      std::any_of(result.rows.begin(), result.rows.end(), [](const Row& r) { return r.tolerance > 0; });
   out << "scheme,step,steps,completed,displacement_error,energy_error,momentum_error,wall_seconds,"
          "newton_iterations,newton_per_step"
       << (tolerances ? ",tolerance\n" : "\n");
   out.precision(6);
   for (const Row& r : result.rows) {
     out << r.scheme << ',' << r.step << ',' << r.steps << ',' << (r.completed ? 1 : 0) << ','
-        << r.displacement_error << ',' << r.energy_error << ',' << r.momentum_error << ',' << r.wall_seconds << ','
-        << r.newton_iterations << ',' << r.newton_per_step;
+        << r.displacement_error << ',' << r.energy_error << ',' << r.momentum_error << ',' << r.wall_seconds
+        << ',' << r.newton_iterations << ',' << r.newton_per_step;
     if (tolerances) out << ',' << (r.tolerance > 0 ? std::to_string(r.tolerance) : "");
     out << '\n';
   }
@@ -172,10 +176,14 @@ std::string to_csv(const Result& result) {
 nlohmann::json to_json(const Result& result) {
   nlohmann::json rows = nlohmann::json::array();
   for (const Row& r : result.rows) {
-    nlohmann::json j{{"scheme", r.scheme},           {"step", r.step},
-                     {"steps", r.steps},             {"completed", r.completed},
-                     {"energy_error", r.energy_error}, {"momentum_error", r.momentum_error},
-                     {"wall_seconds", r.wall_seconds}, {"newton_iterations", r.newton_iterations},
+    nlohmann::json j{{"scheme", r.scheme},
+                     {"step", r.step},
+                     {"steps", r.steps},
+                     {"completed", r.completed},
+                     {"energy_error", r.energy_error},
+                     {"momentum_error", r.momentum_error},
+                     {"wall_seconds", r.wall_seconds},
+                     {"newton_iterations", r.newton_iterations},
                      {"newton_per_step", r.newton_per_step}};
     j["displacement_error"] = r.completed ? nlohmann::json(r.displacement_error) : nlohmann::json(nullptr);
     if (!r.failure.empty()) j["failure"] = r.failure;
@@ -230,11 +238,12 @@ std::string to_markdown(const Result& result) {
     else
       std::snprintf(h, sizeof h, "%g", r.step);
     if (r.completed)
-      std::snprintf(line, sizeof line, "| %s | %s | %.2e | %.2e | %.2e | %.2f | %.1f |\n", r.scheme.c_str(), h,
-                    r.displacement_error, r.energy_error, r.momentum_error, r.wall_seconds, r.newton_per_step);
+      std::snprintf(line, sizeof line, "| %s | %s | %.2e | %.2e | %.2e | %.2f | %.1f |\n", r.scheme.c_str(),
+                    h, r.displacement_error, r.energy_error, r.momentum_error, r.wall_seconds,
+                    r.newton_per_step);
     else
-      std::snprintf(line, sizeof line, "| %s | %s | failed at step %d | | | %.2f | |\n", r.scheme.c_str(), h, r.steps,
-                    r.wall_seconds);
+      std::snprintf(line, sizeof line, "| %s | %s | failed at step %d | | | %.2f | |\n", r.scheme.c_str(), h,
+                    r.steps, r.wall_seconds);
     out << line;
   }
   return out.str();

@@ -16,7 +16,7 @@ namespace stoss::study {
 /// One run of a sweep: the reference first, then every scheme × step.
 struct Run {
   model::Scheme scheme = model::Scheme::energy_momentum;
-  double step = 0;     ///< the fixed step, or with a tolerance the first step
+  double step = 0;       ///< the fixed step, or with a tolerance the first step
   double tolerance = 0;  ///< > 0: steps chosen by time.tolerance = this (docs/scene.md "Time")
   bool reference = false;
   int steps = 0;       ///< time steps to reach the scene's end (with a tolerance: at the first step)
@@ -26,12 +26,13 @@ struct Run {
 struct Row;
 
 struct Options {
-  std::vector<model::Scheme> schemes{model::Scheme::energy_momentum, model::Scheme::midpoint, model::Scheme::hht};
-  std::vector<double> steps;                                   ///< step sizes to sweep
+  std::vector<model::Scheme> schemes{model::Scheme::energy_momentum, model::Scheme::midpoint,
+                                     model::Scheme::hht};
+  std::vector<double> steps;  ///< step sizes to sweep
   /// time.tolerance values to sweep beside the steps, each scheme once per value: the first step is the
   /// scene's time.step, min_step and max_step the scene's (or their defaults step/1024 and end).
   std::vector<double> tolerances;
-  double reference_step = 0;                                   ///< 0: smallest step / 32
+  double reference_step = 0;  ///< 0: smallest step / 32
   model::Scheme reference_scheme = model::Scheme::energy_momentum;
   /// Runs of each scheme × step; the row's wall_seconds is their median (wall time is noisy on a shared
   /// machine; everything else a run reports is the same each time). The reference runs once.
@@ -47,24 +48,25 @@ struct Options {
 /// One run of the sweep.
 struct Row {
   std::string scheme;
-  double step = 0;       ///< the fixed step, or with a tolerance the first step
+  double step = 0;  ///< the fixed step, or with a tolerance the first step
   int steps = 0;
   bool completed = false;
-  std::string failure;              ///< why the run stopped, when it did not complete
-  double displacement_error = 0;    ///< max over nodes |x(T) − x_ref(T)| at the end time T
-  double energy_error = 0;          ///< max over steps |H_n − H_0| / |H_0|
-  double momentum_error = 0;        ///< max of the relative linear and angular momentum drifts; NaN (null) where the system is not free
-  double wall_seconds = 0;          ///< the median over Result::repeat runs
+  std::string failure;            ///< why the run stopped, when it did not complete
+  double displacement_error = 0;  ///< max over nodes |x(T) − x_ref(T)| at the end time T
+  double energy_error = 0;        ///< max over steps |H_n − H_0| / |H_0|
+  double momentum_error =
+      0;  ///< max of the relative linear and angular momentum drifts; NaN (null) where the system is not free
+  double wall_seconds = 0;  ///< the median over Result::repeat runs
   int newton_iterations = 0;
   double newton_per_step = 0;
   double tolerance = 0;  ///< > 0: a run with steps chosen by this time.tolerance (step: its first step)
 };
 
 struct Result {
-  bool canceled = false;            ///< stopped by Options::cancel; rows holds the runs done
+  bool canceled = false;  ///< stopped by Options::cancel; rows holds the runs done
   double reference_step = 0;
   double reference_wall_seconds = 0;
-  int repeat = 1;                   ///< runs behind each row's wall_seconds (their median)
+  int repeat = 1;  ///< runs behind each row's wall_seconds (their median)
   std::vector<Row> rows;
 };
 

@@ -131,9 +131,10 @@ void Integrator::initialize(State& s) {
 class Integrator::StepEquations final : public solve::NonlinearSystem {
  public:
   StepEquations(Integrator& owner, const State& s, double h, const LogFunction* log, bool may_cut)
-      : owner_(owner),
-        state_(s),
-        context_{s.x, s.v, h, owner.scheme_->force_rule(), log, owner.scheme_->force_factor(h), may_cut} {}
+      : owner_(owner), state_(s), context_{s.x,    s.v,
+                                           h,      owner.scheme_->force_rule(),
+                                           log,    owner.scheme_->force_factor(h),
+                                           may_cut} {}
   const StepContext& context() const { return context_; }
   /// The residual scale starts at ‖2 M v_n‖; the first evaluation raises it to the predictor's residual.
   void reset_scale() {
@@ -174,13 +175,15 @@ class Integrator::StepEquations final : public solve::NonlinearSystem {
 
   double residual_measure(const Eigen::VectorXd& R) const override {
     double measure = R.head(state_.x.size()).norm() / residual_scale_;
-    for (const Term* t : owner_.terms_) measure = std::max(measure, t->auxiliary_residual_measure(R, scales()));
+    for (const Term* t : owner_.terms_)
+      measure = std::max(measure, t->auxiliary_residual_measure(R, scales()));
     return measure;
   }
 
   double increment_measure(const Eigen::VectorXd& dz) const override {
     double measure = dz.head(state_.x.size()).norm() / owner_.length_scale_;
-    for (const Term* t : owner_.terms_) measure = std::max(measure, t->auxiliary_increment_measure(dz, scales()));
+    for (const Term* t : owner_.terms_)
+      measure = std::max(measure, t->auxiliary_increment_measure(dz, scales()));
     return measure;
   }
 
@@ -284,7 +287,8 @@ void Integrator::take_reaction(StepEquations& equations, const Eigen::VectorXd& 
   reaction_ = Eigen::VectorXd::Zero(nx);
   const double factor = equations.context().force_factor;
   for (Eigen::Index i = 0; i < nx; ++i)
-    if (fixed_[i]) reaction_[i] = held_rows_[i] / factor;  // R_i = h r_i at a held dof (docs/theory.md (5b.8))
+    if (fixed_[i])
+      reaction_[i] = held_rows_[i] / factor;  // R_i = h r_i at a held dof (docs/theory.md (5b.8))
 }
 
 void Integrator::finish(State& s, StepEquations& equations, const Eigen::VectorXd& z) {

@@ -55,7 +55,9 @@ class Integrator {
   const Scheme& scheme() const { return *scheme_; }
   /// Seconds in the linear solver's analysis and factorisations, and in its solves, the initial HHT
   /// solve included.
-  double linear_factorization_seconds() const { return solver_.factorization_seconds() + initial_factorization_seconds_; }
+  double linear_factorization_seconds() const {
+    return solver_.factorization_seconds() + initial_factorization_seconds_;
+  }
   double linear_solve_seconds() const { return solver_.solve_seconds() + initial_solve_seconds_; }
   /// Seconds spent inside term k's calls (terms in constructor order): residual and Jacobian
   /// contributions, block registration, and the per-step hooks (prepare, begin, active set, end).
@@ -84,9 +86,11 @@ class Integrator {
   /// z for the current layout: positions from `positions`, auxiliaries from the terms.
   Eigen::VectorXd relayout(const StepContext& step, const Eigen::VectorXd& positions);
   /// Newton passes with active-set updates; false result if a solve fails or the set never settles.
-  solve::NewtonResult solve_with_active_set(StepEquations& equations, Eigen::VectorXd& z, const LogFunction& log);
+  solve::NewtonResult solve_with_active_set(StepEquations& equations, Eigen::VectorXd& z,
+                                            const LogFunction& log);
   /// One solve of the step of `equations` from s (prepare, predict, Newton with active-set updates) into z.
-  solve::NewtonResult attempt(const State& s, StepEquations& equations, Eigen::VectorXd& z, const LogFunction& log);
+  solve::NewtonResult attempt(const State& s, StepEquations& equations, Eigen::VectorXd& z,
+                              const LogFunction& log);
   /// The smallest step fraction the terms ask to cut the step to (Term::requested_cut), or 1.
   double requested_cut() const;
   /// After a converged step: the impact impulse and end_step of every term, the scheme's advance of s by h.

@@ -42,8 +42,9 @@ struct Reducer {
     covered = h;
     if (depth == 0) out.failure = r.failure;
     if (depth == max_halvings) {
-      if (depth > 0) out.failure += "; with automatic step reduction it still failed at t = " + time_text(s.t) +
-                                    " in a substep of h/" + std::to_string(1 << depth) + ": " + r.failure;
+      if (depth > 0)
+        out.failure += "; with automatic step reduction it still failed at t = " + time_text(s.t) +
+                       " in a substep of h/" + std::to_string(1 << depth) + ": " + r.failure;
       return false;
     }
     if (log) log(reduction_line(h, depth, r));

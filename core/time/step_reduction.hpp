@@ -15,9 +15,9 @@ struct ReducedStep {
   /// Converged integrator steps that ended early, at a located contact event (docs/theory.md §4.6.2); each is
   /// followed by the rest of its (sub)step, which substeps counts.
   int event_substeps = 0;
-  int iterations = 0;                 ///< Newton iterations over every solve tried, failed ones included
-  std::vector<double> residuals;      ///< the last solve's residual history (converged or failed)
-  std::string failure;                ///< why it stopped, when not converged
+  int iterations = 0;             ///< Newton iterations over every solve tried, failed ones included
+  std::vector<double> residuals;  ///< the last solve's residual history (converged or failed)
+  std::string failure;            ///< why it stopped, when not converged
 };
 
 /// Solves t → t + h with `integrator`. A (sub)step that does not converge is retried as two halves,

@@ -68,16 +68,19 @@ struct TermState {
 
   /// The array `name` with `size` entries. @throws std::invalid_argument naming the array and the size.
   template <class T>
-  static const std::vector<T>& sized(const std::map<std::string, std::vector<T>>& arrays, const std::string& name,
-                                     size_t size) {
+  static const std::vector<T>& sized(const std::map<std::string, std::vector<T>>& arrays,
+                                     const std::string& name, size_t size) {
     const auto it = arrays.find(name);
     if (it == arrays.end()) throw std::invalid_argument("term state: array '" + name + "' is missing");
     if (it->second.size() != size)
-      throw std::invalid_argument("term state: array '" + name + "' has " + std::to_string(it->second.size()) +
-                                  " entries, expected " + std::to_string(size));
+      throw std::invalid_argument("term state: array '" + name + "' has " +
+                                  std::to_string(it->second.size()) + " entries, expected " +
+                                  std::to_string(size));
     return it->second;
   }
-  const std::vector<double>& real(const std::string& name, size_t size) const { return sized(reals, name, size); }
+  const std::vector<double>& real(const std::string& name, size_t size) const {
+    return sized(reals, name, size);
+  }
   const std::vector<std::int64_t>& integer(const std::string& name, size_t size) const {
     return sized(integers, name, size);
   }
@@ -148,7 +151,8 @@ class Term {
                                   double& energy_jump) const {}
   /// After a converged step, before end_step, when some dof is held: `reaction` (3 per node) is the force the
   /// supports exert on the held dofs in the step's discrete form (Integrator::reaction); 0 on free dofs.
-  virtual void take_reaction(const StepContext& step, const Eigen::VectorXd& z, const Eigen::VectorXd& reaction) {}
+  virtual void take_reaction(const StepContext& step, const Eigen::VectorXd& z,
+                             const Eigen::VectorXd& reaction) {}
   /// After a converged step: commit history (friction slip, active sets).
   virtual void end_step(const StepContext& step, const Eigen::VectorXd& z) {}
   /// After end_step: the largest position offset the term's own model put in during the last converged

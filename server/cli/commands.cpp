@@ -37,7 +37,8 @@ void print_summary(const model::Model& m, const model::Summary& s) {
   std::printf("steps %d, t = %.6g\n", s.steps, s.end_time);
   std::printf("energy drift %.3e (relative, max over steps)\n", s.energy_drift);
   if (model::has_check(s, "linear_momentum_drift"))  // the system is free
-    std::printf("momentum drift: linear %.3e, angular %.3e\n", s.linear_momentum_drift, s.angular_momentum_drift);
+    std::printf("momentum drift: linear %.3e, angular %.3e\n", s.linear_momentum_drift,
+                s.angular_momentum_drift);
   else
     std::printf("momentum drift: not reported (supports or gravity act: the system is not free)\n");
   if (!m.contact.empty())
@@ -48,7 +49,8 @@ void print_summary(const model::Model& m, const model::Summary& s) {
   const double other = std::max(0.0, s.wall_seconds - s.assembly_seconds - s.contact_seconds -
                                          s.linear_solver_seconds - s.output_seconds);
   std::printf(
-      "time: assembly %.3f s, contact %.3f s, linear solver %.3f s (factorisation %.3f s, solves %.3f s), output "
+      "time: assembly %.3f s, contact %.3f s, linear solver %.3f s (factorisation %.3f s, solves %.3f s), "
+      "output "
       "%.3f s, other %.3f s\n",
       s.assembly_seconds, s.contact_seconds, s.linear_solver_seconds, s.linear_factorization_seconds,
       s.linear_solve_seconds, s.output_seconds, other);
@@ -61,12 +63,15 @@ void print_summary(const model::Model& m, const model::Summary& s) {
 /// The verdict and, when a check failed, the warning block (docs/command_line.md, "stoss run").
 void print_verdict(const model::Summary& s) {
   for (const model::Check& c : s.checks)
-    std::printf("check %s: %.3e (bound %.3e) %s\n", c.name.c_str(), c.value, c.bound, c.passed ? "passed" : "FAILED");
+    std::printf("check %s: %.3e (bound %.3e) %s\n", c.name.c_str(), c.value, c.bound,
+                c.passed ? "passed" : "FAILED");
   std::printf("verdict: %s\n", s.verdict.c_str());
   if (s.verdict != "suspect") return;
   std::printf("warning: the result is suspect; failed checks:\n");
   for (const model::Check& c : s.checks)
-    if (!c.passed) std::printf("  %s = %.3e exceeds %.3e (docs/results.md, \"Verdict\")\n", c.name.c_str(), c.value, c.bound);
+    if (!c.passed)
+      std::printf("  %s = %.3e exceeds %.3e (docs/results.md, \"Verdict\")\n", c.name.c_str(), c.value,
+                  c.bound);
 }
 
 /// The scales, the choices loading made and the warnings of `stoss validate` (docs/command_line.md).
@@ -135,8 +140,8 @@ void write_run_file(const fs::path& out_dir, const model::Model& model, const st
 model::Model resumed_model(const fs::path& out_dir) {
   std::ifstream in(run_file(out_dir), std::ios::binary);
   if (!in)
-    throw std::invalid_argument(out_dir.string() + " holds no checkpoint of stoss run (" + run_file(out_dir).string() +
-                                " is missing)");
+    throw std::invalid_argument(out_dir.string() + " holds no checkpoint of stoss run (" +
+                                run_file(out_dir).string() + " is missing)");
   const nlohmann::json run = nlohmann::json::parse(in);
   scene::MeshFiles files;
   files.directory = fs::path(run.at("mesh_directory").get<std::string>());
@@ -155,11 +160,16 @@ std::optional<RunOptions> parse_run_options(const std::vector<std::string>& args
   RunOptions o;
   std::string resume_dir;
   for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--strict") o.strict = true;
-    else if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size()) o.out_dir = args[++i], o.out_given = true;
-    else if (args[i] == "--resume" && i + 1 < args.size()) resume_dir = args[++i];
-    else if (o.scene_path.empty() && args[i].rfind("-", 0) != 0) o.scene_path = args[i];
-    else return std::nullopt;
+    if (args[i] == "--strict")
+      o.strict = true;
+    else if ((args[i] == "-o" || args[i] == "--output") && i + 1 < args.size())
+      o.out_dir = args[++i], o.out_given = true;
+    else if (args[i] == "--resume" && i + 1 < args.size())
+      resume_dir = args[++i];
+    else if (o.scene_path.empty() && args[i].rfind("-", 0) != 0)
+      o.scene_path = args[i];
+    else
+      return std::nullopt;
   }
   o.resume = !resume_dir.empty();
   if (o.resume == !o.scene_path.empty() || (o.resume && o.out_given)) return std::nullopt;
@@ -183,7 +193,8 @@ int simulate_into(const RunOptions& o) {
   std::error_code error;
   try {
     model::Model model;
-    if (o.resume && !fs::exists(run_file(o.out_dir)) && fs::exists(fs::path(o.out_dir) / output::result_file_name)) {
+    if (o.resume && !fs::exists(run_file(o.out_dir)) &&
+        fs::exists(fs::path(o.out_dir) / output::result_file_name)) {
       std::printf("result: %s/result.h5 (the run had completed: nothing to resume)\n", o.out_dir.c_str());
       return success;
     }
@@ -230,7 +241,8 @@ int run_command(const std::vector<std::string>& args) {
       "stoss run SCENE.json [-o DIR] [--strict] | stoss run --resume DIR [--strict]\n"
       "  simulates the scene; writes DIR/result.h5 and DIR/result.xdmf (DIR defaults to out/, which must\n"
       "  then be absent or empty: pass -o DIR to write into, or over, an existing directory). While it runs\n"
-      "  it keeps a checkpoint in DIR/checkpoint/ (every output.checkpoint_seconds, or checkpoint_every steps);\n"
+      "  it keeps a checkpoint in DIR/checkpoint/ (every output.checkpoint_seconds, or checkpoint_every "
+      "steps);\n"
       "  --resume DIR goes on from it after a crash and writes the result the run would have written.\n"
       "  It ends with the checks and the verdict (ok or suspect); --strict exits 3 on a suspect result.\n"
       "  exit 0 success, 1 solver failure, 2 invalid scene or command line, 3 suspect result with --strict";
@@ -260,7 +272,8 @@ model::Scheme parse_scheme(const std::string& name) {
                               "\" (energy_momentum, midpoint, hht, generalized_alpha)");
 }
 
-study::Options study_options(const std::vector<std::string>& args, std::string& scene_path, std::string& format) {
+study::Options study_options(const std::vector<std::string>& args, std::string& scene_path,
+                             std::string& format) {
   study::Options o;
   for (size_t i = 0; i < args.size(); ++i) {
     const bool has_value = i + 1 < args.size();
@@ -317,9 +330,13 @@ int study_command(const std::vector<std::string>& args) {
   try {
     precheck_scene_file(scene_path);
     const study::Result result = study::run(scene::load_file(scene_path), options);
-    if (format == "csv") std::cout << study::to_csv(result);
-    else if (format == "json") std::cout << server::safe_dump(study::to_json(result), 2) << "\n";
-    else std::cout << "reference: energy_momentum, h = " << result.reference_step << "\n\n" << study::to_markdown(result);
+    if (format == "csv")
+      std::cout << study::to_csv(result);
+    else if (format == "json")
+      std::cout << server::safe_dump(study::to_json(result), 2) << "\n";
+    else
+      std::cout << "reference: energy_momentum, h = " << result.reference_step << "\n\n"
+                << study::to_markdown(result);
     return success;
   } catch (const scene::SceneError& e) {
     print_scene_error(e);
@@ -342,9 +359,12 @@ int validate_command(const std::vector<std::string>& args) {
   std::string path;
   bool json = false;
   for (const auto& a : args) {
-    if (a == "--json") json = true;
-    else if (path.empty() && a.rfind("-", 0) != 0) path = a;
-    else return usage(text);
+    if (a == "--json")
+      json = true;
+    else if (path.empty() && a.rfind("-", 0) != 0)
+      path = a;
+    else
+      return usage(text);
   }
   if (path.empty()) return usage(text);
   auto print_errors = [json](const std::vector<scene::Issue>& issues) {

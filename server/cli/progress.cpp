@@ -16,7 +16,8 @@ void ProgressObserver::step(const model::StepRow& row) {
   last_time_ = row.time;
   const auto now = Clock::now();
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  if (row.step <= first_step_ || elapsed < 1.0 || std::chrono::duration<double>(now - last_print_).count() < 0.5)
+  if (row.step <= first_step_ || elapsed < 1.0 ||
+      std::chrono::duration<double>(now - last_print_).count() < 0.5)
     return;
   last_print_ = now;
   std::fprintf(out_, "\r%s   ", line(row, elapsed).c_str());

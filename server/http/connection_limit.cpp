@@ -23,7 +23,7 @@ class CountingThreadPool : public httplib::ThreadPool {
   CountingThreadPool(std::size_t threads, ConnectionLimit& limit) : ThreadPool(threads), limit_(limit) {}
   void enqueue(std::function<void()> fn) override {
     ThreadPool::enqueue([this, fn = std::move(fn)] {
-      fn();  // serves one connection until it closes
+      fn();                  // serves one connection until it closes
       close_marked = false;  // a mark left by a connection that ended unanswered is not the next one's
       limit_.release_this_thread();
     });
@@ -108,7 +108,8 @@ void refuse_connection(const ConnectionLimit& limit, const httplib::Request& req
           "client " + req.remote_addr + " already holds " + cap +
               " connections, the most max_connections_per_client (--max-connections-per-client) allows; "
               "this one is closed: reuse an open connection or retry after one closes",
-          {{"limits", nlohmann::json::array({{{"name", "max_connections_per_client"}, {"limit", limit.per_client()}}})}}}
+          {{"limits", nlohmann::json::array(
+                          {{{"name", "max_connections_per_client"}, {"limit", limit.per_client()}}})}}}
       .write(res);
   close_after_answer(req);
 }

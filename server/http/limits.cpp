@@ -3,9 +3,9 @@
 #include <malloc.h>
 
 #include <algorithm>
-#include <optional>
 #include <climits>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 

@@ -10,8 +10,8 @@
 #include "server/http/limits.hpp"
 #include "server/http/metrics.hpp"
 #include "server/jobs/job_files.hpp"
-#include "server/jobs/store/store.hpp"
 #include "server/jobs/running/worker_pool.hpp"
+#include "server/jobs/store/store.hpp"
 
 namespace stoss::server::http {
 

@@ -25,7 +25,8 @@ Problem invalid_scene(nlohmann::json errors) {
   std::string detail = n == 1 ? "the scene has 1 error" : "the scene has " + std::to_string(n) + " errors";
   if (n > 0) {
     const std::string pointer = errors[0].value("pointer", "");
-    detail += ", the first: " + (pointer.empty() ? "the scene " : pointer + ": ") + errors[0].value("message", "");
+    detail +=
+        ", the first: " + (pointer.empty() ? "the scene " : pointer + ": ") + errors[0].value("message", "");
   }
   return {422, "urn:stoss:problem:invalid-scene", "Invalid scene", detail, {{"errors", std::move(errors)}}};
 }
@@ -49,7 +50,10 @@ Problem body_too_large(std::size_t limit, std::optional<unsigned long long> valu
     detail = "the body has " + std::to_string(*value) +
              " bytes, more than the server limit max_body_bytes = " + std::to_string(limit);
   }
-  return {413, "urn:stoss:problem:limit-exceeded", "Request body too large", detail,
+  return {413,
+          "urn:stoss:problem:limit-exceeded",
+          "Request body too large",
+          detail,
           {{"limits", nlohmann::json::array({entry})}}};
 }
 
@@ -62,24 +66,24 @@ nlohmann::json parse_json_body(const httplib::Request& req, const Limits& limits
   // JSON is accepted whatever the Content-Type says (curl sends application/x-www-form-urlencoded by
   // default); a body that is not JSON and not declared as JSON is of a type no route takes.
   if (!declared_json && !looks_like_json(req.body))
-    throw ProblemError(Problem{
-        415,
-        "urn:stoss:problem:unsupported-media-type",
-        "Unsupported Media Type",
-        "the body is not JSON" + (type.empty() ? std::string() : " (Content-Type " + type + ")") +
-            "; this route takes application/json",
-        {{"expected", nlohmann::json::array({"application/json"})}}});
+    throw ProblemError(Problem{415,
+                               "urn:stoss:problem:unsupported-media-type",
+                               "Unsupported Media Type",
+                               "the body is not JSON" +
+                                   (type.empty() ? std::string() : " (Content-Type " + type + ")") +
+                                   "; this route takes application/json",
+                               {{"expected", nlohmann::json::array({"application/json"})}}});
   try {
     return parse_json_input(req.body);
   } catch (const JsonInputError& e) {
     if (e.kind == JsonInputError::Kind::too_deep)
-      throw ProblemError(Problem{400,
-                                 "urn:stoss:problem:too-deep",
-                                 "JSON nested too deeply",
-                                 std::string("the body is not usable JSON: ") + e.what(),
-                                 {{"limits", nlohmann::json::array({{{"name", "max_json_depth"},
-                                                                     {"limit", max_json_depth}}})},
-                                  {"byte", e.byte.value_or(0)}}});
+      throw ProblemError(Problem{
+          400,
+          "urn:stoss:problem:too-deep",
+          "JSON nested too deeply",
+          std::string("the body is not usable JSON: ") + e.what(),
+          {{"limits", nlohmann::json::array({{{"name", "max_json_depth"}, {"limit", max_json_depth}}})},
+           {"byte", e.byte.value_or(0)}}});
     Problem p{400, "urn:stoss:problem:malformed-json", "Malformed JSON",
               std::string(e.byte ? "the body is not JSON: " : "the body is not usable JSON: ") + e.what()};
     if (e.byte) p.extra["byte"] = *e.byte;
@@ -87,8 +91,8 @@ nlohmann::json parse_json_body(const httplib::Request& req, const Limits& limits
   }
 }
 
-scene::Summary check_scene(const nlohmann::json& scene, const Limits& limits, const scene::MeshFiles& mesh_files,
-                           nlohmann::json* resolved) {
+scene::Summary check_scene(const nlohmann::json& scene, const Limits& limits,
+                           const scene::MeshFiles& mesh_files, nlohmann::json* resolved) {
   if (auto problem = check_scene_limits_early(scene, limits)) throw ProblemError(*problem);
   scene::Summary summary;
   try {

@@ -117,7 +117,8 @@ std::vector<model::Scheme> check_schemes(const nlohmann::json& body, nlohmann::j
     if (scheme)
       schemes.push_back(*scheme);
     else
-      add(errors, "/schemes/" + std::to_string(i), "must be one of " + scheme_names() + ", got " + describe(name));
+      add(errors, "/schemes/" + std::to_string(i),
+          "must be one of " + scheme_names() + ", got " + describe(name));
   }
   return schemes;
 }
@@ -143,8 +144,9 @@ int check_repeat(const nlohmann::json& body, nlohmann::json& errors) {
 }
 
 /// Checks the scene (its own step and frames aside); its 422 errors are added under /scene, a 413 is thrown.
-scene::Summary check_study_scene(const nlohmann::json& body, const Limits& limits, const scene::MeshFiles& mesh_files,
-                                 nlohmann::json& resolved, nlohmann::json& errors) {
+scene::Summary check_study_scene(const nlohmann::json& body, const Limits& limits,
+                                 const scene::MeshFiles& mesh_files, nlohmann::json& resolved,
+                                 nlohmann::json& errors) {
   if (!body.contains("scene")) {
     add(errors, "/scene", "is required: the scene to study");
     return {};
@@ -166,7 +168,8 @@ Problem invalid_study(nlohmann::json errors) {
   const std::size_t n = errors.size();
   std::string detail = n == 1 ? "the study has 1 error" : "the study has " + std::to_string(n) + " errors";
   const std::string pointer = errors[0].value("pointer", "");
-  detail += ", the first: " + (pointer.empty() ? "the study " : pointer + ": ") + errors[0].value("message", "");
+  detail +=
+      ", the first: " + (pointer.empty() ? "the study " : pointer + ": ") + errors[0].value("message", "");
   return {422, "urn:stoss:problem:invalid-study", "Invalid study", detail, {{"errors", std::move(errors)}}};
 }
 
@@ -213,7 +216,8 @@ void check_run_limit(const study::Options& options, const nlohmann::json& time, 
 
 }  // namespace
 
-StudyRequest check_study(const nlohmann::json& body, const Limits& limits, const scene::MeshFiles& mesh_files) {
+StudyRequest check_study(const nlohmann::json& body, const Limits& limits,
+                         const scene::MeshFiles& mesh_files) {
   if (!body.is_object()) {
     nlohmann::json errors = nlohmann::json::array();
     add(errors, "", "must be an object {\"scene\": {...}, \"steps\": [...]}, got " + describe(body));

@@ -28,6 +28,7 @@ struct StudyRequest {
 /// finest run (the reference, a finer swept step, or with tolerances end/min_step) exceeds max_steps. The
 /// scene's own time.step and output frames are not checked against max_steps and max_frames: a study replaces
 /// the step and writes no frames. Mesh ids of the scene are resolved by `mesh_files`.
-StudyRequest check_study(const nlohmann::json& body, const Limits& limits, const scene::MeshFiles& mesh_files = {});
+StudyRequest check_study(const nlohmann::json& body, const Limits& limits,
+                         const scene::MeshFiles& mesh_files = {});
 
 }  // namespace stoss::server::http

@@ -127,8 +127,9 @@ std::string JobFiles::read_log(const JobId& id) const {
 }
 
 std::optional<fs::path> JobFiles::stored_mesh(const std::string& id) const {
-  const bool hex = id.size() == 64 &&
-                   std::all_of(id.begin(), id.end(), [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
+  const bool hex = id.size() == 64 && std::all_of(id.begin(), id.end(), [](char c) {
+                     return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+                   });
   if (!hex) return std::nullopt;
   for (const char* extension : {".msh", ".inp"}) {
     const fs::path path = meshes_ / (id + extension);

@@ -95,7 +95,8 @@ class JobFiles {
   AttemptFiles prepare_attempt(const JobId& id, int attempt) const;
   /// Once attempt `attempt` recorded a succeeded outcome, removes the checkpoints and partial files of it
   /// and of the attempts before it whose job process no longer runs here (one stopped past its lease
-  /// keeps its files): any later attempt adopts that outcome instead of resuming, and none is ever served. Logs, outcomes and complete results stay (a rescuer may be adopting one).
+  /// keeps its files): any later attempt adopts that outcome instead of resuming, and none is ever served.
+  /// Logs, outcomes and complete results stay (a rescuer may be adopting one).
   void prune_through(const JobId& id, int attempt) const;
   /// Removes the job's directory and everything in it.
   void remove(const JobId& id) const;

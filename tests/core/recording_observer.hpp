@@ -1,13 +1,12 @@
 #pragma once
 // Test helper: keeps every series row and frame of a run in memory.
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "core/model/observer.hpp"
 

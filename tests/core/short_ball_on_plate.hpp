@@ -16,8 +16,10 @@ struct ShortBallOnPlate {
 };
 
 inline nlohmann::json short_ball_on_plate(const ShortBallOnPlate& o) {
-  nlohmann::json contact = {
-      {"slave", "ball/outer"}, {"master", "plate/top"}, {"enforcement", o.enforcement}, {"switch_hysteresis", 0.05}};
+  nlohmann::json contact = {{"slave", "ball/outer"},
+                            {"master", "plate/top"},
+                            {"enforcement", o.enforcement},
+                            {"switch_hysteresis", 0.05}};
   const bool friction = o.enforcement == "penalty";
   if (friction) contact["friction"] = 0.2;
   if (o.persist) contact["impact"] = "persist";

@@ -30,7 +30,9 @@ model::Model example(const std::string& file, double end) {
   return m;
 }
 
-bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
+bool same_bits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
 
 /// Index of the first entry whose bits differ, -1 when every bit agrees (sizes included).
 long first_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {

@@ -39,12 +39,20 @@ json stacked_blocks(const std::string& master_surface, Grids grids) {
   return {{"format", "stoss-scene/1"},
           {"bodies",
            {{{"name", "lower"},
-             {"mesh", {{"box", {{"min", {0, 0, 0}}, {"max", {1, 1, 0.5}}, {"divisions", {grids.lower, grids.lower, 1}}}}}},
+             {"mesh",
+              {{"box",
+                {{"min", {0, 0, 0}}, {"max", {1, 1, 0.5}}, {"divisions", {grids.lower, grids.lower, 1}}}}}},
              {"material", material}},
             {{"name", "upper"},
-             {"mesh", {{"box", {{"min", {0, 0, 0.5}}, {"max", {1, 1, 0.5 + upper_height}}, {"divisions", {grids.upper, grids.upper, 1}}}}}},
+             {"mesh",
+              {{"box",
+                {{"min", {0, 0, 0.5}},
+                 {"max", {1, 1, 0.5 + upper_height}},
+                 {"divisions", {grids.upper, grids.upper, 1}}}}}},
              {"material", material}}}},
-          {"contact", json::array({{{"slave", "upper/bottom"}, {"master", "lower/top"}, {"master_surface", master_surface}}})},
+          {"contact",
+           json::array(
+               {{{"slave", "upper/bottom"}, {"master", "lower/top"}, {"master_surface", master_surface}}})},
           {"boundary", json::array({{{"surface", "lower/bottom"}}})},
           {"gravity", {0, 0, -gravity}},
           {"time", {{"scheme", "hht"}, {"alpha", -1.0 / 3}, {"step", 0.04}, {"end", 16.0}}}};
@@ -55,8 +63,8 @@ json stacked_blocks(const std::string& master_surface, Grids grids) {
 Eigen::VectorXd external_force_at_rest(const model::Model& m, const Eigen::VectorXd& x) {
   const auto geometry = fem::precompute_mesh(m.mesh);
   const auto material = std::make_shared<const fem::SaintVenantKirchhoff>(1000, 0);
-  fem::ElasticityTerm elasticity(m.mesh, geometry,
-                                 std::vector<std::shared_ptr<const fem::Material>>(m.mesh.element_count(), material));
+  fem::ElasticityTerm elasticity(
+      m.mesh, geometry, std::vector<std::shared_ptr<const fem::Material>>(m.mesh.element_count(), material));
   Eigen::VectorXd f = Eigen::VectorXd::Zero(x.size()), zero = Eigen::VectorXd::Zero(x.size());
   // h = 1 and x_n = x: the midpoint rule's residual of the elastic term is exactly f_int(x).
   elasticity.add(time::StepContext{x, zero, 1.0, time::ForceRule::midpoint()}, x, f, nullptr);
@@ -66,14 +74,14 @@ Eigen::VectorXd external_force_at_rest(const model::Model& m, const Eigen::Vecto
 }
 
 struct PatchResult {
-  double total_force = 0;       ///< Σ_I f_I·e_z over the interface nodes of the upper block, f = f_int − M g
-  double normal_force = 0;      ///< Σ p_I A_I over the slave nodes: the normal contact forces the run reports
+  double total_force = 0;   ///< Σ_I f_I·e_z over the interface nodes of the upper block, f = f_int − M g
+  double normal_force = 0;  ///< Σ p_I A_I over the slave nodes: the normal contact forces the run reports
   double free_node_force = 0;   ///< largest |f_int − M g| on the upper block's top nodes (0 at rest)
   double pressure_scatter = 0;  ///< max_I |p_I − p| / p over the slave nodes (reported pressures)
-  double force_scatter = 0;     ///< max_I |f_I·e_z / A_I − p| / p over the slave nodes (from the elastic state)
-  double top_scatter = 0;       ///< spread of the upper block's top heights over its mean settlement
+  double force_scatter = 0;  ///< max_I |f_I·e_z / A_I − p| / p over the slave nodes (from the elastic state)
+  double top_scatter = 0;    ///< spread of the upper block's top heights over its mean settlement
   double max_penetration = 0;
-  double speed = 0;             ///< largest nodal speed at the end
+  double speed = 0;  ///< largest nodal speed at the end
   int slave_nodes = 0;
 };
 
@@ -97,7 +105,8 @@ PatchResult run(const std::string& master_surface, bool upper_is_slave = true, G
   const model::Frame& last = r.frames.back();
   PatchResult out;
   const Eigen::VectorXd f = external_force_at_rest(m, last.position);
-  for (int I : m.mesh.surface_nodes("upper/top")) out.free_node_force = std::max(out.free_node_force, f.segment<3>(3 * I).norm());
+  for (int I : m.mesh.surface_nodes("upper/top"))
+    out.free_node_force = std::max(out.free_node_force, f.segment<3>(3 * I).norm());
   for (int I : m.mesh.surface_nodes("upper/bottom")) out.total_force += f[3 * I + 2];
   const std::vector<int> slaves = m.mesh.surface_nodes(m.contact.at(0).slave);
   const int n = upper_is_slave ? grids.upper : grids.lower;
@@ -105,8 +114,10 @@ PatchResult run(const std::string& master_surface, bool upper_is_slave = true, G
   for (int I : slaves) {
     const double area = tributary_area(m.mesh.nodes[I], n);
     out.normal_force += last.contact_pressure[I] * area;
-    out.pressure_scatter = std::max(out.pressure_scatter, std::abs(last.contact_pressure[I] - pressure) / pressure);
-    out.force_scatter = std::max(out.force_scatter, std::abs(std::abs(f[3 * I + 2]) / area - pressure) / pressure);
+    out.pressure_scatter =
+        std::max(out.pressure_scatter, std::abs(last.contact_pressure[I] - pressure) / pressure);
+    out.force_scatter =
+        std::max(out.force_scatter, std::abs(std::abs(f[3 * I + 2]) / area - pressure) / pressure);
   }
   double low = 1e300, high = -1e300;
   for (int I : m.mesh.surface_nodes("upper/top")) {
@@ -115,13 +126,18 @@ PatchResult run(const std::string& master_surface, bool upper_is_slave = true, G
   }
   out.top_scatter = (high - low) / (1.0 - 0.5 * (high + low));
   out.max_penetration = s.max_penetration;
-  for (int I = 0; I < m.mesh.node_count(); ++I) out.speed = std::max(out.speed, last.velocity.segment<3>(3 * I).norm());
-  std::printf("B5 %d×%d on %d×%d, %-7s slave %-12s total force / load − 1 = %.1e (reported normal forces: %.1e), largest force on a "
-              "free node %.1e, pressure scatter %.2f %% (reported) %.2f %% (elastic), top height spread %.2f %% of the "
-              "settlement, max penetration %.1e, speed at the end %.1e\n",
-              grids.upper, grids.upper, grids.lower, grids.lower, master_surface.c_str(), m.contact.at(0).slave.c_str(), out.total_force / pressure - 1,
-              out.normal_force / pressure - 1, out.free_node_force, 100 * out.pressure_scatter, 100 * out.force_scatter,
-              100 * out.top_scatter, out.max_penetration, out.speed);
+  for (int I = 0; I < m.mesh.node_count(); ++I)
+    out.speed = std::max(out.speed, last.velocity.segment<3>(3 * I).norm());
+  std::printf(
+      "B5 %d×%d on %d×%d, %-7s slave %-12s total force / load − 1 = %.1e (reported normal forces: %.1e), "
+      "largest force on a "
+      "free node %.1e, pressure scatter %.2f %% (reported) %.2f %% (elastic), top height spread %.2f %% of "
+      "the "
+      "settlement, max penetration %.1e, speed at the end %.1e\n",
+      grids.upper, grids.upper, grids.lower, grids.lower, master_surface.c_str(),
+      m.contact.at(0).slave.c_str(), out.total_force / pressure - 1, out.normal_force / pressure - 1,
+      out.free_node_force, 100 * out.pressure_scatter, 100 * out.force_scatter, 100 * out.top_scatter,
+      out.max_penetration, out.speed);
   return out;
 }
 
@@ -142,7 +158,8 @@ TEST(ContactPatch, NonMatchingBlocksPassTheWholeLoadWithoutPenetration) {
     EXPECT_NEAR(b5.total_force, pressure * 1.0, 1e-8 * pressure) << surface;
     EXPECT_LT(b5.max_penetration, 1e-9) << surface;
     EXPECT_LT(b5.free_node_force, 1e-8 * pressure) << surface << ": in equilibrium";
-    EXPECT_NEAR(b5.normal_force, pressure, 1e-4 * pressure) << surface << ": the reported forces, normal to a tilted surface";
+    EXPECT_NEAR(b5.normal_force, pressure, 1e-4 * pressure)
+        << surface << ": the reported forces, normal to a tilted surface";
     EXPECT_NEAR(b5.force_scatter, b5.pressure_scatter, 1e-3) << surface;
   }
 }
@@ -172,4 +189,3 @@ TEST(ContactPatch, MatchingMeshesPassOnTheFacetedSurfaceOnly) {
 
 }  // namespace
 }  // namespace stoss
-

@@ -26,7 +26,8 @@ struct ThreadedRun {
 
 void expect_same_bits(const ThreadedRun& a, const ThreadedRun& b) {
   ASSERT_EQ(a.r.rows.size(), b.r.rows.size());
-  for (const char* name : {"total_energy", "kinetic_energy", "strain_energy", "active_contacts", "newton_iterations"})
+  for (const char* name :
+       {"total_energy", "kinetic_energy", "strain_energy", "active_contacts", "newton_iterations"})
     EXPECT_EQ(a.r.series(name), b.r.series(name)) << name;
   ASSERT_EQ(a.r.frames.size(), b.r.frames.size());
   EXPECT_EQ(a.r.frames.back().position, b.r.frames.back().position);

@@ -303,7 +303,8 @@ TEST(FrictionBallPlate, RunsToTheEndKeepsEnergyBeforeImpactAndNeverGainsAfter) {
   // The default smooth master surface: no kinks, and the patch element's force is a discrete gradient
   // (docs/smooth_master_surface.md §3.9), so H + D never rises, face switches included.
   EXPECT_EQ(scene::load_file(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate_friction.json")
-                .contact.at(0).master_surface,
+                .contact.at(0)
+                .master_surface,
             model::MasterSurface::smooth);
   EXPECT_LT(before, 1e-8) << "before the impact: the frictionless bound (test_hollow_ball_plate.cpp)";
   EXPECT_LT(rise, 1e-10) << "the largest rise of H per step (measured 3.1e-12 H0)";
@@ -330,7 +331,8 @@ TEST(FrictionBallPlate, KeepingTheGapAtAFacetedSwitchMakesHPlusDExact) {
   m.contact.at(0).switch_gap = model::SwitchGap::keep;
   RecordingObserver r;
   ASSERT_TRUE(simulate(m, r).completed);
-  const auto H = r.series("total_energy"), D = r.series("dissipated_energy"), jump = r.series("contact_energy_jump");
+  const auto H = r.series("total_energy"), D = r.series("dissipated_energy"),
+             jump = r.series("contact_energy_jump");
   double rise_with_D = -1e300, largest_jump = 0;
   for (size_t n = 1; n < H.size(); ++n) {
     rise_with_D = std::max(rise_with_D, (H[n] - H[n - 1] + D[n] - D[n - 1]) / H[0]);
@@ -340,8 +342,9 @@ TEST(FrictionBallPlate, KeepingTheGapAtAFacetedSwitchMakesHPlusDExact) {
   EXPECT_LT(largest_jump, 1e-14) << "W_N continues across the switch";
   EXPECT_GT(D.back(), 0);
   EXPECT_LT(r.summary.max_penetration, 0.01 * ball_face_size);
-  std::printf("ball μ = 0.2, faceted, switch_gap keep: largest rise of H + D per step %+.2e H0, penetration %.2e\n",
-              rise_with_D, r.summary.max_penetration);
+  std::printf(
+      "ball μ = 0.2, faceted, switch_gap keep: largest rise of H + D per step %+.2e H0, penetration %.2e\n",
+      rise_with_D, r.summary.max_penetration);
 }
 
 TEST(FrictionBallPlate, FrictionSpinsTheBall) {
@@ -378,7 +381,8 @@ TEST(FrictionBallPlate, PenetrationStaysBelowOnePercentOfTheFaceSize) {
   const auto pen = r.series("max_penetration");
   const double worst = *std::max_element(pen.begin(), pen.end());
   EXPECT_GT(worst, 0) << "penalty contact penetrates";
-  EXPECT_LT(worst, 0.01 * ball_face_size) << "default ε_N = 10 E ℓ = 2.5e4 (measured 7.2e-4 = 0.29 %, closest face)";
+  EXPECT_LT(worst, 0.01 * ball_face_size)
+      << "default ε_N = 10 E ℓ = 2.5e4 (measured 7.2e-4 = 0.29 %, closest face)";
   std::printf("ball μ = 0.2: max penetration %.3e = %.3f %% of the face size\n", worst,
               100 * worst / ball_face_size);
   RecordProperty("max_penetration", std::to_string(worst));

@@ -44,7 +44,8 @@ const RecordingObserver& run(model::Scheme scheme, MasterSurface surface = Maste
 }
 
 TEST(HollowBallPlate, DefaultIsTheSmoothSurfaceWithTheGapKeptAtSwitches) {
-  const model::Model m = scene::load_file(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json");
+  const model::Model m =
+      scene::load_file(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json");
   EXPECT_EQ(m.contact.at(0).master_surface, MasterSurface::smooth);
   EXPECT_EQ(m.contact.at(0).switch_gap, model::SwitchGap::keep);
   EXPECT_EQ(m.scene["contact"][0]["master_surface"], "smooth") << "the resolved scene says so";
@@ -71,13 +72,16 @@ TEST(HollowBallPlate, SmoothSurfaceConservesEnergyInEveryStepFaceSwitchesInclude
   const auto [first, last] = r.contact_window();
   EXPECT_NEAR(first, 0.31, 0.015);
   EXPECT_GT(last, 0.6);
-  std::printf("smooth EM: max |ΔH|/H0 per step %.1e, drift %.1e, switches %g, max jump %.1e H0, Newton its/step %.2f\n",
-              worst_step, r.summary.energy_drift, total_switches, worst_jump, r.summary.newton_iterations_per_step);
+  std::printf(
+      "smooth EM: max |ΔH|/H0 per step %.1e, drift %.1e, switches %g, max jump %.1e H0, Newton its/step "
+      "%.2f\n",
+      worst_step, r.summary.energy_drift, total_switches, worst_jump, r.summary.newton_iterations_per_step);
 }
 
 TEST(HollowBallPlate, SmoothSurfacePenetrationStaysBelowAQuarterPercentOfAFace) {
   const RecordingObserver& r = run(model::Scheme::energy_momentum, MasterSurface::smooth);
-  EXPECT_LT(r.summary.max_penetration, 0.0025 * master_face_size) << "against the smooth surface contact uses";
+  EXPECT_LT(r.summary.max_penetration, 0.0025 * master_face_size)
+      << "against the smooth surface contact uses";
   const auto unprojected = r.series("unprojected_nodes");
   EXPECT_EQ(*std::max_element(unprojected.begin(), unprojected.end()), 0);
   std::printf("smooth EM: penetration %.2e (own patch %.2e), faceted mesh %.2e\n", r.summary.max_penetration,
@@ -206,7 +210,8 @@ TEST(HollowBallPlate, MidpointCompletesWithMomentaAndRecordsItsEnergyError) {
 // surface across the edge between top and xmax (and past the extraordinary corners), no energy jump
 // at the edge, no blind spot.
 TEST(HollowBallPlate, SmoothWholeBoundaryMasterTakesTheBallOnItsEdgeExactly) {
-  nlohmann::json scene = nlohmann::json::parse(std::ifstream(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json"));
+  nlohmann::json scene = nlohmann::json::parse(
+      std::ifstream(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json"));
   scene["bodies"][0]["mesh"]["hollow_sphere"]["center"] = {2.0, 0.5, 1.3};  // the pole over the edge x = 2
   scene["bodies"][0]["initial_velocity"] = {0, 0, -1};
   scene["contact"][0]["master"] = "plate/boundary";
@@ -222,9 +227,10 @@ TEST(HollowBallPlate, SmoothWholeBoundaryMasterTakesTheBallOnItsEdgeExactly) {
   EXPECT_LT(r.vector_drift("linear_momentum"), 1e-10);
   EXPECT_LT(r.vector_drift("angular_momentum"), 1e-10);
   EXPECT_LT(r.summary.max_penetration, 0.0025 * master_face_size);
-  std::printf("edge impact, whole-boundary master: energy %.1e, max active %g, penetration %.1e, %.1f its/step\n",
-              r.summary.energy_drift, *std::max_element(active.begin(), active.end()), r.summary.max_penetration,
-              r.summary.newton_iterations_per_step);
+  std::printf(
+      "edge impact, whole-boundary master: energy %.1e, max active %g, penetration %.1e, %.1f its/step\n",
+      r.summary.energy_drift, *std::max_element(active.begin(), active.end()), r.summary.max_penetration,
+      r.summary.newton_iterations_per_step);
 }
 
 TEST(HollowBallPlate, SmoothSurfaceMidpointAndHhtCompleteWithTheirMomentaAndRecordTheirEnergy) {

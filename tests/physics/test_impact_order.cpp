@@ -44,14 +44,16 @@ BarsRun run_bars(model::ImpactMode mode, double h) {
 /// Largest nodal distance between two position vectors (3 per node).
 double largest_distance(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   double d = 0;
-  for (Eigen::Index I = 0; I < a.size() / 3; ++I) d = std::max(d, (a.segment<3>(3 * I) - b.segment<3>(3 * I)).norm());
+  for (Eigen::Index I = 0; I < a.size() / 3; ++I)
+    d = std::max(d, (a.segment<3>(3 * I) - b.segment<3>(3 * I)).norm());
   return d;
 }
 
 TEST(ImpactOrder, LocatedConvergesAtSecondOrderThroughTheBarsImpactWherePersistDoesNot) {
   double located_ratio = 0, persist_ratio = 0;
   for (model::ImpactMode mode : {model::ImpactMode::located, model::ImpactMode::persist}) {
-    const BarsRun reference = run_bars(mode, 0.000625), coarse = run_bars(mode, 0.005), fine = run_bars(mode, 0.0025);
+    const BarsRun reference = run_bars(mode, 0.000625), coarse = run_bars(mode, 0.005),
+                  fine = run_bars(mode, 0.0025);
     const double e_coarse = largest_distance(coarse.last_position, reference.last_position);
     const double e_fine = largest_distance(fine.last_position, reference.last_position);
     (mode == model::ImpactMode::located ? located_ratio : persist_ratio) = e_coarse / e_fine;
@@ -62,7 +64,8 @@ TEST(ImpactOrder, LocatedConvergesAtSecondOrderThroughTheBarsImpactWherePersistD
       EXPECT_LT(r->summary.max_penetration, 1e-9) << "no penetration beyond the Newton tolerance";
     }
     std::printf("bars, %s: errors %.3e (h = 0.005), %.3e (h = 0.0025), ratio %.2f\n",
-                mode == model::ImpactMode::located ? "located" : "persist", e_coarse, e_fine, e_coarse / e_fine);
+                mode == model::ImpactMode::located ? "located" : "persist", e_coarse, e_fine,
+                e_coarse / e_fine);
   }
   EXPECT_GE(located_ratio, 3.5) << "second order: at least 3.5x per halving";
   EXPECT_LT(persist_ratio, 2.5) << "the comparison itself: persist is first order here";

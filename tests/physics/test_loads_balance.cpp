@@ -19,7 +19,8 @@ double worst_step_balance(const testing::RecordingObserver& r) {
   const auto H = r.series("total_energy"), W = r.series("external_work");
   double largest = 0, worst = 0;
   for (double h : H) largest = std::max(largest, std::abs(h));
-  for (size_t n = 1; n < H.size(); ++n) worst = std::max(worst, std::abs((H[n] - W[n]) - (H[n - 1] - W[n - 1])));
+  for (size_t n = 1; n < H.size(); ++n)
+    worst = std::max(worst, std::abs((H[n] - W[n]) - (H[n - 1] - W[n - 1])));
   return worst / largest;
 }
 

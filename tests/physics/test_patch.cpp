@@ -15,7 +15,8 @@ TEST(Patch, UniformStretchGivesZeroInteriorForceAndAnalyticTractions) {
   box.nodes[13] += Eigen::Vector3d(0.07, -0.05, 0.04);  // distort the interior node (1,1,1)
   mesh.add_body("patch", box);
   const auto material = std::make_shared<const SaintVenantKirchhoff>(2e3, 0.3);
-  ElasticityTerm elasticity(mesh, precompute_mesh(mesh), std::vector<std::shared_ptr<const Material>>(8, material));
+  ElasticityTerm elasticity(mesh, precompute_mesh(mesh),
+                            std::vector<std::shared_ptr<const Material>>(8, material));
 
   const Eigen::Matrix3d F = (Eigen::Matrix3d() << 1.08, 0.03, 0, 0.01, 0.95, 0.02, 0, 0.04, 1.03).finished();
   Eigen::VectorXd x(3 * mesh.node_count());

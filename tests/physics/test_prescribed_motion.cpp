@@ -19,7 +19,8 @@ double worst_step_balance(const testing::RecordingObserver& r) {
   const auto H = r.series("total_energy"), W = r.series("external_work");
   double largest = 0, worst = 0;
   for (double h : H) largest = std::max(largest, std::abs(h));
-  for (size_t n = 1; n < H.size(); ++n) worst = std::max(worst, std::abs((H[n] - W[n]) - (H[n - 1] - W[n - 1])));
+  for (size_t n = 1; n < H.size(); ++n)
+    worst = std::max(worst, std::abs((H[n] - W[n]) - (H[n - 1] - W[n - 1])));
   return worst / largest;
 }
 
@@ -72,7 +73,8 @@ TEST(PrescribedMotion, ThePrescribedSurfaceEndsWhereTheAmplitudeSaysInEverySchem
     for (int I : bottom) EXPECT_EQ(x[3 * I + 2], 0.0) << scheme;
     // The bottom holds the block down as hard as the top pulls it up, once the block is static.
     if (std::string(scheme) == "static") {
-      const double top_force = r.series("reaction_force", 5).back(), bottom_force = r.series("reaction_force", 2).back();
+      const double top_force = r.series("reaction_force", 5).back(),
+                   bottom_force = r.series("reaction_force", 2).back();
       EXPECT_GT(top_force, 0);
       EXPECT_NEAR(top_force + bottom_force, 0, 1e-9 * top_force);
     }

@@ -36,7 +36,8 @@ json block_at_edge(const json& contact, bool sliding) {
              {"mesh", {{"box", {{"min", {0, 0, 0}}, {"max", {2, 2, 1}}, {"divisions", {4, 4, 2}}}}}},
              {"material", material}},
             {{"name", "block"},
-             {"mesh", {{"box", {{"min", {2.02, 0.8, 1.03}}, {"max", {2.42, 1.2, 1.43}}, {"divisions", {2, 2, 2}}}}}},
+             {"mesh",
+              {{"box", {{"min", {2.02, 0.8, 1.03}}, {"max", {2.42, 1.2, 1.43}}, {"divisions", {2, 2, 2}}}}}},
              {"material", material},
              {"initial_velocity", {-1.0, 0.1, -1.6}},
              {"initial_angular_velocity", {0, 0.5, 0}}}}},
@@ -64,19 +65,22 @@ EdgeRun run(const json& contact, bool sliding) {
   EXPECT_TRUE(r.all_finite());
   for (double u : r.series("unprojected_nodes")) out.max_unprojected = std::max(out.max_unprojected, int(u));
   for (double a : r.series("active_contacts")) out.max_active = std::max(out.max_active, int(a));
-  for (double j : r.series("contact_energy_jump")) out.max_energy_jump = std::max(out.max_energy_jump, std::abs(j));
+  for (double j : r.series("contact_energy_jump"))
+    out.max_energy_jump = std::max(out.max_energy_jump, std::abs(j));
   out.max_energy_jump /= out.summary.initial_energy;
   const mesh::Body& block = m.mesh.bodies.at(1);
   out.block_end_centre.setZero();
-  for (int I = block.node_begin; I < block.node_end; ++I) out.block_end_centre += r.frames.back().position.segment<3>(3 * I);
+  for (int I = block.node_begin; I < block.node_end; ++I)
+    out.block_end_centre += r.frames.back().position.segment<3>(3 * I);
   out.block_end_centre /= block.node_end - block.node_begin;
   return out;
 }
 
 void print(const char* label, const EdgeRun& e) {
-  std::printf("%-30s |ΔH|/H0 %.1e, max jump %.1e H0, unprojected ≤ %d, active ≤ %d, %.1f Newton its/step, L %.1e\n",
-              label, e.summary.energy_drift, e.max_energy_jump, e.max_unprojected, e.max_active,
-              e.summary.newton_iterations_per_step, e.summary.linear_momentum_drift);
+  std::printf(
+      "%-30s |ΔH|/H0 %.1e, max jump %.1e H0, unprojected ≤ %d, active ≤ %d, %.1f Newton its/step, L %.1e\n",
+      label, e.summary.energy_drift, e.max_energy_jump, e.max_unprojected, e.max_active,
+      e.summary.newton_iterations_per_step, e.summary.linear_momentum_drift);
 }
 
 TEST(SurfaceEdge, ABlockThrownAtTheEdgeOfTopAndXmaxKeepsEnergyAndMomentaAndProjectsEveryNode) {
@@ -92,7 +96,8 @@ TEST(SurfaceEdge, ABlockThrownAtTheEdgeOfTopAndXmaxKeepsEnergyAndMomentaAndProje
 }
 
 TEST(SurfaceEdge, ABlockSlidingOverTheEdgeOfTopAndXmaxKeepsEnergyAndProjectsEveryNode) {
-  const model::Model example = scene::load_file(std::string(STOSS_SOURCE_DIR) + "/api/examples/block_over_edge.json");
+  const model::Model example =
+      scene::load_file(std::string(STOSS_SOURCE_DIR) + "/api/examples/block_over_edge.json");
   EXPECT_EQ(example.contact.at(0).master, "box/top+xmax");
   EXPECT_EQ(example.contact.at(0).master_surface, model::MasterSurface::smooth);
   const EdgeRun smooth = run(json::array({pair({"box/top", "box/xmax"}, "smooth")}), true);

@@ -54,8 +54,8 @@ TEST_P(TumblingSphere, NeoHookeanEnergyMomentumConservesEnergyAndMomentaEverySte
   EXPECT_LT(run.linear_error, 1e-10);
   EXPECT_LT(run.angular_error, 1e-10);
   EXPECT_GT(max_drift(run.r.series("strain_energy"), run.r.series("total_energy").front()), 1e-6);
-  std::printf("neo-Hookean energy error on %s: %.3e, momenta %.3e %.3e\n", GetParam().c_str(), run.energy_error,
-              run.linear_error, run.angular_error);
+  std::printf("neo-Hookean energy error on %s: %.3e, momenta %.3e %.3e\n", GetParam().c_str(),
+              run.energy_error, run.linear_error, run.angular_error);
 }
 
 TEST_P(TumblingSphere, MidpointConservesMomenta) {
@@ -68,12 +68,15 @@ TEST_P(TumblingSphere, MidpointConservesMomenta) {
 
 INSTANTIATE_TEST_SUITE_P(Examples, TumblingSphere,
                          ::testing::Values("tumbling_sphere.json", "tumbling_sphere_hard.json"),
-                         [](const auto& info) { return info.param == "tumbling_sphere.json" ? "h001" : "h005"; });
+                         [](const auto& info) {
+                           return info.param == "tumbling_sphere.json" ? "h001" : "h005";
+                         });
 
 TEST(TumblingSphereHard, MidpointEnergyErrorExceedsEnergyMomentum) {
   SchemeRun em(example("tumbling_sphere_hard.json", model::Scheme::energy_momentum));
   SchemeRun mp(example("tumbling_sphere_hard.json", model::Scheme::midpoint));
-  std::printf("h = 0.05: energy error midpoint %.3e, energy_momentum %.3e\n", mp.energy_error, em.energy_error);
+  std::printf("h = 0.05: energy error midpoint %.3e, energy_momentum %.3e\n", mp.energy_error,
+              em.energy_error);
   EXPECT_GT(mp.energy_error, 10 * em.energy_error);
 }
 

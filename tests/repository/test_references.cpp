@@ -15,9 +15,9 @@ namespace fs = std::filesystem;
 TEST(Repository, CitesNoDocumentOutsideIt) {
   const fs::path root = STOSS_SOURCE_DIR;
   // Spelled in two pieces so that this file does not match itself.
-  const std::vector<std::string> outside = {std::string("formulation") + ".md", std::string("service") + ".md",
-                                            std::string("../") + "shared", std::string("shared/") + "design",
-                                            std::string("reference/") + "prototype"};
+  const std::vector<std::string> outside = {
+      std::string("formulation") + ".md", std::string("service") + ".md", std::string("../") + "shared",
+      std::string("shared/") + "design", std::string("reference/") + "prototype"};
   int files = 0;
   for (const char* top : {"core", "server", "tests", "api", "bench", "deploy", "docs", "scripts"}) {
     if (!fs::exists(root / top)) continue;
@@ -37,7 +37,8 @@ TEST(Repository, CitesNoDocumentOutsideIt) {
     std::ifstream in(root / file);
     std::stringstream text;
     text << in.rdbuf();
-    for (const std::string& s : outside) EXPECT_EQ(text.str().find(s), std::string::npos) << file << " cites " << s;
+    for (const std::string& s : outside)
+      EXPECT_EQ(text.str().find(s), std::string::npos) << file << " cites " << s;
   }
   EXPECT_GT(files, 100);
 }

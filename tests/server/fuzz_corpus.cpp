@@ -21,7 +21,8 @@ void collect(nlohmann::json& node, std::vector<nlohmann::json*>& out) {
 
 FuzzCorpus::FuzzCorpus(std::uint64_t seed) : rng_(seed) {
   std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(STOSS_SOURCE_DIR) / "api/examples"))
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::filesystem::path(STOSS_SOURCE_DIR) / "api/examples"))
     if (entry.path().extension() == ".json") files.push_back(entry.path());
   std::sort(files.begin(), files.end());  // directory order is not deterministic
   for (const auto& file : files) {
@@ -35,29 +36,52 @@ FuzzCorpus::FuzzCorpus(std::uint64_t seed) : rng_(seed) {
 
 nlohmann::json FuzzCorpus::hostile_value() {
   switch (below(24)) {
-    case 0: return 4294967296.0;  // 2^32: truncated to 0 by a 32-bit cast
-    case 1: return 2147483648.0;
-    case 2: return -1;
-    case 3: return 0;
-    case 4: return 1e308;
-    case 5: return -1e308;
-    case 6: return 5e-324;
-    case 7: return 9007199254740993.0;
-    case 8: return std::numeric_limits<std::uint64_t>::max();
-    case 9: return std::numeric_limits<std::int64_t>::min();
-    case 10: return "";
-    case 11: return std::string(1 + below(5000), 'x');
-    case 12: return std::string("\xe2\x82\xac\xe2\x82", 5);  // a euro sign, then one cut after 2 bytes
-    case 13: return nullptr;
-    case 14: return true;
-    case 15: return nlohmann::json::array();
-    case 16: return nlohmann::json::object();
-    case 17: return nlohmann::json::array({0, 0, 0});
-    case 18: return nlohmann::json::array({1e300, -1e300, 1e-300});
-    case 19: return nlohmann::json::array({nlohmann::json::array({0, 1}), nlohmann::json::array({2})});
-    case 20: return 0.5;
-    case 21: return 1000000;
-    case 22: return "energy_momentum";
+    case 0:
+      return 4294967296.0;  // 2^32: truncated to 0 by a 32-bit cast
+    case 1:
+      return 2147483648.0;
+    case 2:
+      return -1;
+    case 3:
+      return 0;
+    case 4:
+      return 1e308;
+    case 5:
+      return -1e308;
+    case 6:
+      return 5e-324;
+    case 7:
+      return 9007199254740993.0;
+    case 8:
+      return std::numeric_limits<std::uint64_t>::max();
+    case 9:
+      return std::numeric_limits<std::int64_t>::min();
+    case 10:
+      return "";
+    case 11:
+      return std::string(1 + below(5000), 'x');
+    case 12:
+      return std::string("\xe2\x82\xac\xe2\x82", 5);  // a euro sign, then one cut after 2 bytes
+    case 13:
+      return nullptr;
+    case 14:
+      return true;
+    case 15:
+      return nlohmann::json::array();
+    case 16:
+      return nlohmann::json::object();
+    case 17:
+      return nlohmann::json::array({0, 0, 0});
+    case 18:
+      return nlohmann::json::array({1e300, -1e300, 1e-300});
+    case 19:
+      return nlohmann::json::array({nlohmann::json::array({0, 1}), nlohmann::json::array({2})});
+    case 20:
+      return 0.5;
+    case 21:
+      return 1000000;
+    case 22:
+      return "energy_momentum";
     default: {
       nlohmann::json deep = 1;
       for (std::size_t i = 0, n = 1 + below(40); i < n; ++i) deep = nlohmann::json::array({deep});
@@ -105,13 +129,27 @@ std::string FuzzCorpus::mutate_bytes(std::string text) {
     if (text.empty()) text = "{";
     const std::size_t at = below(text.size());
     switch (below(7)) {
-      case 0: text[at] = static_cast<char>(below(256)); break;
-      case 1: text.insert(at, 1, "{}[]\",:\\0-e."[below(12)]); break;
-      case 2: text.erase(at, 1 + below(16)); break;
-      case 3: text.resize(at); break;
-      case 4: text.insert(at, std::string(1 + below(400), below(2) ? '[' : '{')); break;
-      case 5: text.insert(at, below(2) ? "1e400" : "-0.0e-99999"); break;
-      default: text.insert(at, std::string("\xff\xfe\xc3", 1 + below(3))); break;
+      case 0:
+        text[at] = static_cast<char>(below(256));
+        break;
+      case 1:
+        text.insert(at, 1, "{}[]\",:\\0-e."[below(12)]);
+        break;
+      case 2:
+        text.erase(at, 1 + below(16));
+        break;
+      case 3:
+        text.resize(at);
+        break;
+      case 4:
+        text.insert(at, std::string(1 + below(400), below(2) ? '[' : '{'));
+        break;
+      case 5:
+        text.insert(at, below(2) ? "1e400" : "-0.0e-99999");
+        break;
+      default:
+        text.insert(at, std::string("\xff\xfe\xc3", 1 + below(3)));
+        break;
     }
   }
   return text;

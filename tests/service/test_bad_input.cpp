@@ -204,7 +204,8 @@ TEST_F(BadInput, AnInvalidStudyIs422WithThePointerOfEachError) {
     EXPECT_EQ(error_pointers(p), pointers) << what << ": " << p.dump();
   }
   const auto p = problem(submit_study(c, cases[2].body), 422);
-  EXPECT_EQ(p["errors"][0]["message"], "must be one of energy_momentum, midpoint, hht, generalized_alpha, got \"newmark\"");
+  EXPECT_EQ(p["errors"][0]["message"],
+            "must be one of energy_momentum, midpoint, hht, generalized_alpha, got \"newmark\"");
   EXPECT_EQ(body_json(c.Get("/v1/jobs?limit=200"))["jobs"].size(), jobs_before);  // nothing was queued
 }
 

@@ -54,15 +54,18 @@ TEST(Fuzz, InProcessScenesAndStudiesAlwaysGetAnAnswer) {
     }
     ++reached_validator;
     try {
-      if (study) server::http::check_study(doc, limits);
-      else server::http::check_scene(doc, limits);
+      if (study)
+        server::http::check_study(doc, limits);
+      else
+        server::http::check_scene(doc, limits);
       ++valid;
       ++statuses[200];
     } catch (const server::http::ProblemError& e) {
       const int status = e.problem().status;
       ++statuses[status];
-      ASSERT_TRUE(status == 413 || status == 422) << "input " << i << ": " << status << " "
-                                                  << e.problem().detail << "\n" << input.text.substr(0, 2000);
+      ASSERT_TRUE(status == 413 || status == 422)
+          << "input " << i << ": " << status << " " << e.problem().detail << "\n"
+          << input.text.substr(0, 2000);
       (void)server::safe_dump(e.problem().to_json());  // the answer can always be written
     }
     // Any other exception escapes and fails the test; a crash ends it.
@@ -83,7 +86,8 @@ std::string write_input(const std::filesystem::path& path, const std::string& te
 TEST(Fuzz, TheLiveServerAndTheCommandLineAnswerEveryInput) {
   const std::size_t inputs = count_from_env("STOSS_FUZZ_LIVE_INPUTS", 2'000);
   TempDir dir;
-  LiveServer server(dir.path() / "data", {"--workers", "0", "--max-nodes", "20000", "--max-queue", "1000000"});
+  LiveServer server(dir.path() / "data",
+                    {"--workers", "0", "--max-nodes", "20000", "--max-queue", "1000000"});
   auto c = server.client();
   FuzzCorpus corpus(7);
   const char* types[] = {"application/json", "application/x-www-form-urlencoded", "text/plain"};
@@ -113,7 +117,8 @@ TEST(Fuzz, TheLiveServerAndTheCommandLineAnswerEveryInput) {
     FuzzInput pair[2] = {corpus.next_scene(), corpus.next_scene()};
     std::future<CommandResult> results[2];
     for (int k = 0; k < 2; ++k) {
-      const std::string file = write_input(dir.path() / ("input" + std::to_string(k) + ".json"), pair[k].text);
+      const std::string file =
+          write_input(dir.path() / ("input" + std::to_string(k) + ".json"), pair[k].text);
       const bool json = k == 1;
       results[k] = std::async(std::launch::async, [file, json] {
         return run_stoss(json ? std::vector<std::string>{"validate", file, "--json"}
@@ -142,7 +147,8 @@ TEST(Fuzz, TheLiveServerAndTheCommandLineAnswerEveryInput) {
         ++runs;
         EXPECT_EQ(ran.signal, 0) << "stoss run died on:\n" << scene.dump().substr(0, 2000);
         // 0 success, 1 solver failure, 2 a scene the integrator refuses (e.g. a degenerate element).
-        EXPECT_TRUE(ran.exit_code == 0 || ran.exit_code == 1 || ran.exit_code == 2) << ran.exit_code << " " << ran.err;
+        EXPECT_TRUE(ran.exit_code == 0 || ran.exit_code == 1 || ran.exit_code == 2)
+            << ran.exit_code << " " << ran.err;
       }
     }
   }

@@ -72,7 +72,7 @@ TEST(ByteRanges, FollowRfc9110) {
   partial("bytes=-10", 990, 10);
   partial("bytes=-5000", 0, 1000);
   partial("bytes=0-18446744073709551616000", 0, 1000);  // saturates, no overflow
-  unsatisfiable("bytes=1000-");                          // SIZE-
+  unsatisfiable("bytes=1000-");                         // SIZE-
   unsatisfiable("bytes=999999999-");
   unsatisfiable("bytes=-0");
   unsatisfiable("bytes=0-", 0);  // an empty file has no byte to send
@@ -130,8 +130,9 @@ TEST_F(Hostile, JsonIsAcceptedWhateverTheContentTypeAndAbove8KiB) {
   nlohmann::json scene = box_scene(2, 10);
   scene["name"] = std::string(20'000, 'x');  // a body well above cpp-httplib's 8 KiB form cap
   const std::string body = scene.dump();
-  for (const char* type : {"application/x-www-form-urlencoded", "text/plain", "application/json; charset=utf-8",
-                           "application/octet-stream", "application/vnd.stoss+json"}) {
+  for (const char* type :
+       {"application/x-www-form-urlencoded", "text/plain", "application/json; charset=utf-8",
+        "application/octet-stream", "application/vnd.stoss+json"}) {
     auto r = c.Post("/v1/validate", body, type);
     ASSERT_TRUE(r) << type;
     EXPECT_EQ(r->status, 200) << type << ": " << r->body.substr(0, 300);
@@ -247,7 +248,8 @@ TEST_F(Hostile, FiftyStalledUploadsDoNotStarveHealthz) {
     const int fd = connect_loopback(server_->port());
     ASSERT_GE(fd, 0);
     const std::string head =
-        "POST /v1/jobs HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\nContent-Length: 100000\r\n\r\n"
+        "POST /v1/jobs HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\nContent-Length: "
+        "100000\r\n\r\n"
         "{\"format\": \"stoss-scene/1\", ";
     ASSERT_EQ(write(fd, head.data(), head.size()), static_cast<ssize_t>(head.size()));
     stalled.push_back(fd);
@@ -273,7 +275,8 @@ TEST_F(Hostile, AStalledUploadIsDroppedAfterTheReadTimeout) {
   setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
   char buffer[512];
   std::string reply;
-  for (ssize_t n; (n = read(fd, buffer, sizeof buffer)) > 0;) reply.append(buffer, static_cast<std::size_t>(n));
+  for (ssize_t n; (n = read(fd, buffer, sizeof buffer)) > 0;)
+    reply.append(buffer, static_cast<std::size_t>(n));
   close(fd);
   // The server (read timeout 3 s) gives up on the body and closes the connection: read() saw EOF (or a
   // 400), not the 20 s receive timeout of this socket (errno EAGAIN).
@@ -318,7 +321,8 @@ TEST(Ranges, TheResultHonoursRfc9110) {
   const std::string size = std::to_string(file.size());
   auto get = [&](const std::string& range) { return c.Get(path, {{"Range", range}}); };
 
-  for (const std::string range : {"bytes=" + size + "-", std::string("bytes=999999999-"), std::string("bytes=-0")}) {
+  for (const std::string range :
+       {"bytes=" + size + "-", std::string("bytes=999999999-"), std::string("bytes=-0")}) {
     auto r = get(range);
     ASSERT_TRUE(r) << range;
     EXPECT_EQ(r->status, 416) << range;

@@ -1,7 +1,6 @@
 // The live service: the real `stoss serve` binary on a free loopback port with a temporary data
 // directory, driven over HTTP. Each test states the requirement it checks.
 #include <gtest/gtest.h>
-
 #include <signal.h>
 
 #include <filesystem>
@@ -264,7 +263,8 @@ std::vector<pid_t> threads_not_blocking_sigterm(pid_t pid) {
   for (const auto& task : std::filesystem::directory_iterator("/proc/" + std::to_string(pid) + "/task")) {
     std::ifstream status(task.path() / "status");
     for (std::string line; std::getline(status, line);)
-      if (line.rfind("SigBlk:", 0) == 0 && !(std::stoull(line.substr(7), nullptr, 16) & (1ull << (SIGTERM - 1))))
+      if (line.rfind("SigBlk:", 0) == 0 &&
+          !(std::stoull(line.substr(7), nullptr, 16) & (1ull << (SIGTERM - 1))))
         found.push_back(pid_t(std::stol(task.path().filename().string())));
   }
   return found;
@@ -304,7 +304,8 @@ TEST(Service, StopsCleanlyOnSigterm) {
 TEST(Service, StopsCleanlyWhenSigtermLandsOnALibrarysThread) {
   if (threads_not_blocking_sigterm(LiveServer(TempDir().path() / "probe").pid()).empty())
     GTEST_SKIP() << "every thread of stoss serve blocks SIGTERM here (no BLAS pool threads)";
-  expect_sigterm_stops_cleanly([](const LiveServer& server) { return threads_not_blocking_sigterm(server.pid()).front(); });
+  expect_sigterm_stops_cleanly(
+      [](const LiveServer& server) { return threads_not_blocking_sigterm(server.pid()).front(); });
 }
 
 }  // namespace

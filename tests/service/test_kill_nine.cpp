@@ -33,7 +33,7 @@ using namespace std::chrono_literals;
 /// frictionless Lagrange contact (impact "persist"), or penalty contact with Coulomb friction μ = 0.2.
 nlohmann::json short_ball_on_plate(bool friction) {
   return test::short_ball_on_plate(friction ? ShortBallOnPlate{"penalty", "energy_momentum", false, 0.3, 2}
-                                      : ShortBallOnPlate{"lagrange", "energy_momentum", true, 0.3, 2});
+                                            : ShortBallOnPlate{"lagrange", "energy_momentum", true, 0.3, 2});
 }
 
 std::string read_file(const fs::path& p) {

@@ -24,9 +24,12 @@ inline std::string outcome_of(const model::Model& m, double face_size, model::Su
     if (summary) *summary = s;
     const auto substeps = r.series("substeps");
     char penetration[64] = "";
-    if (face_size > 0) std::snprintf(penetration, sizeof penetration, ", penetration %.2e faces", s.max_penetration / face_size);
+    if (face_size > 0)
+      std::snprintf(penetration, sizeof penetration, ", penetration %.2e faces",
+                    s.max_penetration / face_size);
     char text[240];
-    std::snprintf(text, sizeof text, "completed; energy %.2e, momentum %.2e%s, %.1f Newton its/step, max substeps %.0f",
+    std::snprintf(text, sizeof text,
+                  "completed; energy %.2e, momentum %.2e%s, %.1f Newton its/step, max substeps %.0f",
                   s.energy_drift, std::max(s.linear_momentum_drift, s.angular_momentum_drift), penetration,
                   s.newton_iterations_per_step, *std::max_element(substeps.begin(), substeps.end()));
     return text;

@@ -13,10 +13,10 @@
 #include <nlohmann/json.hpp>
 
 #include "../core/recording_observer.hpp"
-#include "outcomes.hpp"
 #include "core/fem/assembly.hpp"
 #include "core/scene/scene.hpp"
 #include "core/simulate.hpp"
+#include "outcomes.hpp"
 
 namespace stoss {
 namespace {
@@ -76,10 +76,11 @@ TEST(CrushedBall, NeoHookeanCompletesWithEveryJacobianPositiveAndConserves) {
   EXPECT_LT(s.linear_momentum_drift, 1e-9);
   EXPECT_LT(s.angular_momentum_drift, 1e-9);
   const std::vector<double> V = r.series("strain_energy"), H = r.series("total_energy");
-  EXPECT_GT(*std::max_element(V.begin(), V.end()), 0.15 * H.front()) << "the ball must be crushed, not bounced";
+  EXPECT_GT(*std::max_element(V.begin(), V.end()), 0.15 * H.front())
+      << "the ball must be crushed, not bounced";
   RecordProperty("neo_hookean_min_det_F", std::to_string(smallest));
-  std::printf("crushed ball, neo-Hookean: min det F %.3f, energy %.2e, momenta %.2e, %.1f its/step\n", smallest,
-              s.energy_drift, std::max(s.linear_momentum_drift, s.angular_momentum_drift),
+  std::printf("crushed ball, neo-Hookean: min det F %.3f, energy %.2e, momenta %.2e, %.1f its/step\n",
+              smallest, s.energy_drift, std::max(s.linear_momentum_drift, s.angular_momentum_drift),
               s.newton_iterations_per_step);
 }
 

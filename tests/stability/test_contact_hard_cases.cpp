@@ -17,9 +17,9 @@
 #include <nlohmann/json.hpp>
 
 #include "../core/recording_observer.hpp"
-#include "outcomes.hpp"
 #include "core/scene/scene.hpp"
 #include "core/simulate.hpp"
+#include "outcomes.hpp"
 
 namespace stoss {
 namespace {
@@ -44,8 +44,8 @@ json example() {
 }
 
 /// The scene with a second free plate (the lid) 0.05 above the ball, the ball 0.05 above the plate, both
-/// plates master; stiffer plates about 150× the ball's mass (near-rigid walls, still a free system) and a faster
-/// ball so that the bounces come quickly: bottom, lid, bottom within t ≤ 0.45.
+/// plates master; stiffer plates about 150× the ball's mass (near-rigid walls, still a free system) and a
+/// faster ball so that the bounces come quickly: bottom, lid, bottom within t ≤ 0.45.
 /// @note The hollow shell rebounds weakly (most of the impact energy goes into shell vibration); with
 ///       gaps of 0.02 it stayed in near-continuous contact and showed 2 impacts up to t = 0.8.
 void between_two_plates(json& s) {
@@ -120,7 +120,9 @@ double step_identity_error(const RecordingObserver& r) {
   return worst;
 }
 
-void PrintTo(const ContactCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const ContactCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class ContactHardCases : public ::testing::TestWithParam<ContactCase> {};
 
@@ -141,11 +143,12 @@ TEST_P(ContactHardCases, EnergyMomentumStaysStableAndConserving) {
   EXPECT_LT(s.angular_momentum_drift, 1e-10);
   EXPECT_LT(s.max_penetration, c.penetration_bound * face_size);
   EXPECT_LT(s.max_own_face_penetration, 1e-6 * face_size);
-  std::printf("%s / energy_momentum: %d impacts, |ΔH − jump|/H0 %.1e, energy %.2e, L %.1e, J %.1e, "
-              "penetration %.2e (own face %.1e), %.1f Newton its/step, %.1f s\n",
-              c.name.c_str(), impacts(r), identity, s.energy_drift, s.linear_momentum_drift,
-              s.angular_momentum_drift, s.max_penetration / face_size, s.max_own_face_penetration / face_size,
-              s.newton_iterations_per_step, s.wall_seconds);
+  std::printf(
+      "%s / energy_momentum: %d impacts, |ΔH − jump|/H0 %.1e, energy %.2e, L %.1e, J %.1e, "
+      "penetration %.2e (own face %.1e), %.1f Newton its/step, %.1f s\n",
+      c.name.c_str(), impacts(r), identity, s.energy_drift, s.linear_momentum_drift, s.angular_momentum_drift,
+      s.max_penetration / face_size, s.max_own_face_penetration / face_size, s.newton_iterations_per_step,
+      s.wall_seconds);
 }
 
 /// midpoint and hht on the same case: outcome recorded, not asserted.

@@ -10,9 +10,9 @@
 #include <functional>
 
 #include "../core/recording_observer.hpp"
-#include "outcomes.hpp"
 #include "core/scene/scene.hpp"
 #include "core/simulate.hpp"
+#include "outcomes.hpp"
 
 namespace stoss {
 namespace {
@@ -62,29 +62,36 @@ std::vector<HardCase> cases() {
        },
        1e-9, 1e-10,
        [](const model::Model& m, const RecordingObserver& r) { EXPECT_GT(max_radial_stretch(m, r), 0.10); }},
-      {"nearly_incompressible_nu049", "tumbling_sphere.json",
+      {"nearly_incompressible_nu049",
+       "tumbling_sphere.json",
        [](model::Model& m) {
          m.bodies[0].material.poisson_ratio = 0.49;
          m.time.end = 0.5;
        },
-       1e-9, 1e-10, {}},
-      {"large_step_h01", "tumbling_sphere.json",
+       1e-9,
+       1e-10,
+       {}},
+      {"large_step_h01",
+       "tumbling_sphere.json",
        [](model::Model& m) {
          m.time.step = 0.1;  // 10× the example's step
          m.time.end = 2.0;
        },
-       1e-9, 1e-10, {}},
+       1e-9,
+       1e-10,
+       {}},
       {"long_run_2000_steps", "tumbling_bar.json",
        [](model::Model& m) {
          m.time.end = 2000 * m.time.step;
          m.output.every = 100;
        },
-       1e-9, 1e-10,
-       [](const model::Model&, const RecordingObserver& r) { EXPECT_EQ(r.rows.size(), 2001u); }},
+       1e-9, 1e-10, [](const model::Model&, const RecordingObserver& r) { EXPECT_EQ(r.rows.size(), 2001u); }},
   };
 }
 
-void PrintTo(const HardCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const HardCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class HardCases : public ::testing::TestWithParam<HardCase> {};
 
@@ -109,7 +116,8 @@ TEST_P(HardCases, OtherSchemesAreRecorded) {
   for (model::Scheme scheme : {model::Scheme::midpoint, model::Scheme::hht}) {
     model::Summary s;
     const std::string outcome = testing::outcome_of(load(c, scheme), 0, &s);
-    if (scheme == model::Scheme::midpoint && s.completed) {  // §2.2: midpoint keeps momenta whenever it converges
+    if (scheme == model::Scheme::midpoint &&
+        s.completed) {  // §2.2: midpoint keeps momenta whenever it converges
       EXPECT_LT(std::max(s.linear_momentum_drift, s.angular_momentum_drift), c.momentum_bound) << c.name;
     }
     EXPECT_TRUE(testing::record_outcome(c.name, scheme, outcome)) << "could not write stability_outcomes.md";

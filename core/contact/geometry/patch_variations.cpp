@@ -56,7 +56,8 @@ Eigen::VectorXd patch_gap_gradient(const PatchPoint& at) {
   return slave_minus_master(at.frame.normal, at.N).transpose();  // (3.6)
 }
 
-Eigen::VectorXd patch_gap_gradient(const TensorPatch& p, const Eigen::VectorXd& x, const Eigen::Vector2d& xi) {
+Eigen::VectorXd patch_gap_gradient(const TensorPatch& p, const Eigen::VectorXd& x,
+                                   const Eigen::Vector2d& xi) {
   return patch_gap_gradient(patch_point(p, x, xi));
 }
 
@@ -64,12 +65,13 @@ Eigen::MatrixXd patch_xi_gradient(const PatchPoint& at, double gap) {
   const PatchFrame& f = at.frame;
   const Eigen::Vector3d tau[2] = {f.tau1, f.tau2};
   Eigen::MatrixXd TN(2, 3 + 3 * at.N.size());  // T_β + g_N N̄_β (3.7)
-  for (int c = 0; c < 2; ++c) TN.row(c) = slave_minus_master(tau[c], at.N) + gap * master_only(f.normal, at.dN[c]);
+  for (int c = 0; c < 2; ++c)
+    TN.row(c) = slave_minus_master(tau[c], at.N) + gap * master_only(f.normal, at.dN[c]);
   return projection_matrix_at(f, Curvature(f), gap).inverse() * TN;
 }
 
-PatchGapVariations patch_gap_variations(const TensorPatch& p, const Eigen::VectorXd& x, const Eigen::Vector2d& xi,
-                                        double gap) {
+PatchGapVariations patch_gap_variations(const TensorPatch& p, const Eigen::VectorXd& x,
+                                        const Eigen::Vector2d& xi, double gap) {
   return patch_gap_variations(patch_point(p, x, xi), gap);
 }
 
@@ -85,7 +87,8 @@ PatchGapVariations patch_gap_variations(const PatchPoint& at, double gap) {
   const Eigen::MatrixXd& D = v.D;
   Eigen::MatrixXd n_dtau(2, n);  // n·∂τ_α/∂x = [0; N_{K,α} n] + Σ_β (n·y_{,αβ}) D_β (3.8)
   for (int a = 0; a < 2; ++a)
-    n_dtau.row(a) = master_only(f.normal, dN[a]) + f.normal.dot(k.y2[a][0]) * D.row(0) + f.normal.dot(k.y2[a][1]) * D.row(1);
+    n_dtau.row(a) = master_only(f.normal, dN[a]) + f.normal.dot(k.y2[a][0]) * D.row(0) +
+                    f.normal.dot(k.y2[a][1]) * D.row(1);
   v.dn = Eigen::MatrixXd::Zero(3, n);  // ∂n/∂x = −m^{αβ} τ_β ⊗ (n·∂τ_α/∂x) (3.8)
   for (int a = 0; a < 2; ++a)
     for (int c = 0; c < 2; ++c) v.dn -= f.metric_inv(a, c) * tau[c] * n_dtau.row(a);
@@ -94,7 +97,7 @@ PatchGapVariations patch_gap_variations(const PatchPoint& at, double gap) {
   v.dNs.topRows<3>() = v.dn;  // (3.9)
   for (Eigen::Index K = 0; K < N.size(); ++K) {
     const Eigen::RowVectorXd dNK = dN[0][K] * D.row(0) + dN[1][K] * D.row(1);  // ∂N_K/∂x = N_{K,α} D_α
-    v.dNs.middleRows<3>(3 + 3 * K) = -f.normal * dNK - N[K] * v.dn;           // (3.9)
+    v.dNs.middleRows<3>(3 + 3 * K) = -f.normal * dNK - N[K] * v.dn;            // (3.9)
   }
   return v;
 }
@@ -104,13 +107,14 @@ std::array<PatchRows3, 2> patch_tangent_gradients(const PatchPoint& at, const Ei
   std::array<PatchRows3, 2> dtau;
   for (int a = 0; a < 2; ++a) {
     dtau[a] = k.y2[a][0] * D.row(0) + k.y2[a][1] * D.row(1);  // y_{,αβ} ⊗ D_β (3.8)
-    for (Eigen::Index K = 0; K < at.N.size(); ++K) dtau[a].middleCols<3>(3 + 3 * K).diagonal().array() += at.dN[a][K];
+    for (Eigen::Index K = 0; K < at.N.size(); ++K)
+      dtau[a].middleCols<3>(3 + 3 * K).diagonal().array() += at.dN[a][K];
   }
   return dtau;
 }
 
-Eigen::MatrixXd patch_contracted_xi_hessian(const TensorPatch& p, const Eigen::VectorXd& x, const PatchPoint& at,
-                                            double gap, const PatchGapVariations& v,
+Eigen::MatrixXd patch_contracted_xi_hessian(const TensorPatch& p, const Eigen::VectorXd& x,
+                                            const PatchPoint& at, double gap, const PatchGapVariations& v,
                                             const std::array<PatchRows3, 2>& dtau, const Eigen::Vector2d& t) {
   const PatchFrame& f = at.frame;
   const BasisThirdDerivatives c3 = patch_third_derivatives(p, f.xi);
@@ -119,8 +123,9 @@ Eigen::MatrixXd patch_contracted_xi_hessian(const TensorPatch& p, const Eigen::V
   const BasisCurvatures& c2 = at.curvatures;
   const Eigen::VectorXd* d2N[2][2] = {{&c2.N11, &c2.N12}, {&c2.N12, &c2.N22}};
   // n·y_{,αβγ} by the number of 2s among α, β, γ
-  const double n_y3[4] = {f.normal.dot(combine_nodes(p, c3.N111, x)), f.normal.dot(combine_nodes(p, c3.N112, x)),
-                          f.normal.dot(combine_nodes(p, c3.N122, x)), f.normal.dot(combine_nodes(p, c3.N222, x))};
+  const double n_y3[4] = {
+      f.normal.dot(combine_nodes(p, c3.N111, x)), f.normal.dot(combine_nodes(p, c3.N112, x)),
+      f.normal.dot(combine_nodes(p, c3.N122, x)), f.normal.dot(combine_nodes(p, c3.N222, x))};
   const Eigen::Vector3d tau[2] = {f.tau1, f.tau2};
   const Curvature k(f);
   const Eigen::MatrixXd& D = v.D;
@@ -130,10 +135,11 @@ Eigen::MatrixXd patch_contracted_xi_hessian(const TensorPatch& p, const Eigen::V
   for (int c = 0; c < 2; ++c) {  // Σ_β s_β ∂B_β, B_β = T_β + g_N N̄_β (3.7)
     H.topRows<3>() += s[c] * dtau[c];
     for (Eigen::Index K = 0; K < N.size(); ++K) {
-      const Eigen::RowVectorXd dNK = dN[0][K] * D.row(0) + dN[1][K] * D.row(1);                // ∂N_K
+      const Eigen::RowVectorXd dNK = dN[0][K] * D.row(0) + dN[1][K] * D.row(1);                 // ∂N_K
       const Eigen::RowVectorXd dNKc = (*d2N[c][0])[K] * D.row(0) + (*d2N[c][1])[K] * D.row(1);  // ∂N_{K,β}
-      H.middleRows<3>(3 + 3 * K) += s[c] * (-N[K] * dtau[c] - tau[c] * dNK + dN[c][K] * f.normal * v.Ns.transpose() +
-                                            gap * (dN[c][K] * v.dn + f.normal * dNKc));
+      H.middleRows<3>(3 + 3 * K) +=
+          s[c] * (-N[K] * dtau[c] - tau[c] * dNK + dN[c][K] * f.normal * v.Ns.transpose() +
+                  gap * (dN[c][K] * v.dn + f.normal * dNKc));
     }
   }
   for (int c = 0; c < 2; ++c) {  // − Σ_γ D_γ ⊗ Σ_β s_β ∂A_βγ, A_βγ = m_βγ − g_N n·y_{,βγ} (3.4)

@@ -33,8 +33,8 @@ struct PatchGapVariations {
   Eigen::MatrixXd dn;   ///< ∂n/∂x (3.8), 3 rows
 };
 PatchGapVariations patch_gap_variations(const PatchPoint& at, double gap);
-PatchGapVariations patch_gap_variations(const TensorPatch& p, const Eigen::VectorXd& x, const Eigen::Vector2d& xi,
-                                        double gap);
+PatchGapVariations patch_gap_variations(const TensorPatch& p, const Eigen::VectorXd& x,
+                                        const Eigen::Vector2d& xi, double gap);
 
 /// N_s only.
 Eigen::VectorXd patch_gap_gradient(const PatchPoint& at);
@@ -49,8 +49,8 @@ std::array<PatchRows3, 2> patch_tangent_gradients(const PatchPoint& at, const Ei
 /// Σ_α t_α ∂D_α/∂x at fixed covariant t (docs/smooth_master_surface.md §3.8): the derivative of
 /// D = A⁻¹ B (3.7) with every curvature term of a patch, which needs the third derivatives of y.
 /// `v` holds the variations at the same CPP `at` of patch p (positions x), `dtau` their tangent gradients.
-Eigen::MatrixXd patch_contracted_xi_hessian(const TensorPatch& p, const Eigen::VectorXd& x, const PatchPoint& at,
-                                            double gap, const PatchGapVariations& v,
+Eigen::MatrixXd patch_contracted_xi_hessian(const TensorPatch& p, const Eigen::VectorXd& x,
+                                            const PatchPoint& at, double gap, const PatchGapVariations& v,
                                             const std::array<PatchRows3, 2>& dtau, const Eigen::Vector2d& t);
 
 }  // namespace stoss::contact

@@ -4,8 +4,8 @@
 #include <limits>
 #include <map>
 #include <memory>
-#include <stdexcept>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 
 namespace stoss::contact {
@@ -15,7 +15,9 @@ namespace {
 using Combination = std::vector<std::pair<int, double>>;
 using Grid = std::array<std::array<std::optional<Combination>, 4>, 4>;  ///< grid[i][j], i along ξ¹
 
-Combination node(int id) { return {{id, 1.0}}; }
+Combination node(int id) {
+  return {{id, 1.0}};
+}
 
 Combination reflect(const Combination& at, const Combination& inner) {  // 2 at − inner (2.2)
   Combination c;
@@ -62,8 +64,9 @@ class Topology {
         rim = rim || on_rim(id);
       }
       if (corners.size() > 1)
-        return "face " + std::to_string(f) + " has extraordinary vertices at nodes " + std::to_string(corners[0]) +
-               " and " + std::to_string(corners[1]) + " (at most one per face; refine the mesh)";
+        return "face " + std::to_string(f) + " has extraordinary vertices at nodes " +
+               std::to_string(corners[0]) + " and " + std::to_string(corners[1]) +
+               " (at most one per face; refine the mesh)";
       if (!corners.empty() && rim)
         return "extraordinary vertex " + std::to_string(corners[0]) + " lies on a face that touches the rim";
     }
@@ -139,14 +142,15 @@ Grid real_grid(const Topology& t, const std::vector<mesh::Quad>& faces, int f) {
     g[beyond[k][1][0]][beyond[k][1][1]] = node(t.next_to(other, b, a));
   }
   // Corner slot of q[k] and the two edge slots next to it.
-  const int corner[4][3][2] = {{{0, 0}, {1, 0}, {0, 1}}, {{3, 0}, {2, 0}, {3, 1}},
-                               {{3, 3}, {3, 2}, {2, 3}}, {{0, 3}, {0, 2}, {1, 3}}};
+  const int corner[4][3][2] = {
+      {{0, 0}, {1, 0}, {0, 1}}, {{3, 0}, {2, 0}, {3, 1}}, {{3, 3}, {3, 2}, {2, 3}}, {{0, 3}, {0, 2}, {1, 3}}};
   for (int k = 0; k < 4; ++k) {
     const auto& s = corner[k];
     const auto& a = g[s[1][0]][s[1][1]];
     const auto& b = g[s[2][0]][s[2][1]];
     if (!a || !b) continue;
-    if (const auto d = t.diagonal(f, q[k], a->front().first, b->front().first)) g[s[0][0]][s[0][1]] = node(*d);
+    if (const auto d = t.diagonal(f, q[k], a->front().first, b->front().first))
+      g[s[0][0]][s[0][1]] = node(*d);
   }
   return g;
 }
@@ -210,8 +214,9 @@ LocalMesh subdivide(const LocalMesh& m, int f, std::array<int, 4>& children) {
   }
   for (int e = 0; e < ne; ++e)
     if (edge_faces[e].size() == 2)  // (2.5) edge point
-      out.values[nf + e] = (m.values[edges[e].first] + m.values[edges[e].second] + out.values[edge_faces[e][0]] +
-                            out.values[edge_faces[e][1]]) / 4;
+      out.values[nf + e] = (m.values[edges[e].first] + m.values[edges[e].second] +
+                            out.values[edge_faces[e][0]] + out.values[edge_faces[e][1]]) /
+                           4;
   for (int v = 0; v < nv; ++v) {
     const int n = static_cast<int>(vertex_faces[v].size());
     const bool interior = n == static_cast<int>(vertex_edges[v].size()) &&
@@ -251,7 +256,8 @@ LocalMesh one_ring(const LocalMesh& m, int& c) {
   int new_c = -1;
   for (size_t g = 0; g < m.faces.size(); ++g) {
     const mesh::Quad& q = m.faces[g];
-    if (std::none_of(q.begin(), q.end(), [&](int v) { return std::find(centre.begin(), centre.end(), v) != centre.end(); }))
+    if (std::none_of(q.begin(), q.end(),
+                     [&](int v) { return std::find(centre.begin(), centre.end(), v) != centre.end(); }))
       continue;
     if (static_cast<int>(g) == c) new_c = static_cast<int>(out.faces.size());
     out.faces.push_back({id(q[0]), id(q[1]), id(q[2]), id(q[3])});
@@ -274,7 +280,8 @@ TensorPatch piece(const LocalMesh& m, int c, const std::vector<int>& nodes) {
     for (int i = 0; i < 4; ++i) {
       if (!g[i][j]) throw std::logic_error("Catmull–Clark piece without a 4×4 neighbourhood");
       p.weights.col(i + 4 * j) = m.values[g[i][j]->front().first];
-      if (!p.weights.col(i + 4 * j).allFinite()) throw std::logic_error("Catmull–Clark piece beyond its 1-ring");
+      if (!p.weights.col(i + 4 * j).allFinite())
+        throw std::logic_error("Catmull–Clark piece beyond its 1-ring");
     }
   return p;
 }
@@ -309,7 +316,8 @@ TensorPatch extraordinary_patch(const Topology& t, const std::vector<mesh::Quad>
   for (int n = 1; n <= rings; ++n) {
     std::array<int, 4> children{};
     const LocalMesh s = subdivide(m, centre, children);
-    pieces->rings.push_back({piece(s, children[1], nodes), piece(s, children[2], nodes), piece(s, children[3], nodes)});
+    pieces->rings.push_back(
+        {piece(s, children[1], nodes), piece(s, children[2], nodes), piece(s, children[3], nodes)});
     centre = children[0];
     m = one_ring(s, centre);
   }
@@ -349,7 +357,8 @@ SmoothSurface smooth_surface(const std::vector<mesh::Quad>& faces) {
     const mesh::Quad& q = faces[f];
     const auto corner = std::find_if(q.begin(), q.end(), [&t](int id) { return t.extraordinary(id); });
     if (corner != q.end()) {
-      s.patches.push_back(extraordinary_patch(t, faces, static_cast<int>(f), static_cast<int>(corner - q.begin())));
+      s.patches.push_back(
+          extraordinary_patch(t, faces, static_cast<int>(f), static_cast<int>(corner - q.begin())));
       continue;
     }
     Grid g = real_grid(t, faces, static_cast<int>(f));

@@ -11,14 +11,17 @@ constexpr double bspline_factors[4][4] = {{1.0 / 48, -3.0 / 48, 3.0 / 48, -1.0 /
                                           {23.0 / 48, 15.0 / 48, -3.0 / 48, -3.0 / 48},
                                           {1.0 / 48, 3.0 / 48, 3.0 / 48, 1.0 / 48}};
 
-double second_derivative(const double* c, double t) { return 2 * c[2] + 6 * c[3] * t; }
+double second_derivative(const double* c, double t) {
+  return 2 * c[2] + 6 * c[3] * t;
+}
 
 /// Node values of the slot values B_s = u_i v_j for per-direction derivative orders (du, dv).
 Eigen::VectorXd tensor_nodes(const TensorPatch& p, const Eigen::Vector2d& xi, int du, int dv) {
   const int n = p.factors();
   std::vector<double> B(n * n);
   for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) B[i + n * j] = factor(p.family, i, xi[0], du) * factor(p.family, j, xi[1], dv);
+    for (int i = 0; i < n; ++i)
+      B[i + n * j] = factor(p.family, i, xi[0], du) * factor(p.family, j, xi[1], dv);
   return as_vector(detail::to_nodes(p, B));
 }
 }  // namespace
@@ -79,7 +82,8 @@ BasisThirdDerivatives patch_third_derivatives(const TensorPatch& p, const Eigen:
     };
     return {third(0, 0, 0), third(0, 0, 1), third(0, 1, 1), third(1, 1, 1)};
   }
-  return {tensor_nodes(p, xi, 3, 0), tensor_nodes(p, xi, 2, 1), tensor_nodes(p, xi, 1, 2), tensor_nodes(p, xi, 0, 3)};
+  return {tensor_nodes(p, xi, 3, 0), tensor_nodes(p, xi, 2, 1), tensor_nodes(p, xi, 1, 2),
+          tensor_nodes(p, xi, 0, 3)};
 }
 
 Eigen::Vector3d combine_nodes(const TensorPatch& p, const Eigen::VectorXd& c, const Eigen::VectorXd& x) {

@@ -46,8 +46,8 @@ struct TensorPatch {
 /// both ≥ ½·2¹⁻ⁿ, q = 2 at v ≥ ½·2¹⁻ⁿ > u. Each square is a bicubic B-spline piece over the face's M
 /// nodes (by subdividing n times).
 struct ExtraordinaryPieces {
-  int corner = 0;                                   ///< the face corner (0–3) at the vertex
-  std::vector<std::array<TensorPatch, 3>> rings;    ///< rings[n − 1][q]
+  int corner = 0;                                 ///< the face corner (0–3) at the vertex
+  std::vector<std::array<TensorPatch, 3>> rings;  ///< rings[n − 1][q]
 };
 
 /// A value and its gradient with respect to two parameters (forward-mode differentiation of patch
@@ -59,15 +59,31 @@ struct Dual {
   Dual(double value) : v(value) {}  // NOLINT: constants mix freely with duals
   Dual(double value, const Eigen::Vector2d& grad) : v(value), g(grad) {}
 };
-inline Dual operator+(const Dual& a, const Dual& b) { return {a.v + b.v, a.g + b.g}; }
-inline Dual operator-(const Dual& a, const Dual& b) { return {a.v - b.v, a.g - b.g}; }
-inline Dual operator-(const Dual& a) { return {-a.v, -a.g}; }
-inline Dual operator*(const Dual& a, const Dual& b) { return {a.v * b.v, a.g * b.v + a.v * b.g}; }
-inline Dual operator/(const Dual& a, const Dual& b) { return {a.v / b.v, (a.g * b.v - a.v * b.g) / (b.v * b.v)}; }
-inline Dual& operator+=(Dual& a, const Dual& b) { return a = a + b; }
+inline Dual operator+(const Dual& a, const Dual& b) {
+  return {a.v + b.v, a.g + b.g};
+}
+inline Dual operator-(const Dual& a, const Dual& b) {
+  return {a.v - b.v, a.g - b.g};
+}
+inline Dual operator-(const Dual& a) {
+  return {-a.v, -a.g};
+}
+inline Dual operator*(const Dual& a, const Dual& b) {
+  return {a.v * b.v, a.g * b.v + a.v * b.g};
+}
+inline Dual operator/(const Dual& a, const Dual& b) {
+  return {a.v / b.v, (a.g * b.v - a.v * b.g) / (b.v * b.v)};
+}
+inline Dual& operator+=(Dual& a, const Dual& b) {
+  return a = a + b;
+}
 
-inline double value_of(double x) { return x; }
-inline double value_of(const Dual& x) { return x.v; }
+inline double value_of(double x) {
+  return x;
+}
+inline double value_of(const Dual& x) {
+  return x.v;
+}
 
 /// Per node K: N_K, N_{K,1}, N_{K,2} (or divided differences of them, see patch_divided).
 template <class T>
@@ -186,7 +202,9 @@ inline PieceLocation locate(const ExtraordinaryPieces& e, const Eigen::Vector2d&
   const double u = 0.5 * (r[0] + 1), v = 0.5 * (r[1] + 1), m = std::max(u, v);
   const int last = static_cast<int>(e.rings.size());
   PieceLocation l;
-  l.ring = m >= 0.5 ? 1 : m <= std::ldexp(1.0, -last) ? last : std::min(last, 1 + static_cast<int>(std::floor(-std::log2(m))));
+  l.ring = m >= 0.5                      ? 1
+           : m <= std::ldexp(1.0, -last) ? last
+                                         : std::min(last, 1 + static_cast<int>(std::floor(-std::log2(m))));
   const double half = std::ldexp(1.0, -l.ring);  // ½ · 2¹⁻ⁿ
   const bool right = u >= half, top = v >= half;
   l.square = right && top ? 1 : right ? 0 : top ? 2 : (u >= v ? 0 : 2);
@@ -254,7 +272,8 @@ template <class T>
 BasisValues<T> piecewise_divided(const TensorPatch& p, int direction, const T& a, const T& b, const T& c) {
   const ExtraordinaryPieces& e = *p.pieces;
   const auto point = [&](const T& t) {
-    return direction == 0 ? Eigen::Vector2d(value_of(t), value_of(c)) : Eigen::Vector2d(value_of(c), value_of(t));
+    return direction == 0 ? Eigen::Vector2d(value_of(t), value_of(c))
+                          : Eigen::Vector2d(value_of(c), value_of(t));
   };
   const PieceLocation la = locate(e, point(a)), lb = locate(e, point(b));
   const double gap = std::abs(value_of(b) - value_of(a));

@@ -1,7 +1,7 @@
 #include "core/contact/lagrange/discrete_gradient.hpp"
 
-#include "core/contact/lagrange/constraints.hpp"
 #include "core/contact/geometry/segment.hpp"
+#include "core/contact/lagrange/constraints.hpp"
 
 namespace stoss::contact {
 namespace {

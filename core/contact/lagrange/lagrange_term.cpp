@@ -1,9 +1,9 @@
 #include "core/contact/lagrange/lagrange_term.hpp"
 
-#include "core/contact/geometry/face_switch.hpp"
-
 #include <algorithm>
 #include <cmath>
+
+#include "core/contact/geometry/face_switch.hpp"
 
 namespace stoss::contact {
 namespace {

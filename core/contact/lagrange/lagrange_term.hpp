@@ -8,9 +8,9 @@
 #include <utility>
 #include <vector>
 
+#include "core/contact/contact_term.hpp"
 #include "core/contact/geometry/assignment.hpp"
 #include "core/contact/geometry/broad_phase.hpp"
-#include "core/contact/contact_term.hpp"
 #include "core/contact/geometry/surface.hpp"
 #include "core/contact/types.hpp"
 #include "core/model/model.hpp"
@@ -66,7 +66,8 @@ class LagrangeContactTerm : public ContactTerm {
   time::TermState save_state() const override;
   /// Sets the elements and replays end_step at (x, v), so that a subclass rebuilds what it keeps of the
   /// step (HHT: λ_n N_s(x_n)); the elements are then exactly the saved ones (lagrange_state.cpp).
-  void restore_state(const time::TermState& state, const Eigen::VectorXd& x, const Eigen::VectorXd& v) override;
+  void restore_state(const time::TermState& state, const Eigen::VectorXd& x,
+                     const Eigen::VectorXd& v) override;
 
   const std::vector<ContactElement>& elements() const { return elements_; }
 

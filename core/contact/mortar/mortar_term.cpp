@@ -17,11 +17,14 @@ time::ForceRule configuration_rule(const time::ForceRule& rule) {
 /// Corner box of a face at positions x and x + dx.
 Eigen::AlignedBox3d face_box(const mesh::Quad& q, const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
   Eigen::AlignedBox3d box;
-  for (int node : q) box.extend(Eigen::Vector3d(x.segment<3>(3 * node))), box.extend(Eigen::Vector3d(y.segment<3>(3 * node)));
+  for (int node : q)
+    box.extend(Eigen::Vector3d(x.segment<3>(3 * node))), box.extend(Eigen::Vector3d(y.segment<3>(3 * node)));
   return box;
 }
 
-double box_size(const Eigen::AlignedBox3d& b) { return b.diagonal().norm(); }
+double box_size(const Eigen::AlignedBox3d& b) {
+  return b.diagonal().norm();
+}
 
 }  // namespace
 
@@ -67,7 +70,8 @@ void MortarContactTerm::find_face_pairs(const time::StepContext& step) {
   const auto same = [](const FacePair& a, const FacePair& b) {
     return a.slave_face == b.slave_face && a.master_face == b.master_face;
   };
-  if (pairs.size() != pairs_.size() || !std::equal(pairs.begin(), pairs.end(), pairs_.begin(), same)) ++generation_;
+  if (pairs.size() != pairs_.size() || !std::equal(pairs.begin(), pairs.end(), pairs_.begin(), same))
+    ++generation_;
   pairs_ = std::move(pairs);
 }
 
@@ -85,11 +89,12 @@ void MortarContactTerm::register_blocks(solve::BlockPattern& pattern) {
 }
 
 mortar::PairGaps MortarContactTerm::gaps(const FacePair& p, const Eigen::VectorXd& x) const {
-  return mortar::pair_gaps(face_positions(slave_faces_[p.slave_face], x), face_positions(surfaces_.faces[p.master_face], x),
-                           mortar::Multipliers::dual);
+  return mortar::pair_gaps(face_positions(slave_faces_[p.slave_face], x),
+                           face_positions(surfaces_.faces[p.master_face], x), mortar::Multipliers::dual);
 }
 
-void MortarContactTerm::nodal_gaps(const Eigen::VectorXd& x, Eigen::VectorXd& gap, Eigen::VectorXd& weight) const {
+void MortarContactTerm::nodal_gaps(const Eigen::VectorXd& x, Eigen::VectorXd& gap,
+                                   Eigen::VectorXd& weight) const {
   gap = weight = Eigen::VectorXd::Zero(auxiliary_count());
   for (const FacePair& p : pairs_) {
     const mortar::PairGaps g = gaps(p, x);
@@ -132,14 +137,15 @@ void MortarContactTerm::add(const time::StepContext& step, const Eigen::VectorXd
   const bool at_end = rule_.theta == 1;
   for (const FacePair& p : pairs_) {
     Eigen::Vector4d lambda, lambda_n;
-    for (int k = 0; k < 4; ++k) lambda[k] = z[offset_ + p.slave_index[k]], lambda_n[k] = lambda_n_[p.slave_index[k]];
+    for (int k = 0; k < 4; ++k)
+      lambda[k] = z[offset_ + p.slave_index[k]], lambda_n[k] = lambda_n_[p.slave_index[k]];
     if (w_n != 0) add_forces(p, step.x_n, lambda_n, w_n, R);  // h w_n λ_n ∂g̃/∂x(x_n) (4.82)
     mortar::Matrix24 H = mortar::Matrix24::Zero();
     const bool curved = K && !lambda.isZero(0);
     const SegmentNodes s = face_positions(slave_faces_[p.slave_face], x_theta);
     const SegmentNodes m = face_positions(surfaces_.faces[p.master_face], x_theta);
-    const mortar::PairGaps g =
-        curved ? mortar::pair_gaps(s, m, mortar::Multipliers::dual, lambda, H) : mortar::pair_gaps(s, m, mortar::Multipliers::dual);
+    const mortar::PairGaps g = curved ? mortar::pair_gaps(s, m, mortar::Multipliers::dual, lambda, H)
+                                      : mortar::pair_gaps(s, m, mortar::Multipliers::dual);
     const mortar::PairGaps g_1 = at_end ? g : gaps(p, x_1);
     const Eigen::Matrix<double, 1, 24> f = lambda.transpose() * g.gradient;
     for (int a = 0; a < 24; ++a) R[p.dofs[a]] += w * f[a];  // h w λ ∂g̃/∂x(x_θ) (4.82)
@@ -147,8 +153,8 @@ void MortarContactTerm::add(const time::StepContext& step, const Eigen::VectorXd
       if (active_[p.slave_index[k]]) R[p.dofs[24 + k]] += g_1.gap[k];  // (4.83)
     if (!K) continue;
     Eigen::Matrix<double, 28, 28> block = Eigen::Matrix<double, 28, 28>::Zero();
-    block.topLeftCorner<24, 24>() = w * rule_.theta * H;                 // (4.81), (4.82)
-    block.topRightCorner<24, 4>() = w * g.gradient.transpose();          // (4.82)
+    block.topLeftCorner<24, 24>() = w * rule_.theta * H;         // (4.81), (4.82)
+    block.topRightCorner<24, 4>() = w * g.gradient.transpose();  // (4.82)
     for (int k = 0; k < 4; ++k)
       if (active_[p.slave_index[k]]) block.block<1, 24>(24 + k, 0) = g_1.gradient.row(k);  // (4.83)
     K->scatter(p.block, block);
@@ -171,12 +177,14 @@ bool MortarContactTerm::update_active_set(const time::StepContext& step, const E
     lambda_[j] = z[offset_ + j];
     if (active_[j] && lambda_[j] > 0) {
       if (toggles_[j] > 0) {  // anti-cycling (§3.5)
-        log(step, "slave node " + std::to_string(surfaces_.slave_nodes[j]) + " kept active with tensile λ = " +
-                      scientific(lambda_[j]) + " (it already changed state in this step)");
+        log(step, "slave node " + std::to_string(surfaces_.slave_nodes[j]) +
+                      " kept active with tensile λ = " + scientific(lambda_[j]) +
+                      " (it already changed state in this step)");
         continue;
       }
       active_[j] = 0, lambda_[j] = 0, ++toggles_[j], ++report_.releases, changed = true;
-    } else if (!active_[j] && weight[j] > 0 && gap[j] < -activation_gap * length_ * weight[j] && toggles_[j] == 0) {
+    } else if (!active_[j] && weight[j] > 0 && gap[j] < -activation_gap * length_ * weight[j] &&
+               toggles_[j] == 0) {
       const bool frozen = impact() == model::ImpactMode::persist || impact() == model::ImpactMode::located;
       target_[j] = frozen ? std::max(gap_n_[j], 0.0) : 0.0;  // g̃⁰_j (§4.5)
       active_[j] = 1, lambda_[j] = 0, ++toggles_[j], ++report_.activations, changed = true;
@@ -196,10 +204,14 @@ void MortarContactTerm::end_step(const time::StepContext& step, const Eigen::Vec
     lambda_[j] = active_[j] ? z[offset_ + j] : 0.0;
     if (!active_[j]) continue;
     ++report_.active;
-    if (!start_active_[j]) report_.energy_jump += lambda_[j] * (gap_n_[j] - target_[j]);  // analogue of (4.11)
-    if (!start_active_[j]) report_.max_new_gap_target = std::max(report_.max_new_gap_target, target_[j] / weight[j]);
-    report_.max_own_face_penetration = std::max(report_.max_own_face_penetration, -(gap[j] - target_[j]) / weight[j]);
-    if (weight[j] > 0) pressure_.emplace_back(surfaces_.slave_nodes[j], std::max(-lambda_[j], 0.0) / weight[j]);  // (4.84)
+    if (!start_active_[j])
+      report_.energy_jump += lambda_[j] * (gap_n_[j] - target_[j]);  // analogue of (4.11)
+    if (!start_active_[j])
+      report_.max_new_gap_target = std::max(report_.max_new_gap_target, target_[j] / weight[j]);
+    report_.max_own_face_penetration =
+        std::max(report_.max_own_face_penetration, -(gap[j] - target_[j]) / weight[j]);
+    if (weight[j] > 0)
+      pressure_.emplace_back(surfaces_.slave_nodes[j], std::max(-lambda_[j], 0.0) / weight[j]);  // (4.84)
   }
   lambda_n_ = lambda_;
   committed_active_ = active_;
@@ -207,10 +219,12 @@ void MortarContactTerm::end_step(const time::StepContext& step, const Eigen::Vec
   measure_closest_penetration(step, x);
 }
 
-double MortarContactTerm::auxiliary_residual_measure(const Eigen::VectorXd& R, const time::MeasureScales&) const {
+double MortarContactTerm::auxiliary_residual_measure(const Eigen::VectorXd& R,
+                                                     const time::MeasureScales&) const {
   double worst = 0;
   for (int j = 0; j < auxiliary_count(); ++j)
-    if (active_[j]) worst = std::max(worst, std::abs(R[offset_ + j]) / (surfaces_.tributary_area[j] * length_));
+    if (active_[j])
+      worst = std::max(worst, std::abs(R[offset_ + j]) / (surfaces_.tributary_area[j] * length_));
   return worst;
 }
 

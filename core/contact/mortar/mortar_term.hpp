@@ -66,11 +66,11 @@ class MortarContactTerm final : public ContactTerm {
 
   std::vector<char> active_, start_active_, committed_active_;
   std::vector<int> toggles_;
-  Eigen::VectorXd lambda_;    ///< latest multipliers (read back after each solve)
-  Eigen::VectorXd lambda_n_;  ///< λ of the last converged step (t_n)
+  Eigen::VectorXd lambda_;                     ///< latest multipliers (read back after each solve)
+  Eigen::VectorXd lambda_n_;                   ///< λ of the last converged step (t_n)
   Eigen::VectorXd target_, committed_target_;  ///< g̃⁰_j
   Eigen::VectorXd gap_n_, weight_n_;           ///< g̃_j and D_jj at x_n
-  double length_ = 1;         ///< mean master face size ℓ
+  double length_ = 1;                          ///< mean master face size ℓ
   int offset_ = 0, generation_ = 0;
 };
 

@@ -10,7 +10,8 @@ template <class T>
 void seed(const SegmentNodes& slave, const SegmentNodes& master, QuadNodes<T>& s, QuadNodes<T>& m);
 
 template <>
-void seed<Inner>(const SegmentNodes& slave, const SegmentNodes& master, QuadNodes<Inner>& s, QuadNodes<Inner>& m) {
+void seed<Inner>(const SegmentNodes& slave, const SegmentNodes& master, QuadNodes<Inner>& s,
+                 QuadNodes<Inner>& m) {
   for (int K = 0; K < 4; ++K)
     for (int i = 0; i < 3; ++i) {
       s[K][i] = Inner(slave(K, i), 24, 3 * K + i);
@@ -19,7 +20,8 @@ void seed<Inner>(const SegmentNodes& slave, const SegmentNodes& master, QuadNode
 }
 
 template <>
-void seed<Outer>(const SegmentNodes& slave, const SegmentNodes& master, QuadNodes<Outer>& s, QuadNodes<Outer>& m) {
+void seed<Outer>(const SegmentNodes& slave, const SegmentNodes& master, QuadNodes<Outer>& s,
+                 QuadNodes<Outer>& m) {
   const auto variable = [](double value, int index) {
     Outer x(Inner(value, 24, index));
     x.derivatives() = Eigen::Matrix<Inner, 24, 1>::Constant(Inner(0.0));

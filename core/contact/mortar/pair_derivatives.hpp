@@ -14,10 +14,10 @@ using Matrix24 = Eigen::Matrix<double, 24, 24>;
 
 /// g̃_j, D_jj and ∂g̃_j/∂x of one face pair; coordinates: slave nodes 1–4 then master nodes 1–4, 3 each.
 struct PairGaps {
-  Eigen::Vector4d gap = Eigen::Vector4d::Zero();     ///< g̃_j (4.79)
-  Eigen::Vector4d weight = Eigen::Vector4d::Zero();  ///< D_jj of this pair (4.78)
+  Eigen::Vector4d gap = Eigen::Vector4d::Zero();                                 ///< g̃_j (4.79)
+  Eigen::Vector4d weight = Eigen::Vector4d::Zero();                              ///< D_jj of this pair (4.78)
   Eigen::Matrix<double, 4, 24> gradient = Eigen::Matrix<double, 4, 24>::Zero();  ///< ∂g̃_j/∂x (4.80)
-  double area = 0;                                   ///< the clip polygon's area
+  double area = 0;                                                               ///< the clip polygon's area
 };
 
 /// The gaps and their gradient, by forward dual numbers (4.80).

@@ -21,8 +21,8 @@ Projection project(const TensorPatch& local, const Eigen::VectorXd& x, const Eig
 /// (docs/smooth_master_surface.md (3.9)): ∇̄f = ∇f(x_m) + c_f q with c_f = (Δf − ∇f(x_m)·d)/(d·q), so
 /// that ∇̄f·d = Δf exactly and q (rigid_free_increment.hpp) adds no net force or torque.
 struct DiscreteGradients {
-  Eigen::VectorXd Ns;  ///< ∇̄g_N
-  PatchRows2 D;        ///< ∇̄ξ^α as rows
+  Eigen::VectorXd Ns;                  ///< ∇̄g_N
+  PatchRows2 D;                        ///< ∇̄ξ^α as rows
   Eigen::MatrixXd correction_tangent;  ///< ∂(C q)/∂x_{n+1} at fixed tractions, C = t_N c_g + t_α c_ξ^α
 };
 
@@ -37,15 +37,15 @@ struct StepGradients {
   const Eigen::MatrixXd& xi_hessian;
 };
 
-DiscreteGradients discrete_gradients(const StepGradients& s, const Eigen::VectorXd& x_n, const Eigen::VectorXd& x_1,
-                                     double t_N, const Eigen::Vector2d& t) {
+DiscreteGradients discrete_gradients(const StepGradients& s, const Eigen::VectorXd& x_n,
+                                     const Eigen::VectorXd& x_1, double t_N, const Eigen::Vector2d& t) {
   const Eigen::Index n = x_1.size();
   DiscreteGradients out{s.mid.Ns, s.D_m, Eigen::MatrixXd::Zero(n, n)};
   const Eigen::VectorXd d = x_1 - x_n;
   const RigidFreeIncrement r = rigid_free_increment(x_n, x_1);
   if (!(r.size > rigid_increment * d.squaredNorm())) return out;
-  const double c_g = (s.at_1.gap - s.at_n.gap - s.mid.Ns.dot(d)) / r.size;              // (3.9)
-  const Eigen::Vector2d c_xi = (s.at_1.xi - s.at_n.xi - s.D_m * d) / r.size;            // (3.9)
+  const double c_g = (s.at_1.gap - s.at_n.gap - s.mid.Ns.dot(d)) / r.size;    // (3.9)
+  const Eigen::Vector2d c_xi = (s.at_1.xi - s.at_n.xi - s.D_m * d) / r.size;  // (3.9)
   out.Ns += c_g * r.q;
   out.D += c_xi * r.q.transpose();
   const double C = t_N * c_g + t.dot(c_xi);
@@ -69,9 +69,10 @@ PatchPenaltyResult patch_penalty_element(const TensorPatch& local, const Eigen::
   out.at_1 = project(local, x_1, xi_start);
   if (!(out.at_n.converged && out.at_m.converged && out.at_1.converged)) return open_result(out, p);
 
-  const PatchPoint mid_point = patch_point(local, x_m, out.at_m.xi), end_point = patch_point(local, x_1, out.at_1.xi);
+  const PatchPoint mid_point = patch_point(local, x_m, out.at_m.xi),
+                   end_point = patch_point(local, x_1, out.at_1.xi);
   const PatchGapVariations mid = patch_gap_variations(mid_point, out.at_m.gap);  // (3.6)–(3.9)
-  const Eigen::VectorXd Ns_1 = patch_gap_gradient(end_point);                   // (3.6) at x_{n+1}
+  const Eigen::VectorXd Ns_1 = patch_gap_gradient(end_point);                    // (3.6) at x_{n+1}
   const NormalTraction<dynamic> normal =
       normal_traction<dynamic>(p, out.at_n, out.at_m, out.at_1, mid.Ns, Ns_1, face_size);
   if (!(normal.value < 0)) return open_result(out, p);  // open: reset t_T (§5.2 item 7)
@@ -80,15 +81,18 @@ PatchPenaltyResult patch_penalty_element(const TensorPatch& local, const Eigen::
   const HalfGradients<dynamic> half = half_gradients<dynamic>(out.at_m.frame, dtau);
   const PatchRows2 D_1 = patch_xi_gradient(end_point, out.at_1.gap);  // (3.7) at x_{n+1}
   const TangentialKinematics<dynamic> kinematics{out.at_m.frame, half, D_1, out.at_1.xi - out.at_n.xi};
-  const TangentialTraction<dynamic> tangential = return_map(kinematics, history.traction, normal, p);  // (5.3)
+  const TangentialTraction<dynamic> tangential =
+      return_map(kinematics, history.traction, normal, p);  // (5.3)
   const Eigen::MatrixXd xi_hessian =
-      tangential.value.isZero(0) ? Eigen::MatrixXd::Zero(x_1.size(), x_1.size())
-                                 : patch_contracted_xi_hessian(local, x_m, mid_point, out.at_m.gap, mid, dtau,
-                                                               tangential.value);  // smooth_master_surface §3.8
+      tangential.value.isZero(0)
+          ? Eigen::MatrixXd::Zero(x_1.size(), x_1.size())
+          : patch_contracted_xi_hessian(local, x_m, mid_point, out.at_m.gap, mid, dtau,
+                                        tangential.value);  // smooth_master_surface §3.8
   const PatchRows2 D_m = mid.D;
-  const DiscreteGradients bar = discrete_gradients({out.at_n, out.at_1, mid, D_m, Ns_1, D_1, xi_hessian}, x_n, x_1,
-                                                   normal.value, tangential.value);
-  fill_closed_step<dynamic>(out, {bar.Ns, mid.dNs, bar.D}, xi_hessian, normal, tangential, p);  // (5.2) with (3.9)
+  const DiscreteGradients bar = discrete_gradients({out.at_n, out.at_1, mid, D_m, Ns_1, D_1, xi_hessian}, x_n,
+                                                   x_1, normal.value, tangential.value);
+  fill_closed_step<dynamic>(out, {bar.Ns, mid.dNs, bar.D}, xi_hessian, normal, tangential,
+                            p);  // (5.2) with (3.9)
   out.tangent += bar.correction_tangent;
   return out;
 }

@@ -81,8 +81,7 @@ PenaltyResult penalty_element(const Vector15& x_n, const Vector15& x_1, const Fr
   out.at_n = project(x_n, xi_start);  // §5.2 item 1
   out.at_m = project(0.5 * (x_n + x_1), xi_start);
   out.at_1 = project(x_1, xi_start);
-  if (!(out.at_n.converged && out.at_m.converged && out.at_1.converged))
-    return open_result(out, p);
+  if (!(out.at_n.converged && out.at_m.converged && out.at_1.converged)) return open_result(out, p);
 
   const GapVariations mid = gap_variations(out.at_m.frame, out.at_m.gap);  // (3.6)–(3.9) at x_m
   const Vector15 Ns_1 = gap_gradient(out.at_1.frame);                      // (3.6) at x_{n+1}

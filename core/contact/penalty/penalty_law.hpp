@@ -28,10 +28,14 @@ using ElementRows3 = Eigen::Matrix<double, 3, N>;
 /// Zero of a fixed or dynamic element-sized object with `n` columns (n rows for N × N).
 template <class T>
 T element_zero(Eigen::Index n) {
-  if constexpr (T::RowsAtCompileTime == Eigen::Dynamic && T::ColsAtCompileTime == Eigen::Dynamic) return T::Zero(n, n);
-  else if constexpr (T::ColsAtCompileTime == Eigen::Dynamic) return T::Zero(T::RowsAtCompileTime, n);
-  else if constexpr (T::RowsAtCompileTime == Eigen::Dynamic) return T::Zero(n, 1);
-  else return T::Zero();
+  if constexpr (T::RowsAtCompileTime == Eigen::Dynamic && T::ColsAtCompileTime == Eigen::Dynamic)
+    return T::Zero(n, n);
+  else if constexpr (T::ColsAtCompileTime == Eigen::Dynamic)
+    return T::Zero(T::RowsAtCompileTime, n);
+  else if constexpr (T::RowsAtCompileTime == Eigen::Dynamic)
+    return T::Zero(n, 1);
+  else
+    return T::Zero();
 }
 
 /// Friction history of one element: the spatial tangential traction t_{T,n} (§5.2 item 3).
@@ -65,11 +69,11 @@ struct PenaltyParameters {
 ///       of x_{n+1} converged (e.g. nonzero for "mid" with g_m ≥ 0 > g_{n+1}).
 template <int N>
 struct PenaltyResultT {
-  bool closed = false;                       ///< contact closed in this step per the normal rule (§5.2 item 2)
-  bool slip = false;                         ///< return map (5.3): slip (true) or stick
-  ElementVector<N> force;                    ///< t_N N_s(x_m) + t_{n+1,α} D_α(x_m) (5.2); caller multiplies by h
-  ElementMatrix<N> tangent;                  ///< ∂force/∂x_{n+1} (non-symmetric)
-  double normal_traction = 0;                ///< t_N ≤ 0
+  bool closed = false;         ///< contact closed in this step per the normal rule (§5.2 item 2)
+  bool slip = false;           ///< return map (5.3): slip (true) or stick
+  ElementVector<N> force;      ///< t_N N_s(x_m) + t_{n+1,α} D_α(x_m) (5.2); caller multiplies by h
+  ElementMatrix<N> tangent;    ///< ∂force/∂x_{n+1} (non-symmetric)
+  double normal_traction = 0;  ///< t_N ≤ 0
   Eigen::Vector2d traction = Eigen::Vector2d::Zero();              ///< covariant t_{n+1,α} (5.3)
   Eigen::Vector2d transported_traction = Eigen::Vector2d::Zero();  ///< t̃_{n,α} = t_{T,n}·τ_α(x_m)
   Eigen::Vector2d slip_increment = Eigen::Vector2d::Zero();        ///< Δξ_p (contravariant) (5.3)
@@ -117,8 +121,8 @@ NormalTraction<N> midpoint_normal_traction(double eps, double g_m, const Element
 /// "dd": t_N = (W_N(g_1) − W_N(g_n)) / (g_1 − g_n) (§5.2 item 2), in cancellation-free form.
 template <int N>
 NormalTraction<N> discrete_derivative_normal_traction(double eps, double g_n, double g_m, double g_1,
-                                                      const ElementVector<N>& Ns_m, const ElementVector<N>& Ns_1,
-                                                      double size) {
+                                                      const ElementVector<N>& Ns_m,
+                                                      const ElementVector<N>& Ns_1, double size) {
   if (!(g_n < 0 || g_1 < 0)) return {0, element_zero<ElementRow<N>>(Ns_m.size())};
   if (g_n <= 0 && g_1 <= 0) return {0.5 * eps * (g_n + g_1), 0.5 * eps * Ns_1.transpose()};  // = quotient
   const double dg = g_1 - g_n;
@@ -135,8 +139,9 @@ NormalTraction<N> normal_traction(const PenaltyParameters& p, const Projection& 
                                   const ElementVector<N>& Ns_1, double size) {
   if (p.normal_rule == NormalRule::midpoint)
     return midpoint_normal_traction<N>(p.normal_stiffness, at_m.gap - p.gap_offset, Ns_m);
-  return discrete_derivative_normal_traction<N>(p.normal_stiffness, at_n.gap - p.gap_offset, at_m.gap - p.gap_offset,
-                                                at_1.gap - p.gap_offset, Ns_m, Ns_1, size);
+  return discrete_derivative_normal_traction<N>(p.normal_stiffness, at_n.gap - p.gap_offset,
+                                                at_m.gap - p.gap_offset, at_1.gap - p.gap_offset, Ns_m, Ns_1,
+                                                size);
 }
 
 /// ∂m_αβ/∂x = τ_α·∂τ_β + τ_β·∂τ_α (3.3), (3.8).
@@ -215,7 +220,8 @@ TangentialTraction<N> return_map(const TangentialKinematics<N>& k, const Eigen::
   ElementRow<N> q_dm_q = element_zero<ElementRow<N>>(k.D_1.cols());
   for (int a = 0; a < 2; ++a)
     for (int b = 0; b < 2; ++b) q_dm_q += q[a] * q[b] * dm[a][b];
-  const ElementRow<N> dnorm = (q.transpose() * dtr - 0.5 * q_dm_q) / norm;  // ∂‖t^tr‖, ∂m^{-1} = −m^{-1}∂m m^{-1}
+  const ElementRow<N> dnorm =
+      (q.transpose() * dtr - 0.5 * q_dm_q) / norm;  // ∂‖t^tr‖, ∂m^{-1} = −m^{-1}∂m m^{-1}
   const ElementRow<N> dpressure = -normal.gradient;
   out.gradient = (p.friction / norm) * trial * dpressure + scale * (dtr - trial * dnorm / norm);  // ∂(5.3)
   return out;
@@ -232,9 +238,9 @@ struct MidpointVariations {
 /// Fills a closed step: tractions, force (5.2) at x_m, its tangent w.r.t. x_{n+1} given
 /// xi_hessian = Σ_α t_α ∂D_α/∂x_m at t = t_{n+1}, the new history and the energies (§5.2 items 5–7).
 template <int N>
-void fill_closed_step(PenaltyResultT<N>& out, const MidpointVariations<N>& mid, const ElementMatrix<N>& xi_hessian,
-                      const NormalTraction<N>& normal, const TangentialTraction<N>& tangential,
-                      const PenaltyParameters& p) {
+void fill_closed_step(PenaltyResultT<N>& out, const MidpointVariations<N>& mid,
+                      const ElementMatrix<N>& xi_hessian, const NormalTraction<N>& normal,
+                      const TangentialTraction<N>& tangential, const PenaltyParameters& p) {
   const SegmentFrame& f = out.at_m.frame;
   out.closed = true;
   out.slip = tangential.slip;
@@ -243,11 +249,11 @@ void fill_closed_step(PenaltyResultT<N>& out, const MidpointVariations<N>& mid, 
   out.transported_traction = tangential.transported;
   out.slip_increment = tangential.slip_increment;
   out.force = normal.value * mid.Ns + mid.D.transpose() * tangential.value;  // (5.2)
-  out.tangent = mid.Ns * normal.gradient + 0.5 * normal.value * mid.dNs     // ∂(t_N N_s), (3.9)
-                + mid.D.transpose() * tangential.gradient                   // ∂t_α D_α
-                + 0.5 * xi_hessian;                                         // t_α ∂D_α
+  out.tangent = mid.Ns * normal.gradient + 0.5 * normal.value * mid.dNs      // ∂(t_N N_s), (3.9)
+                + mid.D.transpose() * tangential.gradient                    // ∂t_α D_α
+                + 0.5 * xi_hessian;                                          // t_α ∂D_α
   const Eigen::Vector2d contravariant = f.metric_inv * tangential.value;
-  out.history_after.traction = contravariant[0] * f.tau1 + contravariant[1] * f.tau2;  // §5.2 item 7
+  out.history_after.traction = contravariant[0] * f.tau1 + contravariant[1] * f.tau2;          // §5.2 item 7
   out.normal_energy = normal_penalty_energy(p.normal_stiffness, out.at_1.gap - p.gap_offset);  // (5.1)
   out.tangential_energy = tangential_penalty_energy(tangential.value, f.metric_inv, p.tangential_stiffness);
   out.slip_work = tangential.slip ? tangential.value.dot(tangential.slip_increment) : 0.0;  // §5.2 item 7
@@ -256,7 +262,8 @@ void fill_closed_step(PenaltyResultT<N>& out, const MidpointVariations<N>& mid, 
 /// The result of a step that stays open: W_N(g_{n+1}) only (5.1).
 template <int N>
 PenaltyResultT<N> open_result(PenaltyResultT<N> out, const PenaltyParameters& p) {
-  if (out.at_1.converged) out.normal_energy = normal_penalty_energy(p.normal_stiffness, out.at_1.gap - p.gap_offset);
+  if (out.at_1.converged)
+    out.normal_energy = normal_penalty_energy(p.normal_stiffness, out.at_1.gap - p.gap_offset);
   return out;
 }
 

@@ -40,8 +40,8 @@ PenaltyContactTerm::PenaltyContactTerm(const mesh::Mesh& mesh, const model::Cont
 }
 
 template <class Use>
-void PenaltyContactTerm::evaluate(const PenaltyContact& c, const Eigen::VectorXd& x_n, const Eigen::VectorXd& x_1,
-                                  Use&& use) const {
+void PenaltyContactTerm::evaluate(const PenaltyContact& c, const Eigen::VectorXd& x_n,
+                                  const Eigen::VectorXd& x_1, Use&& use) const {
   const int node = surfaces_.slave_nodes[c.slave];
   PenaltyParameters p = params_;
   p.gap_offset = c.gap_offset;
@@ -56,7 +56,8 @@ void PenaltyContactTerm::evaluate(const PenaltyContact& c, const Eigen::VectorXd
                                   surfaces_.face_size[c.face]));  // §5.2 on the patch
   } else {
     const mesh::Quad& face = surfaces_.faces[c.face];
-    counted(penalty_element(element_positions(node, face, x_n), element_positions(node, face, x_1), c.history, p,
+    counted(penalty_element(element_positions(node, face, x_n), element_positions(node, face, x_1), c.history,
+                            p,
                             c.xi_n));  // §5.2
   }
 }
@@ -98,7 +99,8 @@ void PenaltyContactTerm::prepare_step(const time::StepContext& step) {
     c.dofs = element_dofs(surfaces_.slave_nodes[i], surfaces_, c.face);
     c.history = committed_[i].history;  // spatial t_{T,n}: carried across a face switch (§5.2 item 3)
     c.gap_offset = committed_[i].gap_offset;
-    if (committed_[i].face >= 0 && c.face != committed_[i].face) c.gap_offset = switch_face(i, c.face, step.x_n);
+    if (committed_[i].face >= 0 && c.face != committed_[i].face)
+      c.gap_offset = switch_face(i, c.face, step.x_n);
     next.push_back(c);
   }
   if (same_structure(next, contacts_)) {
@@ -144,20 +146,22 @@ void PenaltyContactTerm::end_step(const time::StepContext& step, const Eigen::Ve
   std::vector<PenaltyNodeState> next(surfaces_.slave_nodes.size());
   clear_pressure();
   last_slip_work_ = 0;
-  for (const PenaltyContact& c : contacts_) evaluate(c, step.x_n, x, [&](const auto& r) {
-    PenaltyNodeState& node = next[c.slave];
-    node.face = c.face;
-    node.xi = r.at_1.converged ? r.at_1.xi : c.xi_n;
-    node.history = r.history_after;  // committed only now; reset when the contact opened (§5.2 item 7)
-    const bool clear = r.at_1.converged && r.at_1.gap >= 0 && r.at_1.gap - c.gap_offset >= 0;
-    node.gap_offset = clear ? 0.0 : c.gap_offset;  // W_N = 0 with or without it: clearing changes nothing
-    if (r.at_1.converged) report_.max_own_face_penetration = std::max(report_.max_own_face_penetration, -r.at_1.gap);
-    if (!r.closed) return;
-    ++report_.active;
-    report_.slipping += r.slip;
-    last_slip_work_ += r.slip_work;  // D += t_{n+1}·Δξ_p (§5.2 item 7)
-    add_pressure(c.slave, -r.normal_traction);  // t_N ≤ 0 (5.1)
-  });
+  for (const PenaltyContact& c : contacts_)
+    evaluate(c, step.x_n, x, [&](const auto& r) {
+      PenaltyNodeState& node = next[c.slave];
+      node.face = c.face;
+      node.xi = r.at_1.converged ? r.at_1.xi : c.xi_n;
+      node.history = r.history_after;  // committed only now; reset when the contact opened (§5.2 item 7)
+      const bool clear = r.at_1.converged && r.at_1.gap >= 0 && r.at_1.gap - c.gap_offset >= 0;
+      node.gap_offset = clear ? 0.0 : c.gap_offset;  // W_N = 0 with or without it: clearing changes nothing
+      if (r.at_1.converged)
+        report_.max_own_face_penetration = std::max(report_.max_own_face_penetration, -r.at_1.gap);
+      if (!r.closed) return;
+      ++report_.active;
+      report_.slipping += r.slip;
+      last_slip_work_ += r.slip_work;             // D += t_{n+1}·Δξ_p (§5.2 item 7)
+      add_pressure(c.slave, -r.normal_traction);  // t_N ≤ 0 (5.1)
+    });
   measure_closest_penetration(step, x);
   report_.switches = switches_;
   report_.energy_jump = switch_jump_;

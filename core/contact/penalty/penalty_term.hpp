@@ -11,10 +11,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/contact/geometry/broad_phase.hpp"
 #include "core/contact/contact_term.hpp"
-#include "core/contact/penalty/penalty_element.hpp"
+#include "core/contact/geometry/broad_phase.hpp"
 #include "core/contact/geometry/surface.hpp"
+#include "core/contact/penalty/penalty_element.hpp"
 #include "core/model/model.hpp"
 
 namespace stoss::contact {
@@ -63,7 +63,8 @@ class PenaltyContactTerm : public ContactTerm {
   void end_step(const time::StepContext& step, const Eigen::VectorXd& z) override;
   /// Per slave node: face, ξ, friction history, gap offset; the Coulomb work so far (penalty_state.cpp).
   time::TermState save_state() const override;
-  void restore_state(const time::TermState& state, const Eigen::VectorXd& x, const Eigen::VectorXd& v) override;
+  void restore_state(const time::TermState& state, const Eigen::VectorXd& x,
+                     const Eigen::VectorXd& v) override;
 
   double dissipated_energy() const override { return dissipated_; }
 
@@ -79,14 +80,15 @@ class PenaltyContactTerm : public ContactTerm {
   /// Evaluates the element of contact c over the step on the pair's surface and hands its result
   /// (PenaltyResult or PatchPenaltyResult) to use(result).
   template <class Use>
-  void evaluate(const PenaltyContact& c, const Eigen::VectorXd& x_n, const Eigen::VectorXd& x_1, Use&& use) const;
+  void evaluate(const PenaltyContact& c, const Eigen::VectorXd& x_n, const Eigen::VectorXd& x_1,
+                Use&& use) const;
   int face_for(int slave, const time::StepContext& step, Eigen::Vector2d& xi) const;
   /// Counts a switch of `slave` to `face` at x_n, adds its W_N jump, returns the new gap offset.
   double switch_face(int slave, int face, const Eigen::VectorXd& x_n);
 
   PenaltyParameters params_;
-  std::vector<TensorPatch> local_patches_;   ///< per master face of a smooth surface, renumbered (local_patch)
-  std::vector<PenaltyContact> contacts_;     ///< elements of the current step
+  std::vector<TensorPatch> local_patches_;  ///< per master face of a smooth surface, renumbered (local_patch)
+  std::vector<PenaltyContact> contacts_;    ///< elements of the current step
   std::vector<PenaltyNodeState> committed_;  ///< per slave node, after the last converged step
   int generation_ = 0;
   int switches_ = 0;        ///< face switches at the start of the current step

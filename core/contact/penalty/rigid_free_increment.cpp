@@ -43,11 +43,11 @@ RigidFreeIncrement rigid_free_increment(const Eigen::VectorXd& x_n, const Eigen:
   // ∂(R u)/∂x_m at fixed u: ω × δ per node; ∂u/∂x_m = G⁻¹[(∂R)ᵀ d − (∂R)ᵀ R u − Rᵀ (∂R) u].
   Eigen::MatrixXd omega_cross = Eigen::MatrixXd::Zero(n, n);
   for (Eigen::Index i = 0; i < n; i += 3) omega_cross.block<3, 3>(i, i) = skew(u.tail<3>());
-  const Eigen::MatrixXd du_dxm =
-      G.solve(transposed_mode_derivative(d) - transposed_mode_derivative(rigid) - R.transpose() * omega_cross);
+  const Eigen::MatrixXd du_dxm = G.solve(transposed_mode_derivative(d) - transposed_mode_derivative(rigid) -
+                                         R.transpose() * omega_cross);
   const Eigen::MatrixXd dq_dxm = -omega_cross - R * du_dxm;
   out.dq = Eigen::MatrixXd::Identity(n, n) - R * G.solve(R.transpose()) + 0.5 * dq_dxm;  // P + ½ ∂(Pd)/∂x_m
-  out.dsize = out.q.transpose() + d.transpose() * out.dq;  // s = d·q
+  out.dsize = out.q.transpose() + d.transpose() * out.dq;                                // s = d·q
   return out;
 }
 

@@ -11,9 +11,9 @@ namespace stoss::contact {
 /// onto the complement of the element's rigid motions at x_m = (x_n + x_{n+1})/2: translations t and
 /// rotations ω × x_m,node. Σ_nodes q = 0 and Σ x_m × q = 0.
 struct RigidFreeIncrement {
-  Eigen::VectorXd q;   ///< P d
-  double size = 0;     ///< s = d·q = |q|²
-  Eigen::MatrixXd dq;  ///< ∂q/∂x_{n+1} (x_n fixed)
+  Eigen::VectorXd q;         ///< P d
+  double size = 0;           ///< s = d·q = |q|²
+  Eigen::MatrixXd dq;        ///< ∂q/∂x_{n+1} (x_n fixed)
   Eigen::RowVectorXd dsize;  ///< ∂s/∂x_{n+1}
 };
 

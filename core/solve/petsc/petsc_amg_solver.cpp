@@ -25,7 +25,8 @@ void initialize_petsc() {
   static char* arguments[] = {name, no_handler, left, no, nullptr};
   static int argc = 4;
   static char** argv = arguments;
-  if (PetscInitialize(&argc, &argv, nullptr, nullptr) != 0) throw std::runtime_error("PetscInitialize failed");
+  if (PetscInitialize(&argc, &argv, nullptr, nullptr) != 0)
+    throw std::runtime_error("PetscInitialize failed");
   std::atexit([] { PetscFinalize(); });
 }
 
@@ -101,7 +102,9 @@ class PetscAmgSolver final : public AmgSolver {
 
   void set_tolerance(double relative) override {
     tolerance_ = relative;
-    if (ksp_) check(KSPSetTolerances(ksp_, tolerance_, 1e-300, PETSC_DEFAULT, amg_max_iterations), "KSPSetTolerances");
+    if (ksp_)
+      check(KSPSetTolerances(ksp_, tolerance_, 1e-300, PETSC_DEFAULT, amg_max_iterations),
+            "KSPSetTolerances");
   }
 
   KrylovOutcome solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
@@ -119,7 +122,8 @@ class PetscAmgSolver final : public AmgSolver {
     check(MatGetRowIJ(A_, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done), "MatGetRowIJ");
     check(MatSeqAIJGetArrayRead(A_, &values), "MatSeqAIJGetArrayRead");
     std::vector<int> outer(ia, ia + n + 1), inner(ja, ja + ia[n]);
-    const SparseMatrix copy = Eigen::Map<const RowMajorMatrix>(n, n, ia[n], outer.data(), inner.data(), values);
+    const SparseMatrix copy =
+        Eigen::Map<const RowMajorMatrix>(n, n, ia[n], outer.data(), inner.data(), values);
     check(MatSeqAIJRestoreArrayRead(A_, &values), "MatSeqAIJRestoreArrayRead");
     check(MatRestoreRowIJ(A_, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done), "MatRestoreRowIJ");
     return copy;
@@ -130,7 +134,8 @@ class PetscAmgSolver final : public AmgSolver {
     std::snprintf(rtol, sizeof rtol, "%.0e", tolerance_);
     std::string text = std::string("GMRES(100), right-preconditioned, rtol ") + rtol;
     if (whole_setups_ > 0) text += "; " + std::to_string(whole_setups_) + " setups of " + whole_;
-    if (split_setups_ > 0) text += "; " + std::to_string(split_setups_) + " setups of " + split_ + " (the last)";
+    if (split_setups_ > 0)
+      text += "; " + std::to_string(split_setups_) + " setups of " + split_ + " (the last)";
     if (reuses_ > 0) text += "; the preconditioner reused for " + std::to_string(reuses_) + " more matrices";
     return text;
   }
@@ -184,9 +189,9 @@ class PetscAmgSolver final : public AmgSolver {
   /// One symmetric SOR sweep (Richardson) instead of Chebyshev/Jacobi on GAMG's finest level, unless the
   /// user chose the levels' smoothers (PETSC_OPTIONS). Measured on the tumbling sphere at 27,648 hex8: 14.7
   /// GMRES iterations per solve instead of 23.6, linear solver 10.9 s instead of 11.9 s over 3 steps
-  /// (docs/measurements.md, "Linear solvers"). Only the finest level: its matrix has the inertia on its diagonal, while coarse
-  /// levels can carry zero diagonals (aggregates whose rotations hold no energy) that SOR cannot divide
-  /// by. Kept by later setups of the same preconditioner.
+  /// (docs/measurements.md, "Linear solvers"). Only the finest level: its matrix has the inertia on its
+  /// diagonal, while coarse levels can carry zero diagonals (aggregates whose rotations hold no energy) that
+  /// SOR cannot divide by. Kept by later setups of the same preconditioner.
   PetscErrorCode smooth_finest_level_with_sor() {
     KSP positions = gamg_ksp();
     // The split sets up its blocks' solvers at its first use; GAMG's levels are needed now.
@@ -195,7 +200,8 @@ class PetscAmgSolver final : public AmgSolver {
     if (positions) PetscCall(KSPGetPC(positions, &multigrid));
     PetscInt levels = 0;
     PetscBool user_set = PETSC_FALSE;
-    const std::string levels_prefix = std::string("-") + prefix + (split() ? "fieldsplit_0_" : "") + "mg_levels_";
+    const std::string levels_prefix =
+        std::string("-") + prefix + (split() ? "fieldsplit_0_" : "") + "mg_levels_";
     PetscCall(PetscOptionsHasName(nullptr, nullptr, (levels_prefix + "pc_type").c_str(), &user_set));
     if (!multigrid || user_set || PCMGGetLevels(multigrid, &levels) != success || levels < 2) return success;
     KSP smoother = nullptr;
@@ -274,7 +280,8 @@ class PetscAmgSolver final : public AmgSolver {
   PetscErrorCode field_split() {
     PetscCall(ISCreateStride(PETSC_COMM_SELF, positions_, 0, 1, &fields_[0]));
     PetscCall(ISSetBlockSize(fields_[0], 3));
-    if (near_null_) PetscCall(PetscObjectCompose((PetscObject)fields_[0], "nearnullspace", (PetscObject)near_null_));
+    if (near_null_)
+      PetscCall(PetscObjectCompose((PetscObject)fields_[0], "nearnullspace", (PetscObject)near_null_));
     PetscCall(ISCreateStride(PETSC_COMM_SELF, rows_ - positions_, positions_, 1, &fields_[1]));
     PC split = pc();
     PetscCall(PCSetType(split, PCFIELDSPLIT));
@@ -321,7 +328,8 @@ class PetscAmgSolver final : public AmgSolver {
     PetscCall(KSPGetIterationNumber(ksp_, &iterations));
     outcome.converged = reason > 0;
     outcome.iterations = int(iterations);
-    last_iterations_ = outcome.converged ? outcome.iterations : amg_max_iterations + 1;  // not converged: rebuild
+    last_iterations_ =
+        outcome.converged ? outcome.iterations : amg_max_iterations + 1;  // not converged: rebuild
     if (fresh_iterations_ < 0) fresh_iterations_ = last_iterations_;
     const PetscScalar* q = nullptr;
     PetscCall(VecGetArrayRead(x_, &q));
@@ -362,4 +370,6 @@ class PetscAmgSolver final : public AmgSolver {
 }  // namespace
 }  // namespace stoss::solve
 
-extern "C" stoss::solve::AmgSolver* stoss_make_petsc_amg_solver() { return new stoss::solve::PetscAmgSolver(); }
+extern "C" stoss::solve::AmgSolver* stoss_make_petsc_amg_solver() {
+  return new stoss::solve::PetscAmgSolver();
+}

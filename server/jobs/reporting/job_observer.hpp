@@ -39,7 +39,7 @@ class ProgressObserver : public model::Observer {
   const Clock& clock_;
   Millis interval_;
   Millis started_ = 0;
-  int first_step_ = 0;  ///< the step the rate counts from: 0, or the checkpoint's when resumed
+  int first_step_ = 0;     ///< the step the rate counts from: 0, or the checkpoint's when resumed
   double first_time_ = 0;  ///< the simulated time at first_step_
   bool adaptive_ = false;  ///< time.tolerance: progress by simulated time
   std::optional<Millis> last_report_;
@@ -57,7 +57,7 @@ class LogObserver : public model::Observer {
 
  private:
   std::ofstream& out_;
-  int last_step_ = -1;     ///< the last converged step (0: the initial state)
+  int last_step_ = -1;  ///< the last converged step (0: the initial state)
   double last_time_ = 0;
 };
 

@@ -75,8 +75,10 @@ void SeriesRecorder::step(const model::StepRow& row) {
     out_.flush();
     last_flush_ = now;
   }
-  if (total_ >= 0 && dissipated_ >= 0 && static_cast<std::size_t>(std::max(total_, dissipated_)) < row.values.size()) {
-    const double h = row.values[static_cast<std::size_t>(total_)], d = row.values[static_cast<std::size_t>(dissipated_)];
+  if (total_ >= 0 && dissipated_ >= 0 &&
+      static_cast<std::size_t>(std::max(total_, dissipated_)) < row.values.size()) {
+    const double h = row.values[static_cast<std::size_t>(total_)],
+                 d = row.values[static_cast<std::size_t>(dissipated_)];
     if (!initial_energy_) initial_energy_ = h + d;
     last_dissipated_ = d;
     const double scale = std::abs(*initial_energy_) > 0 ? std::abs(*initial_energy_) : 1.0;
@@ -143,7 +145,8 @@ std::optional<nlohmann::json> read_partial_series(const std::filesystem::path& p
       drift = std::max(drift, std::abs(h - h0) / scale);
       if (dissipated >= 0) {
         const double d0 = p->rows.front()[static_cast<std::size_t>(dissipated)];
-        balance = std::max(balance, std::abs(h + row[static_cast<std::size_t>(dissipated)] - h0 - d0) / scale);
+        balance =
+            std::max(balance, std::abs(h + row[static_cast<std::size_t>(dissipated)] - h0 - d0) / scale);
       }
     }
     summary["initial_energy"] = h0;
@@ -163,7 +166,8 @@ std::optional<nlohmann::json> read_partial_series(const std::filesystem::path& p
   return out;
 }
 
-std::optional<std::string> partial_series_csv(const std::filesystem::path& path, std::optional<long long> since) {
+std::optional<std::string> partial_series_csv(const std::filesystem::path& path,
+                                              std::optional<long long> since) {
   const auto p = load(path);
   if (!p) return std::nullopt;
   std::string header = "time";

@@ -67,7 +67,8 @@ Outcome InProcessExecutor::adopt_or_run(const Job& job, const AttemptFiles& file
 namespace {
 
 /// The job summary of a run, with the friction balance when the run dissipates (frictional contact).
-nlohmann::json job_summary(const model::Summary& summary, const model::Model& model, const SeriesRecorder& series) {
+nlohmann::json job_summary(const model::Summary& summary, const model::Model& model,
+                           const SeriesRecorder& series) {
   nlohmann::json j = summary_json(summary, model);
   if (auto dissipated = series.dissipated_energy()) {
     j["dissipated_energy"] = *dissipated;

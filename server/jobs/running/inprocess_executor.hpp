@@ -9,8 +9,8 @@
 
 #include "core/model/model.hpp"
 #include "server/jobs/clock.hpp"
-#include "server/jobs/running/executor.hpp"
 #include "server/jobs/job_files.hpp"
+#include "server/jobs/running/executor.hpp"
 
 namespace stoss::server::jobs {
 

@@ -99,15 +99,17 @@ constexpr auto replace_invalid_utf8 = nlohmann::json::error_handler_t::replace;
 
 }  // namespace
 
-std::optional<model::Scheme> parse_scheme(std::string_view name) { return model::scheme_from_string(name); }
+std::optional<model::Scheme> parse_scheme(std::string_view name) {
+  return model::scheme_from_string(name);
+}
 
 nlohmann::json study_params_json(const study::Options& options) {
   nlohmann::json schemes = nlohmann::json::array();
   for (model::Scheme s : options.schemes) schemes.push_back(model::to_string(s));
   nlohmann::json params = {{"steps", options.steps},
-                            {"schemes", schemes},
-                            {"reference_step", options.reference_step},
-                            {"repeat", options.repeat}};
+                           {"schemes", schemes},
+                           {"reference_step", options.reference_step},
+                           {"repeat", options.repeat}};
   if (!options.tolerances.empty()) params["tolerances"] = options.tolerances;
   return params;
 }
@@ -127,9 +129,13 @@ study::Options study_options(const nlohmann::json& params) {
   return options;
 }
 
-int study_run_count(const study::Options& options) { return study::run_count(options); }
+int study_run_count(const study::Options& options) {
+  return study::run_count(options);
+}
 
-study::Result study_result_from_json(const nlohmann::json& table) { return study::result_from_json(table); }
+study::Result study_result_from_json(const nlohmann::json& table) {
+  return study::result_from_json(table);
+}
 
 Outcome run_study_job(const Job& job, const model::Model& model, const StudyContext& context) {
   if (!job.study) throw std::invalid_argument("study job " + job.id.str() + " has no study parameters");
@@ -146,7 +152,8 @@ Outcome run_study_job(const Job& job, const model::Model& model, const StudyCont
     reporter = std::make_unique<ProgressObserver>(progress.sink(), context.clock, context.progress_interval);
     return reporter.get();
   };
-  options.run_finished = [&](const study::Run& run, const model::Summary& summary, const std::string& failure) {
+  options.run_finished = [&](const study::Run& run, const model::Summary& summary,
+                             const std::string& failure) {
     if (context.cancel) return;
     log_run(context.log, sweep, run, summary, failure);
     record(sweep, run, summary, failure);

@@ -241,13 +241,12 @@ CreateResult SqliteStore::create(const NewJob& job, int max_queued) {
   count.step();
   if (count.int64(0) >= max_queued) return {CreateResult::Outcome::queue_full, std::nullopt};
 
-  Statement insert(
-      *c,
-      "INSERT INTO jobs (id, status, created_ms, idempotency_key, body_hash, scene, effects, "
-      "progress_steps, progress_end, kind, study, name)"
-      " VALUES (?1, 'queued', ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)"
-      " RETURNING " +
-          job_columns);
+  Statement insert(*c,
+                   "INSERT INTO jobs (id, status, created_ms, idempotency_key, body_hash, scene, effects, "
+                   "progress_steps, progress_end, kind, study, name)"
+                   " VALUES (?1, 'queued', ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)"
+                   " RETURNING " +
+                       job_columns);
   insert.bind(1, JobId::random().str())
       .bind(2, impl_->clock.now())
       .bind(3, job.idempotency_key)

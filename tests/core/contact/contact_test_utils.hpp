@@ -8,8 +8,8 @@
 #include <cmath>
 #include <random>
 
-#include "core/contact/lagrange/invariants.hpp"
 #include "core/contact/geometry/projection.hpp"
+#include "core/contact/lagrange/invariants.hpp"
 #include "core/contact/types.hpp"
 
 namespace stoss::contact::test {

@@ -29,7 +29,8 @@ struct Grid {
     for (int j = 0; j <= ny; ++j)
       for (int i = 0; i <= nx; ++i) g.x.segment<3>(3 * g.id(i, j)) = shape(i * spacing, j * spacing);
     for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) g.faces.push_back({g.id(i, j), g.id(i + 1, j), g.id(i + 1, j + 1), g.id(i, j + 1)});
+      for (int i = 0; i < nx; ++i)
+        g.faces.push_back({g.id(i, j), g.id(i + 1, j), g.id(i + 1, j + 1), g.id(i, j + 1)});
     return g;
   }
   /// A flat uniform grid in z = 0.
@@ -49,7 +50,8 @@ struct Grid {
   /// A doubly curved, slightly irregular grid (a bump with uneven spacing).
   static Grid curved(int nx, int ny) {
     return make(nx, ny, 0.25, [](double u, double v) {
-      return Eigen::Vector3d(u + 0.03 * std::sin(7 * v), v + 0.02 * std::cos(5 * u), 0.3 * std::sin(1.3 * u) * std::cos(1.1 * v));
+      return Eigen::Vector3d(u + 0.03 * std::sin(7 * v), v + 0.02 * std::cos(5 * u),
+                             0.3 * std::sin(1.3 * u) * std::cos(1.1 * v));
     });
   }
 };

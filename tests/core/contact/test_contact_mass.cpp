@@ -1,7 +1,7 @@
-// The massless contact surfaces of impact "located" (docs/theory.md §4.6.1, (4.13)): M' = Pᵀ M P has zero rows
-// and columns at the slave and master nodes, is symmetric, keeps the total mass and hands each surface node's
-// mass to the node behind it; other schemes and modes keep M; a surface node with nowhere to send its mass is an
-// error; v ← P v gives a massless node its donor's velocity.
+// The massless contact surfaces of impact "located" (docs/theory.md §4.6.1, (4.13)): M' = Pᵀ M P has zero
+// rows and columns at the slave and master nodes, is symmetric, keeps the total mass and hands each surface
+// node's mass to the node behind it; other schemes and modes keep M; a surface node with nowhere to send its
+// mass is an error; v ← P v gives a massless node its donor's velocity.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -71,7 +71,8 @@ TEST(ContactMass, TheVelocityMapGivesAMasslessNodeItsDonorsVelocityAndKeepsTheOt
   const std::vector<int> massless = massless_nodes(b.m);
   for (int I = 0; I < b.m.mesh.node_count(); ++I) {
     if (std::binary_search(massless.begin(), massless.end(), I)) continue;
-    EXPECT_EQ((mapped.segment<3>(3 * I) - v.segment<3>(3 * I)).norm(), 0) << "node " << I << " keeps its v exactly";
+    EXPECT_EQ((mapped.segment<3>(3 * I) - v.segment<3>(3 * I)).norm(), 0)
+        << "node " << I << " keeps its v exactly";
   }
   const int s = b.m.mesh.surface_nodes("a/top").front();
   const int donor = node_at(b.m.mesh, b.m.mesh.nodes[s] - Eigen::Vector3d(0, 0, 0.5));

@@ -2,16 +2,16 @@
 
 #include <cmath>
 
-#include "core/contact/lagrange/elements/midpoint_element.hpp"
-#include "core/contact/lagrange/elements/mixed_element.hpp"
 #include "core/contact/geometry/projection.hpp"
 #include "core/contact/geometry/variations.hpp"
+#include "core/contact/lagrange/elements/midpoint_element.hpp"
+#include "core/contact/lagrange/elements/mixed_element.hpp"
 
 // Cross-implementation check: the numbers of an independent Python/NumPy implementation of
 // docs/theory.md §3–4 (the design prototype, not shipped: its cpp, geometry, dNs_dx, invariants,
-// g_of_pi, discrete_gradient, mixed_element and midpoint NTS element) for one fixed, deterministic state, printed with 17 digits. The
-// vectors w, v probe the matrices: K w. Bound: 1e-12 relative (different summation orders, and the
-// CPP stops at |Δξ| < 1e-13 in both).
+// g_of_pi, discrete_gradient, mixed_element and midpoint NTS element) for one fixed, deterministic state,
+// printed with 17 digits. The vectors w, v probe the matrices: K w. Bound: 1e-12 relative (different
+// summation orders, and the CPP stops at |Δξ| < 1e-13 in both).
 
 namespace stoss::contact {
 namespace {

@@ -1,4 +1,5 @@
-// The hex8 kernels (every material; SVK's closed forms) against finite differences and analytic answers (docs/theory.md §1, §2.3, §6.1).
+// The hex8 kernels (every material; SVK's closed forms) against finite differences and analytic answers
+// (docs/theory.md §1, §2.3, §6.1).
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -146,8 +147,10 @@ TEST(Hex8Element, UniformStretchReproducesSvkStressAnalytically) {
   const Matrix83 X = unit_cube();
   const Matrix83 x = X * s.asDiagonal();
   const ElementGeometry e = precompute_geometry(X);
-  const Eigen::Matrix3d E = 0.5 * (Eigen::Matrix3d(s.cwiseProduct(s).asDiagonal()) - Eigen::Matrix3d::Identity());
-  const Eigen::Matrix3d S = material.lambda() * E.trace() * Eigen::Matrix3d::Identity() + 2 * material.mu() * E;
+  const Eigen::Matrix3d E =
+      0.5 * (Eigen::Matrix3d(s.cwiseProduct(s).asDiagonal()) - Eigen::Matrix3d::Identity());
+  const Eigen::Matrix3d S =
+      material.lambda() * E.trace() * Eigen::Matrix3d::Identity() + 2 * material.mu() * E;
   Vector24 f;
   internal_force(e, material, x, f, nullptr);
   double face_force = 0;

@@ -28,7 +28,9 @@ Eigen::Matrix3d voigt_direction(int k) {
   return d;
 }
 
-double contraction(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B) { return A.cwiseProduct(B).sum(); }
+double contraction(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B) {
+  return A.cwiseProduct(B).sum();
+}
 
 class EachMaterial : public ::testing::TestWithParam<std::shared_ptr<const Material>> {
  protected:
@@ -83,7 +85,8 @@ TEST_P(EachMaterial, DiscreteStressTendsToTheStress) {
   const Eigen::Matrix3d E = random_strain(rng, 0.2);
   EXPECT_LT((material.discrete_stress(E, E) - material.stress(E)).norm(), 1e-13 * material.stress(E).norm());
   const Eigen::Matrix3d d = random_strain(rng, 1e-6);
-  EXPECT_LT((material.discrete_stress(E - d, E + d) - material.stress(E)).norm(), 1e-9 * material.stress(E).norm());
+  EXPECT_LT((material.discrete_stress(E - d, E + d) - material.stress(E)).norm(),
+            1e-9 * material.stress(E).norm());
 }
 
 TEST_P(EachMaterial, DiscreteStressTangentMatchesFiniteDifferences) {
@@ -94,8 +97,9 @@ TEST_P(EachMaterial, DiscreteStressTangentMatchesFiniteDifferences) {
     Matrix6d fd;
     for (int k = 0; k < 6; ++k) {
       const Eigen::Matrix3d d = eps * voigt_direction(k);
-      fd.col(k) = to_voigt_stress(material.discrete_stress(E_a, E_b + d) - material.discrete_stress(E_a, E_b - d)) /
-                  (2 * eps);
+      fd.col(k) =
+          to_voigt_stress(material.discrete_stress(E_a, E_b + d) - material.discrete_stress(E_a, E_b - d)) /
+          (2 * eps);
     }
     EXPECT_LT((D - fd).norm(), 1e-6 * D.norm()) << "step " << size;
   }
@@ -114,7 +118,8 @@ TEST(NeoHookean, StressUnderUniaxialStrainMatchesTheClosedForm) {
   const double stretch = 0.4;  // strong compression, where SVK's stress has turned
   Eigen::Matrix3d E = Eigen::Matrix3d::Zero();
   E(0, 0) = 0.5 * (stretch * stretch - 1);
-  const double S11 = lame.mu * (1 - 1 / (stretch * stretch)) + lame.lambda * std::log(stretch) / (stretch * stretch);
+  const double S11 =
+      lame.mu * (1 - 1 / (stretch * stretch)) + lame.lambda * std::log(stretch) / (stretch * stretch);
   EXPECT_NEAR(m.stress(E)(0, 0), S11, 1e-12 * std::abs(S11));
   const double S22 = lame.lambda * std::log(stretch);  // C_22 = 1: only the volumetric part
   EXPECT_NEAR(m.stress(E)(1, 1), S22, 1e-12 * std::abs(S22));

@@ -1,6 +1,4 @@
 // Requirements for the mesh generators (docs/theory.md §1.1, §7).
-#include "core/mesh/generators.hpp"
-
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -10,6 +8,7 @@
 #include <set>
 
 #include "core/fem/hex8.hpp"
+#include "core/mesh/generators.hpp"
 
 namespace stoss::mesh {
 namespace {

@@ -1,19 +1,17 @@
 // Requirements for the mesh file readers: Gmsh MSH 4.1 (ASCII and binary, files written by Debian's gmsh)
 // and Abaqus/CalculiX decks; one body cut out by element set, with its named surfaces; bad files are
 // MeshFileErrors naming the file and the line or element.
-#include "core/mesh/mesh_file.hpp"
-
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <Eigen/Geometry>
-
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 
 #include "core/fem/hex8.hpp"
+#include "core/mesh/mesh_file.hpp"
 
 namespace stoss::mesh {
 namespace {
@@ -133,12 +131,14 @@ TEST(GmshReader, BinaryFileGivesTheSameMeshAsAscii) {
 TEST(GmshReader, ReadsWhatTheInstalledGmshWritesNow) {
   // The committed fixtures came from gmsh 4.8.4; this regenerates them with the gmsh on this machine.
   if (std::system("gmsh --version > /dev/null 2>&1") != 0)
-    GTEST_SKIP() << "gmsh is not installed (deploy/packages.txt installs it); the committed fixtures are tested above";
+    GTEST_SKIP()
+        << "gmsh is not installed (deploy/packages.txt installs it); the committed fixtures are tested above";
   TempDir dir;
   for (const char* flags : {"", "-bin"}) {
     const fs::path out = dir.path / (std::string("fresh") + flags + ".msh");
     const std::string command = "gmsh -3 -format msh41 " + std::string(flags) + " '" +
-                                (data_dir / "two_blocks.geo").string() + "' -o '" + out.string() + "' > /dev/null 2>&1";
+                                (data_dir / "two_blocks.geo").string() + "' -o '" + out.string() +
+                                "' > /dev/null 2>&1";
     ASSERT_EQ(std::system(command.c_str()), 0) << command;
     expect_two_blocks(read_mesh_file(out));
   }
@@ -159,8 +159,9 @@ TEST(GmshReader, SelectedPhysicalVolumeIsABodyWithItsSurfaces) {
   EXPECT_EQ(all.body.hex8.size(), 16u);
   EXPECT_EQ(all.body.surfaces.at("boundary").size(), 40u);
   EXPECT_EQ(all.body.surfaces.at("xmax").size(), 4u);
-  EXPECT_NE(error_of([&] { select_body(m, "middle"); }).find("has no element set 'middle' (it has left, right)"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of([&] { select_body(m, "middle"); }).find("has no element set 'middle' (it has left, right)"),
+      std::string::npos);
 }
 
 TEST(GmshReader, TransformScalesRotatesThenTranslates) {
@@ -188,8 +189,11 @@ std::string one_hex_msh(const std::string& elements, const std::string& nodes_ex
   return "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
          "$PhysicalNames\n2\n2 7 \"base\"\n3 8 \"solid\"\n$EndPhysicalNames\n"
          "$Entities\n0 0 1 1\n1 0 0 0 1 1 0 1 7 0\n1 0 0 0 1 1 1 1 8 0\n$EndEntities\n"
-         "$Nodes\n" + (nodes_extra.empty() ? nodes : nodes_extra) + "$EndNodes\n"
-         "$Elements\n" + elements + "$EndElements\n";
+         "$Nodes\n" +
+         (nodes_extra.empty() ? nodes : nodes_extra) +
+         "$EndNodes\n"
+         "$Elements\n" +
+         elements + "$EndElements\n";
 }
 
 const std::string good_elements = "2 2 1 2\n2 1 3 1\n10 1 4 3 2\n3 1 5 1\n20 1 2 3 4 5 6 7 8\n";
@@ -213,14 +217,17 @@ TEST(GmshReader, BadFilesNameFileAndLine) {
     return error_of([&] { read_gmsh(p, "bad.msh"); });
   };
   // Only 4.1.
-  EXPECT_EQ(error("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"),
-            "bad.msh:2: MSH format version 2.2 is not supported; Stoss reads version 4.1 (gmsh -format msh41)");
+  EXPECT_EQ(
+      error("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"),
+      "bad.msh:2: MSH format version 2.2 is not supported; Stoss reads version 4.1 (gmsh -format msh41)");
   EXPECT_EQ(error("hello\n"), "bad.msh:1: not a Gmsh mesh file: it must start with $MeshFormat");
   // Tetrahedra.
-  EXPECT_NE(error(one_hex_msh("1 1 1 1\n3 1 4 1\n20 1 2 3 5\n")).find("bad.msh:36: unsupported volume element type 4 (4-node tetrahedron)"),
+  EXPECT_NE(error(one_hex_msh("1 1 1 1\n3 1 4 1\n20 1 2 3 5\n"))
+                .find("bad.msh:36: unsupported volume element type 4 (4-node tetrahedron)"),
             std::string::npos);
   // Triangles in a physical surface.
-  EXPECT_NE(error(one_hex_msh("1 1 1 1\n2 1 2 1\n20 1 2 3\n")).find("unsupported surface element type 2 (3-node triangle) in physical surface 'base'"),
+  EXPECT_NE(error(one_hex_msh("1 1 1 1\n2 1 2 1\n20 1 2 3\n"))
+                .find("unsupported surface element type 2 (3-node triangle) in physical surface 'base'"),
             std::string::npos);
   // Wrong node count on an element line.
   EXPECT_EQ(error(one_hex_msh("1 1 1 1\n3 1 5 1\n20 1 2 3 4 5 6 7\n")),
@@ -228,7 +235,8 @@ TEST(GmshReader, BadFilesNameFileAndLine) {
   // Duplicate element and node tags.
   EXPECT_EQ(error(one_hex_msh("1 2 1 2\n3 1 5 2\n20 1 2 3 4 5 6 7 8\n20 1 2 3 4 5 6 7 8\n")),
             "bad.msh:38: duplicate element tag 20");
-  EXPECT_NE(error(one_hex_msh(good_elements, "1 2 1 1\n3 1 0 2\n1\n1\n0 0 0\n1 0 0\n")).find("duplicate node tag 1"),
+  EXPECT_NE(error(one_hex_msh(good_elements, "1 2 1 1\n3 1 0 2\n1\n1\n0 0 0\n1 0 0\n"))
+                .find("duplicate node tag 1"),
             std::string::npos);
   // A node that does not exist.
   EXPECT_EQ(error(one_hex_msh("1 1 1 1\n3 1 5 1\n20 1 2 3 4 5 6 7 9\n")),
@@ -237,7 +245,8 @@ TEST(GmshReader, BadFilesNameFileAndLine) {
   EXPECT_EQ(error(one_hex_msh("2 2 1 2\n2 1 3 1\n10 1 2 7 8\n3 1 5 1\n20 1 2 3 4 5 6 7 8\n")),
             "bad.msh:37: quadrangle 10 of physical surface 'base' is not a face of any hexahedron");
   // Counts that do not match the blocks.
-  EXPECT_NE(error(one_hex_msh("1 2 1 1\n3 1 5 1\n20 1 2 3 4 5 6 7 8\n")).find("header says 2 elements, its blocks hold 1"),
+  EXPECT_NE(error(one_hex_msh("1 2 1 1\n3 1 5 1\n20 1 2 3 4 5 6 7 8\n"))
+                .find("header says 2 elements, its blocks hold 1"),
             std::string::npos);
   // Missing file.
   EXPECT_EQ(error_of([] { read_gmsh("/nonexistent/x.msh", "x.msh"); }), "x.msh: cannot read the file");
@@ -359,8 +368,10 @@ TEST(AbaqusReader, ReadsNodesElementsSetsAndSurfaces) {
     for (int n : m.hex8[f.element]) c += m.nodes[n] / 8;
     return normal(m.nodes, q).dot(centroid(m.nodes, q) - c) > 0;
   };
-  EXPECT_NEAR(normal(m.nodes, hex_faces(m.hex8[0])[m.surfaces.at("SBOTTOM")[0].face]).normalized().z(), -1, 1e-12);
-  EXPECT_NEAR(normal(m.nodes, hex_faces(m.hex8[1])[m.surfaces.at("STop")[0].face]).normalized().z(), 1, 1e-12);
+  EXPECT_NEAR(normal(m.nodes, hex_faces(m.hex8[0])[m.surfaces.at("SBOTTOM")[0].face]).normalized().z(), -1,
+              1e-12);
+  EXPECT_NEAR(normal(m.nodes, hex_faces(m.hex8[1])[m.surfaces.at("STop")[0].face]).normalized().z(), 1,
+              1e-12);
   for (const ElementFace& f : m.surfaces.at("SSIDES")) {
     EXPECT_TRUE(outward(f));
     const Quad q = hex_faces(m.hex8[f.element])[f.face];
@@ -403,7 +414,8 @@ TEST(AbaqusReader, IncludedFilesAreRead) {
   TempDir dir;
   dir.write("nodes.inp", "1,0,0,0\n2,1,0,0\n3,1,1,0\n4,0,1,0\n5,0,0,1\n6,1,0,1\n7,1,1,1\n8,0,1,1\n");
   const ImportedMesh m = read_abaqus(
-      dir.write("main.inp", "*NODE\n*INCLUDE, INPUT=nodes.inp\n*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7,8\n"), "main.inp");
+      dir.write("main.inp", "*NODE\n*INCLUDE, INPUT=nodes.inp\n*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7,8\n"),
+      "main.inp");
   EXPECT_EQ(m.nodes.size(), 8u);
   EXPECT_EQ(m.hex8.size(), 1u);
 }
@@ -417,8 +429,10 @@ TEST(AbaqusReader, BadDecksNameFileAndLine) {
   };
   EXPECT_EQ(error(nodes + "*ELEMENT, TYPE=C3D4\n1,1,2,3,5\n"),
             "bad.inp:10: unsupported element type C3D4; Stoss reads 8-node hexahedra (C3D8, C3D8R)");
-  EXPECT_EQ(error(nodes + "*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7\n"), "bad.inp:11: element 1 has 7 nodes, C3D8 needs 8");
-  EXPECT_EQ(error(nodes + "*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7,8,9\n"), "bad.inp:11: element 1 has 9 nodes, C3D8 needs 8");
+  EXPECT_EQ(error(nodes + "*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7\n"),
+            "bad.inp:11: element 1 has 7 nodes, C3D8 needs 8");
+  EXPECT_EQ(error(nodes + "*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7,8,9\n"),
+            "bad.inp:11: element 1 has 9 nodes, C3D8 needs 8");
   EXPECT_EQ(error(nodes + "*ELEMENT, TYPE=C3D8\n1,1,2,3,4,\n"),
             "bad.inp:11: element line ends with ',' but the file ends (truncated file?)");
   EXPECT_EQ(error(nodes + "3,5,5,5\n"), "bad.inp:10: duplicate node id 3 (first defined on line 4)");
@@ -432,8 +446,9 @@ TEST(AbaqusReader, BadDecksNameFileAndLine) {
             "bad.inp:13: face label must be S1..S6 (C3D8 faces), got 'S7'");
   EXPECT_EQ(error(nodes + "*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7,8\n*SURFACE, NAME=S\n2, S1\n"),
             "bad.inp:13: *SURFACE S: element 2 is not defined");
-  EXPECT_EQ(error(nodes + "*SURFACE, NAME=S, TYPE=NODE\n1\n"),
-            "bad.inp:10: *SURFACE TYPE=NODE is not supported; Stoss reads element-based surfaces (TYPE=ELEMENT)");
+  EXPECT_EQ(
+      error(nodes + "*SURFACE, NAME=S, TYPE=NODE\n1\n"),
+      "bad.inp:10: *SURFACE TYPE=NODE is not supported; Stoss reads element-based surfaces (TYPE=ELEMENT)");
   EXPECT_EQ(error(nodes + "*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7,8\n*ELSET, ELSET=E\n1, 5\n"),
             "bad.inp:13: ELSET E: element 5 is not defined");
   EXPECT_EQ(error("*NODE\n1, 0, zero, 0\n"), "bad.inp:2: expected y (a number), got 'zero'");
@@ -448,10 +463,11 @@ TEST(AbaqusReader, BadDecksNameFileAndLine) {
 
 TEST(AbaqusReader, EmptyAndMissingSetsAreNamedWhenSelected) {
   TempDir dir;
-  const ImportedMesh m = read_abaqus(
-      dir.write("e.inp", "*NODE\n1,0,0,0\n2,1,0,0\n3,1,1,0\n4,0,1,0\n5,0,0,1\n6,1,0,1\n7,1,1,1\n8,0,1,1\n"
-                         "*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7,8\n*ELSET, ELSET=EMPTY\n"),
-      "e.inp");
+  const ImportedMesh m =
+      read_abaqus(dir.write("e.inp",
+                            "*NODE\n1,0,0,0\n2,1,0,0\n3,1,1,0\n4,0,1,0\n5,0,0,1\n6,1,0,1\n7,1,1,1\n8,0,1,1\n"
+                            "*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7,8\n*ELSET, ELSET=EMPTY\n"),
+                  "e.inp");
   EXPECT_EQ(error_of([&] { select_body(m, "EMPTY"); }), "e.inp: element set 'EMPTY' is empty");
   EXPECT_EQ(error_of([&] { select_body(m, "EBALL"); }), "e.inp: has no element set 'EBALL' (it has EMPTY)");
 }

@@ -19,7 +19,8 @@ namespace {
 /// A python3 that imports meshio and h5py ("" if none): Debian's first (a pyenv shim may come first on PATH).
 std::string python_with_meshio() {
   for (const char* python : {"/usr/bin/python3", "python3"})
-    if (std::system((std::string(python) + " -c 'import meshio, h5py' > /dev/null 2>&1").c_str()) == 0) return python;
+    if (std::system((std::string(python) + " -c 'import meshio, h5py' > /dev/null 2>&1").c_str()) == 0)
+      return python;
   return "";
 }
 
@@ -53,7 +54,8 @@ TEST_F(Meshio, ReadsMeshAndTimeSeriesWithTheValuesOfTheHdf5File) {
   EXPECT_EQ(report["points"], 16);
   EXPECT_EQ(report["cells"], 2);
   EXPECT_EQ(report["frames"], 3);
-  EXPECT_EQ(report["fields"], (nlohmann::json{"cauchy_stress", "contact_pressure", "displacement", "velocity", "von_mises"}));
+  EXPECT_EQ(report["fields"],
+            (nlohmann::json{"cauchy_stress", "contact_pressure", "displacement", "velocity", "von_mises"}));
   // Mesh: 48 + 16 + 2 + 16; time series: 48 + 16; per frame 48 + 48 + 16 + 12 + 2.
   EXPECT_EQ(report["values_compared"], 82 + 64 + 3 * 126);
   const ResultFile file = ResultFile::open(dir / result_file_name);

@@ -143,8 +143,9 @@ TEST_F(ResultWriterTest, FramesCarryElementStress) {
   for (int e = 0; e < 2; ++e) {
     const double xx = sigma(e, 0), xy = sigma(e, 1), xz = sigma(e, 2), yy = sigma(e, 3), yz = sigma(e, 4),
                  zz = sigma(e, 5);
-    const double expected = std::sqrt(0.5 * ((xx - yy) * (xx - yy) + (yy - zz) * (yy - zz) + (zz - xx) * (zz - xx)) +
-                                      3 * (xy * xy + yz * yz + xz * xz));
+    const double expected =
+        std::sqrt(0.5 * ((xx - yy) * (xx - yy) + (yy - zz) * (yy - zz) + (zz - xx) * (zz - xx)) +
+                  3 * (xy * xy + yz * yz + xz * xz));
     EXPECT_NEAR(vm[e], expected, 1e-9 * expected);
     EXPECT_GT(vm[e], 1.0);
   }

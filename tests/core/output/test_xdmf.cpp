@@ -18,8 +18,10 @@ TEST(Xdmf, GeometryIsTheFramesPositionDataset) {
   EXPECT_EQ(xdmf.find("HyperSlab"), std::string::npos);
   EXPECT_EQ(testing::count_of(xdmf, "<Geometry GeometryType=\"XYZ\">"), 2);
   for (int k = 0; k < 2; ++k)
-    EXPECT_EQ(testing::count_of(xdmf, "<DataItem Dimensions=\"16 3\" NumberType=\"Float\" Precision=\"8\" "
-                                      "Format=\"HDF\">result.h5:/frames/" + std::to_string(k) + "/position</DataItem>"),
+    EXPECT_EQ(testing::count_of(xdmf,
+                                "<DataItem Dimensions=\"16 3\" NumberType=\"Float\" Precision=\"8\" "
+                                "Format=\"HDF\">result.h5:/frames/" +
+                                    std::to_string(k) + "/position</DataItem>"),
               1);
   EXPECT_EQ(testing::count_of(xdmf, "<Time Value=\"0.125\"/>"), 1);
 }
@@ -37,8 +39,9 @@ TEST(Xdmf, OneTemporalCollectionOfUniformGrids) {
 TEST(Xdmf, TopologyIsHexahedraFromMesh) {
   const std::string xdmf = xdmf_document(two_frames(false));
   EXPECT_EQ(testing::count_of(xdmf, "<Topology TopologyType=\"Hexahedron\" NumberOfElements=\"2\""), 2);
-  EXPECT_EQ(testing::count_of(xdmf, "Dimensions=\"2 8\" NumberType=\"Int\" Precision=\"8\" "
-                                    "Format=\"HDF\">result.h5:/mesh/hex8</DataItem>"),
+  EXPECT_EQ(testing::count_of(xdmf,
+                              "Dimensions=\"2 8\" NumberType=\"Int\" Precision=\"8\" "
+                              "Format=\"HDF\">result.h5:/mesh/hex8</DataItem>"),
             2);
   EXPECT_EQ(testing::count_of(xdmf, "result.h5:/mesh/nodes"), 2);  // reference_position
 }
@@ -48,15 +51,24 @@ TEST(Xdmf, FieldsAreNodeAndCellAttributes) {
   EXPECT_EQ(xdmf_document(two_frames(false)).find("von_mises"), std::string::npos);
   const std::string xdmf = xdmf_document(two_frames(true, true));
   EXPECT_EQ(testing::xml_structure_error(xdmf), "");
-  EXPECT_EQ(testing::count_of(xdmf, "<Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">"), 2);
-  EXPECT_EQ(testing::count_of(xdmf, "<Attribute Name=\"contact_pressure\" AttributeType=\"Scalar\" Center=\"Node\">"), 2);
-  EXPECT_EQ(testing::count_of(xdmf, "<Attribute Name=\"von_mises\" AttributeType=\"Scalar\" Center=\"Cell\">"), 2);
-  EXPECT_EQ(testing::count_of(xdmf, "<Attribute Name=\"cauchy_stress\" AttributeType=\"Tensor6\" Center=\"Cell\">"), 2);
-  EXPECT_EQ(testing::count_of(xdmf, "Dimensions=\"2 6\" NumberType=\"Float\" Precision=\"8\" "
-                                    "Format=\"HDF\">result.h5:/frames/1/cauchy_stress</DataItem>"),
+  EXPECT_EQ(
+      testing::count_of(xdmf, "<Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">"),
+      2);
+  EXPECT_EQ(testing::count_of(
+                xdmf, "<Attribute Name=\"contact_pressure\" AttributeType=\"Scalar\" Center=\"Node\">"),
+            2);
+  EXPECT_EQ(
+      testing::count_of(xdmf, "<Attribute Name=\"von_mises\" AttributeType=\"Scalar\" Center=\"Cell\">"), 2);
+  EXPECT_EQ(
+      testing::count_of(xdmf, "<Attribute Name=\"cauchy_stress\" AttributeType=\"Tensor6\" Center=\"Cell\">"),
+      2);
+  EXPECT_EQ(testing::count_of(xdmf,
+                              "Dimensions=\"2 6\" NumberType=\"Float\" Precision=\"8\" "
+                              "Format=\"HDF\">result.h5:/frames/1/cauchy_stress</DataItem>"),
             1);
-  EXPECT_EQ(testing::count_of(xdmf, "Dimensions=\"16\" NumberType=\"Float\" Precision=\"8\" "
-                                    "Format=\"HDF\">result.h5:/frames/0/contact_pressure</DataItem>"),
+  EXPECT_EQ(testing::count_of(xdmf,
+                              "Dimensions=\"16\" NumberType=\"Float\" Precision=\"8\" "
+                              "Format=\"HDF\">result.h5:/frames/0/contact_pressure</DataItem>"),
             1);
 }
 
@@ -66,8 +78,10 @@ TEST(Xdmf, MeshDocumentIsOneUniformGrid) {
   EXPECT_EQ(testing::xml_structure_error(xdmf), "");
   EXPECT_EQ(testing::count_of(xdmf, "<Grid "), 1);
   EXPECT_NE(xdmf.find("Format=\"HDF\">result.h5:/mesh/nodes</DataItem>"), std::string::npos);
-  EXPECT_NE(xdmf.find("<Attribute Name=\"body\" AttributeType=\"Scalar\" Center=\"Cell\">"), std::string::npos);
-  EXPECT_NE(xdmf.find("<Attribute Name=\"node_body\" AttributeType=\"Scalar\" Center=\"Node\">"), std::string::npos);
+  EXPECT_NE(xdmf.find("<Attribute Name=\"body\" AttributeType=\"Scalar\" Center=\"Cell\">"),
+            std::string::npos);
+  EXPECT_NE(xdmf.find("<Attribute Name=\"node_body\" AttributeType=\"Scalar\" Center=\"Node\">"),
+            std::string::npos);
   EXPECT_EQ(xdmf.find("/frames/"), std::string::npos);
 }
 

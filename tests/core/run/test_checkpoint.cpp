@@ -2,22 +2,21 @@
 // output.checkpoint_every steps, and a run resumed from the last checkpoint after a crash shall compute only
 // the steps after it and end with the series and frames of a run that never crashed, to the Newton tolerance.
 #include <gtest/gtest.h>
-
-#include <algorithm>
-#include <numeric>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <numeric>
 #include <set>
 #include <stdexcept>
 #include <string>
 
+#include "../recording_observer.hpp"
+#include "../short_ball_on_plate.hpp"
 #include "core/run/checkpoint.hpp"
 #include "core/scene/scene.hpp"
 #include "core/simulate.hpp"
-#include "../recording_observer.hpp"
-#include "../short_ball_on_plate.hpp"
 
 namespace stoss {
 namespace {
@@ -132,7 +131,8 @@ TEST_P(CheckpointResume, AResumedRunComputesOnlyTheStepsAfterTheCheckpointAndEnd
     // Steps 0..N come back as they were (their wall times are the first attempt's), then the log line, then
     // steps N+1.. only.
     ASSERT_EQ(resumed.events.size(), size_t(reference.steps + 2));
-    EXPECT_EQ(resumed.resumed_at, std::vector<int>{checkpoint}) << "observers hear of the resume once, with its step";
+    EXPECT_EQ(resumed.resumed_at, std::vector<int>{checkpoint})
+        << "observers hear of the resume once, with its step";
     EXPECT_EQ(
         resumed.events[checkpoint + 1].rfind("resumed from step " + std::to_string(checkpoint) + " ", 0), 0u)
         << resumed.events[checkpoint + 1];

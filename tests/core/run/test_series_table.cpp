@@ -49,12 +49,26 @@ TEST(SeriesTable, AContactFreeSceneGetsTheEnergiesMomentaAndSolverSeriesInOrder)
 
 TEST(SeriesTable, GravityFrictionAndASmoothMasterAddTheirSeriesWhereTheDocsListThem) {
   const SeriesRows rows(model_with({"inertia", "elasticity", "gravity", "contact_frictional"}, 1, true));
-  EXPECT_EQ(names(rows.layout()),
-            (std::vector<std::string>{
-                "kinetic_energy", "strain_energy", "potential_energy", "total_energy", "dissipated_energy",
-                "linear_momentum", "angular_momentum", "active_contacts", "max_penetration",
-                "contact_energy_jump", "face_switches", "unprojected_nodes", "max_faceted_penetration",
-                "slipping_contacts", "newton_iterations", "residual_norm", "step_seconds", "substeps", "step_size", "rejected_steps"}));
+  EXPECT_EQ(names(rows.layout()), (std::vector<std::string>{"kinetic_energy",
+                                                            "strain_energy",
+                                                            "potential_energy",
+                                                            "total_energy",
+                                                            "dissipated_energy",
+                                                            "linear_momentum",
+                                                            "angular_momentum",
+                                                            "active_contacts",
+                                                            "max_penetration",
+                                                            "contact_energy_jump",
+                                                            "face_switches",
+                                                            "unprojected_nodes",
+                                                            "max_faceted_penetration",
+                                                            "slipping_contacts",
+                                                            "newton_iterations",
+                                                            "residual_norm",
+                                                            "step_seconds",
+                                                            "substeps",
+                                                            "step_size",
+                                                            "rejected_steps"}));
   EXPECT_TRUE(rows.layout().series.at(7).integer) << "active_contacts is a count (int32)";
   EXPECT_FALSE(rows.layout().series.at(8).integer) << "max_penetration is a length";
 }

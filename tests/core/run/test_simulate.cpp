@@ -348,7 +348,8 @@ TEST(Simulate, AutoLinearSolverPicksByElementCountAndSaysSo) {
   large.effects = model::resolve_effects(large);
   RecordingObserver r;
   ASSERT_TRUE(simulate(large, r).completed);
-  EXPECT_TRUE(logged(r, "linear solver: auto → petsc_gamg (PETSc GMRES + GAMG, rigid-body modes): 14112 elements"));
+  EXPECT_TRUE(
+      logged(r, "linear solver: auto → petsc_gamg (PETSc GMRES + GAMG, rigid-body modes): 14112 elements"));
 }
 
 // The system shall give the direct solver's answer, to the Newton tolerance, with either Krylov path.
@@ -357,7 +358,8 @@ TEST(Simulate, AutoLinearSolverPicksByElementCountAndSaysSo) {
 TEST(Simulate, IterativeLinearSolverGivesTheDirectAnswerToTheNewtonTolerance) {
   const auto [direct, iterative] =
       expect_the_direct_answer(small_tumbling_sphere(), model::LinearSolver::iterative, 1e-9);
-  EXPECT_GT((direct.frames.back().position - direct.frames.front().position).norm(), 0.1) << "the sphere moved";
+  EXPECT_GT((direct.frames.back().position - direct.frames.front().position).norm(), 0.1)
+      << "the sphere moved";
 }
 
 TEST(Simulate, PetscGamgGivesTheDirectAnswerOnTheTumblingSphere) {

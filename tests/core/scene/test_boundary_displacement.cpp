@@ -1,12 +1,12 @@
-// Requirements for `boundary[i].displacement` and its `amplitude` (docs/scene.md "boundary", issue 23 §2): the
-// entry reaches the model, the effect prescribed_motion is named only when a displacement is non-zero, and
-// every bad input is one issue at the entry's JSON pointer naming the rule.
-#include <limits>
+// Requirements for `boundary[i].displacement` and its `amplitude` (docs/scene.md "boundary", issue 23 §2):
+// the entry reaches the model, the effect prescribed_motion is named only when a displacement is non-zero,
+// and every bad input is one issue at the entry's JSON pointer naming the rule.
 #include <gtest/gtest.h>
 
-#include "tests/core/scene/scene_issues.hpp"
+#include <limits>
 
 #include "core/scene/scene.hpp"
+#include "tests/core/scene/scene_issues.hpp"
 
 namespace stoss::scene {
 namespace {
@@ -39,7 +39,8 @@ TEST(BoundaryDisplacement, ReachesTheModelWithItsEffect) {
 }
 
 TEST(BoundaryDisplacement, AZeroDisplacementIsASupportWithoutTheEffect) {
-  const model::Model m = load(block_with(json::parse(R"([{ "surface": "block/bottom", "displacement": [0, 0, 0] }])")));
+  const model::Model m =
+      load(block_with(json::parse(R"([{ "surface": "block/bottom", "displacement": [0, 0, 0] }])")));
   EXPECT_FALSE(m.boundary[0].moves());
   EXPECT_FALSE(m.has_effect(model::effect::prescribed_motion)) << "only when some displacement is non-zero";
 }

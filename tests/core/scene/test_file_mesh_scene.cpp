@@ -5,8 +5,8 @@
 #include <unistd.h>
 
 #include <Eigen/Geometry>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -83,8 +83,8 @@ TEST(FileMeshExamples, CalculixDeckBallAndPlateRunIntoContact) {
   // surfaces keep the deck's names.
   const model::Model m = scene::load_file((examples / "ball_plate_inp.json").string());
   ASSERT_EQ(m.mesh.bodies.size(), 2u);
-  EXPECT_EQ(m.mesh.bodies[0].element_end - m.mesh.bodies[0].element_begin, 96);   // 6 × 4 × 4 shell cells
-  EXPECT_EQ(m.mesh.bodies[1].element_end - m.mesh.bodies[1].element_begin, 64);   // 8 × 8 × 1
+  EXPECT_EQ(m.mesh.bodies[0].element_end - m.mesh.bodies[0].element_begin, 96);  // 6 × 4 × 4 shell cells
+  EXPECT_EQ(m.mesh.bodies[1].element_end - m.mesh.bodies[1].element_begin, 64);  // 8 × 8 × 1
   EXPECT_EQ(m.mesh.node_count(), 2 * (6 * 16 + 2) + 9 * 9 * 2);
   EXPECT_EQ(m.mesh.surface("ball/SBALL").size(), 96u);
   EXPECT_EQ(m.mesh.surface("plate/SPLATE").size(), 64u);
@@ -110,7 +110,8 @@ TEST(FileMeshExamples, CalculixDeckBallAndPlateRunIntoContact) {
   EXPECT_GT(r.contact_window().second, 0.1);
   // Free bodies, no gravity: the impact moves momentum from the ball to the plate, the sum stays.
   EXPECT_LT(r.vector_drift("linear_momentum"), 1e-9);
-  const Eigen::Vector3d ball = mean_velocity(m, r.frames.back(), 0), plate = mean_velocity(m, r.frames.back(), 1);
+  const Eigen::Vector3d ball = mean_velocity(m, r.frames.back(), 0),
+                        plate = mean_velocity(m, r.frames.back(), 1);
   EXPECT_GT(ball.z(), -0.95);   // slowed by the plate
   EXPECT_LT(plate.z(), -0.01);  // pushed down
   EXPECT_LT(s.max_penetration, 1e-3);
@@ -126,7 +127,8 @@ TEST(FileMeshExamples, CalculixDeckBallAndPlateRunIntoContact) {
   EXPECT_GT(file.frame_contact_pressure(2).maxCoeff(), 0);
   std::string python;
   for (const char* p : {"/usr/bin/python3", "python3"})
-    if (python.empty() && std::system((std::string(p) + " -c 'import meshio, h5py' > /dev/null 2>&1").c_str()) == 0)
+    if (python.empty() &&
+        std::system((std::string(p) + " -c 'import meshio, h5py' > /dev/null 2>&1").c_str()) == 0)
       python = p;
   if (python.empty()) {
     GTEST_SKIP() << "python3-meshio (with python3-h5py) is not installed; deploy/packages.txt installs both";
@@ -184,8 +186,10 @@ TEST(FileMeshExamples, GmshPartWithAHoleFallsOnTheClampedPlate) {
 
 TEST(FileMeshScene, PathIsRelativeToTheSceneFileNotTheWorkingDirectory) {
   TempDir dir;
-  dir.write("parts/cube.inp", cube_nodes + "*ELEMENT, TYPE=C3D8R, ELSET=E\n1,1,2,3,4,5,6,7,8\n*SURFACE, NAME=SB\nE, S1\n");
-  json scene = one_body_scene({{"file", "cube.inp"}, {"elements", "E"},
+  dir.write("parts/cube.inp",
+            cube_nodes + "*ELEMENT, TYPE=C3D8R, ELSET=E\n1,1,2,3,4,5,6,7,8\n*SURFACE, NAME=SB\nE, S1\n");
+  json scene = one_body_scene({{"file", "cube.inp"},
+                               {"elements", "E"},
                                {"transform", {{"translate", {1, 2, 3}}, {"scale", {2, 1, 1}}}}});
   const fs::path file = dir.write("parts/scene.json", scene.dump());
   const model::Model m = scene::load_file(file.string());
@@ -200,10 +204,12 @@ TEST(FileMeshScene, ElementsTheFileLeavesOutAreAWarningAtTheBodysMesh) {
   // A line element (T3D2) and a quadrangle that is no face of the hexahedron: read, skipped, warned about.
   TempDir dir;
   const std::string hex = cube_nodes + "*ELEMENT, TYPE=C3D8R, ELSET=E\n1,1,2,3,4,5,6,7,8\n";
-  dir.write("cube.inp", hex + "*ELEMENT, TYPE=T3D2, ELSET=L\n2,1,7\n*ELEMENT, TYPE=CPS4, ELSET=Q\n3,1,2,7,8\n");
+  dir.write("cube.inp",
+            hex + "*ELEMENT, TYPE=T3D2, ELSET=L\n2,1,7\n*ELEMENT, TYPE=CPS4, ELSET=Q\n3,1,2,7,8\n");
   dir.write("clean.inp", hex);
   const auto warnings_of = [&](const std::string& file) {
-    const fs::path scene = dir.write(file + ".json", one_body_scene({{"file", file}, {"elements", "E"}}).dump());
+    const fs::path scene =
+        dir.write(file + ".json", one_body_scene({{"file", file}, {"elements", "E"}}).dump());
     return scene::summarize(scene::load_file(scene.string())).warnings;
   };
   const auto warned = warnings_of("cube.inp");
@@ -223,7 +229,8 @@ TEST(FileMeshScene, ScenesWithoutAFileCannotNameMeshFiles) {
   } catch (const scene::SceneError& e) {
     ASSERT_EQ(e.issues.size(), 1u);
     EXPECT_EQ(e.issues[0].pointer, "/bodies/0/mesh/file");
-    EXPECT_NE(e.issues[0].message.find("mesh files are read only for a scene given as a file"), std::string::npos);
+    EXPECT_NE(e.issues[0].message.find("mesh files are read only for a scene given as a file"),
+              std::string::npos);
   }
 }
 
@@ -235,30 +242,37 @@ TEST(FileMeshScene, BadMeshFilesAreIssuesNamingFileAndLineOrElement) {
   };
   const json file = {{"file", "bad.inp"}};
   // Inverted: the bottom face listed clockwise.
-  EXPECT_EQ(issues(cube_nodes + "*ELEMENT, TYPE=C3D8\n7,1,4,3,2,5,8,7,6\n", file),
-            "/bodies/0/mesh/file: bad.inp:11: element 7: inverted or degenerate hexahedron, det J0 = -0.125 at a "
-            "Gauss point (must be > 0; check the node order)");
+  EXPECT_EQ(
+      issues(cube_nodes + "*ELEMENT, TYPE=C3D8\n7,1,4,3,2,5,8,7,6\n", file),
+      "/bodies/0/mesh/file: bad.inp:11: element 7: inverted or degenerate hexahedron, det J0 = -0.125 at a "
+      "Gauss point (must be > 0; check the node order)");
   // Degenerate: the top face on the bottom one.
   EXPECT_NE(issues(cube_nodes + "*ELEMENT, TYPE=C3D8\n7,1,2,3,4,1,2,3,4\n", file)
                 .find("bad.inp:11: element 7: inverted or degenerate hexahedron"),
             std::string::npos);
   EXPECT_EQ(issues(cube_nodes + "*ELEMENT, TYPE=C3D10\n1,1,2,3,4,5,6,7,8,1,2\n", file),
-            "/bodies/0/mesh/file: bad.inp:10: unsupported element type C3D10; Stoss reads 8-node hexahedra (C3D8, C3D8R)");
+            "/bodies/0/mesh/file: bad.inp:10: unsupported element type C3D10; Stoss reads 8-node hexahedra "
+            "(C3D8, C3D8R)");
   EXPECT_EQ(issues(cube_nodes + "*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7\n", file),
             "/bodies/0/mesh/file: bad.inp:11: element 1 has 7 nodes, C3D8 needs 8");
   EXPECT_EQ(issues(cube_nodes + "*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7,8\n1,1,2,3,4,5,6,7,8\n", file),
             "/bodies/0/mesh/file: bad.inp:12: duplicate element id 1 (first defined on line 11)");
-  EXPECT_EQ(issues(cube_nodes + "*ELEMENT, TYPE=C3D8, ELSET=E\n1,1,2,3,4,5,6,7,8\n", {{"file", "bad.inp"}, {"elements", "EBALL"}}),
+  EXPECT_EQ(issues(cube_nodes + "*ELEMENT, TYPE=C3D8, ELSET=E\n1,1,2,3,4,5,6,7,8\n",
+                   {{"file", "bad.inp"}, {"elements", "EBALL"}}),
             "/bodies/0/mesh/file: bad.inp: has no element set 'EBALL' (it has E)");
   EXPECT_EQ(issues(cube_nodes, file), "/bodies/0/mesh/file: bad.inp: has no 8-node hexahedra");
   EXPECT_EQ(issues_of(dir.write("scene.json", one_body_scene({{"file", "missing.msh"}}).dump())),
             "/bodies/0/mesh/file: missing.msh: cannot read the file");
   EXPECT_EQ(issues(cube_nodes + "*ELEMENT, TYPE=C3D8\n1,1,2,3,4,5,6,7,8\n",
-                   {{"file", "bad.inp"}, {"transform", {{"scale", -1}, {"rotate", {{"axis", {0, 0, 0}}, {"degrees", 10}}}}}}),
+                   {{"file", "bad.inp"},
+                    {"transform", {{"scale", -1}, {"rotate", {{"axis", {0, 0, 0}}, {"degrees", 10}}}}}}),
             "/bodies/0/mesh/transform/rotate/axis: must not be the zero vector\n"
             "/bodies/0/mesh/transform/scale: must be > 0, got -1");
-  EXPECT_EQ(issues_of(dir.write("scene.json", one_body_scene({{"box", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}, {"divisions", {1, 1, 1}}}},
-                                                               {"elements", "E"}}).dump())),
+  EXPECT_EQ(issues_of(dir.write(
+                "scene.json",
+                one_body_scene({{"box", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}, {"divisions", {1, 1, 1}}}},
+                                {"elements", "E"}})
+                    .dump())),
             "/bodies/0/mesh/elements: only for a mesh read from a file (\"file\" or \"id\")");
 }
 
@@ -269,7 +283,8 @@ TEST(FileMeshScene, AnIdIsReadFromTheStoreTheCallerGivesAndOnlyFromIt) {
   const std::string id(64, 'a');
   scene::MeshFiles files;
   files.stored = [&](const std::string& asked) { return asked == id ? std::optional(stored) : std::nullopt; };
-  const model::Model m = scene::load(one_body_scene({{"id", id}, {"elements", "E"}, {"transform", {{"translate", {0, 0, 5}}}}}), files);
+  const model::Model m = scene::load(
+      one_body_scene({{"id", id}, {"elements", "E"}, {"transform", {{"translate", {0, 0, 5}}}}}), files);
   EXPECT_EQ(m.mesh.node_count(), 8);
   EXPECT_EQ(m.mesh.nodes[6], Eigen::Vector3d(1, 1, 6));
   EXPECT_EQ(m.scene["bodies"][0]["mesh"]["id"], id);  // the scene keeps the id, never a path
@@ -284,7 +299,8 @@ TEST(FileMeshScene, AnIdIsReadFromTheStoreTheCallerGivesAndOnlyFromIt) {
   EXPECT_EQ(issues({{"id", std::string(64, 'b')}}, files),
             "/bodies/0/mesh/id: no mesh with this id; POST it to /v1/meshes first");
   EXPECT_EQ(issues({{"id", "../store/cube"}}, files),
-            "/bodies/0/mesh/id: must be 64 lowercase hex digits (the id POST /v1/meshes answers), got \"../store/cube\"");
+            "/bodies/0/mesh/id: must be 64 lowercase hex digits (the id POST /v1/meshes answers), got "
+            "\"../store/cube\"");
   EXPECT_NE(issues({{"id", id}}, {}).find("/bodies/0/mesh/id: mesh ids name meshes stored by the service"),
             std::string::npos);
   EXPECT_EQ(issues({{"id", id}, {"file", "cube.inp"}}, files),
@@ -299,10 +315,11 @@ TEST(FileMeshScene, ContactPairNamingAnEmptyOrMissingGroupIsAnIssue) {
   // SPLATE exists in the deck but has no face on EBALL; SNONE does not exist at all.
   scene["contact"][0]["slave"] = "ball/SPLATE";
   scene["contact"].push_back({{"slave", "ball/SNONE"}, {"master", "plate/SPLATE"}});
-  EXPECT_EQ(issues_of(dir.write("scene.json", scene.dump())),
-            "/contact/0/slave: body \"ball\" has no surface \"SPLATE\" (it has SBALL, boundary); deck.inp defines "
-            "surface 'SPLATE', but none of its faces is on an element of 'EBALL'\n"
-            "/contact/1/slave: body \"ball\" has no surface \"SNONE\" (it has SBALL, boundary)");
+  EXPECT_EQ(
+      issues_of(dir.write("scene.json", scene.dump())),
+      "/contact/0/slave: body \"ball\" has no surface \"SPLATE\" (it has SBALL, boundary); deck.inp defines "
+      "surface 'SPLATE', but none of its faces is on an element of 'EBALL'\n"
+      "/contact/1/slave: body \"ball\" has no surface \"SNONE\" (it has SBALL, boundary)");
   // An empty physical group of a Gmsh file is named the same way.
   scene = json::parse(std::ifstream(examples / "holed_part_plate.json"));
   fs::copy_file(examples / "meshes/holed_part_plate.msh", dir.path / "part.msh");

@@ -2,9 +2,8 @@
 // with its effect named, and every bad input is one issue at the entry's JSON pointer naming the rule.
 #include <gtest/gtest.h>
 
-#include "tests/core/scene/scene_issues.hpp"
-
 #include "core/scene/scene.hpp"
+#include "tests/core/scene/scene_issues.hpp"
 
 namespace stoss::scene {
 namespace {

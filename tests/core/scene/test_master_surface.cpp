@@ -17,7 +17,8 @@ json ball_and_plate(const std::string& master) {
   return {{"format", "stoss-scene/1"},
           {"bodies",
            {{{"name", "ball"},
-             {"mesh", {{"hollow_sphere", {{"center", {0, 0, 1.3}}, {"outer_radius", 1.0}, {"inner_radius", 0.8}}}}},
+             {"mesh",
+              {{"hollow_sphere", {{"center", {0, 0, 1.3}}, {"outer_radius", 1.0}, {"inner_radius", 0.8}}}}},
              {"material", material}},
             {{"name", "plate"},
              {"mesh", {{"box", {{"min", {-2, -2, -0.4}}, {"max", {2, 2, 0}}, {"divisions", {4, 4, 1}}}}}},
@@ -28,13 +29,22 @@ json ball_and_plate(const std::string& master) {
 
 /// One hexahedron given inline, its six faces as the surface "all" (outward node order).
 json one_cube() {
-  return {{"name", "cube"},
-          {"mesh",
-           {{"nodes", {{-2, -2, -1}, {2, -2, -1}, {2, 2, -1}, {-2, 2, -1}, {-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}}},
-            {"hex8", {{0, 1, 2, 3, 4, 5, 6, 7}}},
-            {"surfaces",
-             {{"all", {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}}}}}},
-          {"material", material}};
+  return {
+      {"name", "cube"},
+      {"mesh",
+       {{"nodes",
+         {{-2, -2, -1},
+          {2, -2, -1},
+          {2, 2, -1},
+          {-2, 2, -1},
+          {-2, -2, 0},
+          {2, -2, 0},
+          {2, 2, 0},
+          {-2, 2, 0}}},
+        {"hex8", {{0, 1, 2, 3, 4, 5, 6, 7}}},
+        {"surfaces",
+         {{"all", {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}}}}}},
+      {"material", material}};
 }
 
 std::string refusal(const json& scene) {
@@ -89,7 +99,8 @@ TEST(MasterSurface, ExplicitSmoothThatCannotBeHadIsRefusedWithItsPointer) {
   cube["contact"][0]["master"] = "cube/all";
   cube["contact"][0]["master_surface"] = "smooth";
   const std::string why = refusal(cube);
-  EXPECT_EQ(why.rfind("/contact/0/master_surface: master cube/all cannot carry a smooth surface: face ", 0), 0u)
+  EXPECT_EQ(why.rfind("/contact/0/master_surface: master cube/all cannot carry a smooth surface: face ", 0),
+            0u)
       << why;
   EXPECT_NE(why.find("has extraordinary vertices at nodes"), std::string::npos) << why;
 }
@@ -116,8 +127,9 @@ TEST(ContactScheme, PenaltyWithHhtIsRefusedAtValidation) {
   json scene = ball_and_plate("plate/top");
   scene["time"]["scheme"] = "hht";
   scene["contact"][0]["enforcement"] = "penalty";
-  EXPECT_EQ(refusal(scene), "/contact/0/enforcement: \"penalty\" is not implemented with time.scheme \"hht\"; use "
-                            "energy_momentum or midpoint");
+  EXPECT_EQ(refusal(scene),
+            "/contact/0/enforcement: \"penalty\" is not implemented with time.scheme \"hht\"; use "
+            "energy_momentum or midpoint");
 }
 
 // Every body has its whole boundary as the surface "boundary"; as a master it is one smooth surface

@@ -1,13 +1,13 @@
 // Requirements for loading scenes: defaults, the Model built from them, resolved effects, example
 // scenes, files, and agreement between the C++ defaults and api/scene.schema.json.
-#include "core/scene/scene.hpp"
-
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <set>
+
+#include "core/scene/scene.hpp"
 
 namespace stoss::scene {
 namespace {
@@ -456,15 +456,14 @@ void expect_documented(const json& schema, const json& node, const std::string& 
   // elements: absent = every element; master_surface, switch_gap: resolved from the master surface
   // (docs/smooth_master_surface.md §1); max_wall_seconds: absent = no limit; checkpoint_every: absent =
   // by checkpoint_seconds.
-  const std::set<std::string> without_default{"center",         "normal_stiffness", "tangential_stiffness",
-                                                "elements",       "master_surface",   "switch_gap",
-                                                "max_wall_seconds", "checkpoint_every",
-                                                // adaptive steps and frames at times: optional, or a default
-                                                // relative to time.step and time.end (step/1024, end)
-                                                "tolerance",      "min_step",         "max_step",
-                                                "interval",
-                                                // a load: one of pressure and traction; factor 1 without amplitude
-                                                "pressure",       "traction",         "amplitude"};
+  const std::set<std::string> without_default{
+      "center", "normal_stiffness", "tangential_stiffness", "elements", "master_surface", "switch_gap",
+      "max_wall_seconds", "checkpoint_every",
+      // adaptive steps and frames at times: optional, or a default
+      // relative to time.step and time.end (step/1024, end)
+      "tolerance", "min_step", "max_step", "interval",
+      // a load: one of pressure and traction; factor 1 without amplitude
+      "pressure", "traction", "amplitude"};
   if (node.is_array())
     for (const json& element : node) expect_documented(schema, element, where);
   if (!node.is_object()) return;
@@ -504,7 +503,8 @@ namespace {
 /// The worker's path (docs/api.md, GET /v1/jobs/{id}/scene): a scene resolved at POST is built again
 /// without validation and gives the same model.
 TEST(SceneLoadResolved, BuildsTheSameModelAsLoadFromTheResolvedScene) {
-  const model::Model posted = load_file(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json");
+  const model::Model posted =
+      load_file(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json");
   const model::Model stored = load_resolved(posted.scene, MeshFiles{});
   EXPECT_EQ(stored.scene, posted.scene);
   EXPECT_EQ(stored.mesh.node_count(), posted.mesh.node_count());

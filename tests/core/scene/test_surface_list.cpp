@@ -4,12 +4,11 @@
 // smooth master surface across the edges its surfaces share (docs/scene.md, "Contact").
 #include <gtest/gtest.h>
 
-#include "tests/core/scene/scene_issues.hpp"
-
 #include <algorithm>
 #include <set>
 
 #include "core/scene/scene.hpp"
+#include "tests/core/scene/scene_issues.hpp"
 
 namespace stoss::scene {
 namespace {
@@ -20,16 +19,17 @@ const json material = {{"youngs_modulus", 1e4}, {"poisson_ratio", 0.4}, {"densit
 
 /// A small block above a 4×4×2 box; pair 0 has the given master.
 json block_on_box(const json& master) {
-  return {{"format", "stoss-scene/1"},
-          {"bodies",
-           {{{"name", "box"},
-             {"mesh", {{"box", {{"min", {0, 0, 0}}, {"max", {4, 4, 2}}, {"divisions", {4, 4, 2}}}}}},
-             {"material", material}},
-            {{"name", "block"},
-             {"mesh", {{"box", {{"min", {3.6, 1.5, 2.1}}, {"max", {4.4, 2.5, 2.6}}, {"divisions", {2, 2, 1}}}}}},
-             {"material", material}}}},
-          {"contact", {{{"slave", "block/bottom"}, {"master", master}}}},
-          {"time", {{"step", 0.01}, {"end", 0.1}}}};
+  return {
+      {"format", "stoss-scene/1"},
+      {"bodies",
+       {{{"name", "box"},
+         {"mesh", {{"box", {{"min", {0, 0, 0}}, {"max", {4, 4, 2}}, {"divisions", {4, 4, 2}}}}}},
+         {"material", material}},
+        {{"name", "block"},
+         {"mesh", {{"box", {{"min", {3.6, 1.5, 2.1}}, {"max", {4.4, 2.5, 2.6}}, {"divisions", {2, 2, 1}}}}}},
+         {"material", material}}}},
+      {"contact", {{{"slave", "block/bottom"}, {"master", master}}}},
+      {"time", {{"step", 0.01}, {"end", 0.1}}}};
 }
 
 using testing::issues_of;
@@ -49,17 +49,20 @@ TEST(SurfaceList, TopAndXmaxAreOneSmoothMasterWithEveryFaceOnce) {
   EXPECT_EQ(pair.master, "box/top+xmax");
   EXPECT_EQ(pair.master_surface, model::MasterSurface::smooth);
   EXPECT_EQ(m.mesh.surface(pair.master).size(), 16u + 8u);
-  EXPECT_EQ(m.scene["contact"][0]["master"], json({"box/top", "box/xmax"})) << "the resolved scene keeps the list";
+  EXPECT_EQ(m.scene["contact"][0]["master"], json({"box/top", "box/xmax"}))
+      << "the resolved scene keeps the list";
 }
 
 TEST(SurfaceList, AFaceNamedTwiceIsCountedOnce) {
   const model::Model m = load(block_on_box({"box/top", "box/boundary"}));
   EXPECT_EQ(m.mesh.surface(m.contact.at(0).master).size(), m.mesh.surface("box/boundary").size());
-  EXPECT_EQ(sorted_faces(m.mesh.surface(m.contact.at(0).master)), sorted_faces(m.mesh.surface("box/boundary")));
+  EXPECT_EQ(sorted_faces(m.mesh.surface(m.contact.at(0).master)),
+            sorted_faces(m.mesh.surface("box/boundary")));
 }
 
 TEST(SurfaceList, BoundaryIsTheListOfAllSixSides) {
-  const model::Model all = load(block_on_box({"box/xmin", "box/xmax", "box/ymin", "box/ymax", "box/bottom", "box/top"}));
+  const model::Model all =
+      load(block_on_box({"box/xmin", "box/xmax", "box/ymin", "box/ymax", "box/bottom", "box/top"}));
   const model::Model boundary = load(block_on_box("box/boundary"));
   EXPECT_EQ(sorted_faces(all.mesh.surface(all.contact.at(0).master)),
             sorted_faces(boundary.mesh.surface("box/boundary")));
@@ -85,7 +88,8 @@ TEST(SurfaceList, AnUnknownSurfaceIsNamedByItsListElement) {
   const auto issues = issues_of(block_on_box({"box/top", "box/side"}));
   ASSERT_EQ(issues.size(), 1u);
   EXPECT_EQ(issues[0].pointer, "/contact/0/master/1");
-  EXPECT_EQ(issues[0].message.rfind("body \"box\" has no surface \"side\" (it has ", 0), 0u) << issues[0].message;
+  EXPECT_EQ(issues[0].message.rfind("body \"box\" has no surface \"side\" (it has ", 0), 0u)
+      << issues[0].message;
 }
 
 TEST(SurfaceList, SurfacesOfTwoBodiesAreRefused) {
@@ -93,7 +97,8 @@ TEST(SurfaceList, SurfacesOfTwoBodiesAreRefused) {
   ASSERT_EQ(issues.size(), 1u);
   EXPECT_EQ(issues[0].pointer, "/contact/0/master/1");
   EXPECT_EQ(issues[0].message,
-            "must be a surface of body \"box\" like /contact/0/master/0 (the surfaces of one list belong to one body), "
+            "must be a surface of body \"box\" like /contact/0/master/0 (the surfaces of one list belong to "
+            "one body), "
             "got \"block/top\"");
 }
 

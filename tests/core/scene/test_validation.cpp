@@ -2,11 +2,10 @@
 // with its JSON pointer and exact message; several problems are all reported.
 #include <gtest/gtest.h>
 
-#include "tests/core/scene/scene_issues.hpp"
-
 #include <limits>
 
 #include "core/scene/scene.hpp"
+#include "tests/core/scene/scene_issues.hpp"
 
 namespace stoss::scene {
 namespace {

@@ -1,8 +1,6 @@
 // Checks before the run (docs/scene.md, "Checks before the run"): each warning fires on the mistake it
 // is for, with its code, JSON pointer and fix; the shipped examples raise none; the estimates match the
 // formulas (W1)–(W6) on scenes whose numbers are known by hand; unknown fields say what was meant.
-#include "core/scene/warnings.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +9,7 @@
 
 #include "core/scene/scene.hpp"
 #include "core/scene/spelling.hpp"
+#include "core/scene/warnings.hpp"
 
 namespace stoss::scene {
 namespace {

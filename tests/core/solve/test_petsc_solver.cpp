@@ -21,7 +21,8 @@ Lattice lattice(int n) {
   Lattice l{n, Eigen::VectorXd(3 * n * n * n)};
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) l.positions.segment<3>(3 * l.node(i, j, k)) = Eigen::Vector3d(i, j, k) / (n - 1.0);
+      for (int i = 0; i < n; ++i)
+        l.positions.segment<3>(3 * l.node(i, j, k)) = Eigen::Vector3d(i, j, k) / (n - 1.0);
   return l;
 }
 
@@ -46,7 +47,8 @@ BlockPattern elastic_system(const Lattice& l, double mass_over_h2, const std::ve
               const int I = i + di, J = j + dj, K = k + dk;
               if (I < 0 || J < 0 || I >= n || J >= n || K >= n) continue;
               const int a = l.node(i, j, k), b = l.node(I, J, K);
-              const Eigen::Vector3d e = (l.positions.segment<3>(3 * b) - l.positions.segment<3>(3 * a)).normalized();
+              const Eigen::Vector3d e =
+                  (l.positions.segment<3>(3 * b) - l.positions.segment<3>(3 * a)).normalized();
               Eigen::MatrixXd kb(6, 6);
               const Eigen::Matrix3d ee = e * e.transpose();
               kb << ee, -ee, -ee, ee;
@@ -101,7 +103,8 @@ TEST(PetscGamg, TheSystemShallSolveASmallElasticSystemAsTheDirectSolverDoes) {
   const LinearSolver amg = expect_same_solution(elastic_system(l, 1e-3), l.positions);
   EXPECT_EQ(amg.krylov_solves(), 1);
   EXPECT_GT(amg.krylov_iterations(), 1) << "a Krylov method, not a direct solve in disguise";
-  EXPECT_NE(amg.preconditioner_description().find("GAMG"), std::string::npos) << amg.preconditioner_description();
+  EXPECT_NE(amg.preconditioner_description().find("GAMG"), std::string::npos)
+      << amg.preconditioner_description();
   EXPECT_NE(amg.preconditioner_description().find("rigid-body"), std::string::npos);
   EXPECT_NE(amg.preconditioner_description().find("SOR on the finest level"), std::string::npos)
       << amg.preconditioner_description();
@@ -113,7 +116,8 @@ TEST(PetscGamg, TheSystemShallSolveContactMultiplierRowsWithASchurFieldSplit) {
   for (int j = 0; j < 8; ++j)
     for (int i = 0; i < 8; ++i) bottom.push_back(l.node(i, j, 0));
   const LinearSolver amg = expect_same_solution(elastic_system(l, 1e-3, bottom), l.positions);
-  EXPECT_NE(amg.preconditioner_description().find("Schur"), std::string::npos) << amg.preconditioner_description();
+  EXPECT_NE(amg.preconditioner_description().find("Schur"), std::string::npos)
+      << amg.preconditioner_description();
   EXPECT_NE(amg.preconditioner_description().find("64 contact unknowns"), std::string::npos);
   EXPECT_NE(amg.preconditioner_description().find("SOR on the finest level"), std::string::npos)
       << amg.preconditioner_description();

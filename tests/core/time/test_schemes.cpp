@@ -228,7 +228,8 @@ class RecordingTerm : public Term {
  public:
   std::string name() const override { return "recording"; }
   void register_blocks(solve::BlockPattern&) override {}
-  void add(const StepContext& step, const Eigen::VectorXd&, Eigen::VectorXd&, solve::BlockPattern*) const override {
+  void add(const StepContext& step, const Eigen::VectorXd&, Eigen::VectorXd&,
+           solve::BlockPattern*) const override {
     factors.push_back(step.force_factor);
     rules.push_back(step.rule);
   }
@@ -240,8 +241,8 @@ TEST(Integrator, HandsTheTermsTheSchemesForceFactorAndRule) {
   OneElement o;
   const solve::SparseMatrix M = fem::assemble_mass(o.mesh, fem::precompute_mesh(o.mesh), {2.0});
   RecordingTerm term;
-  Integrator integrator(M, {&term}, std::vector<char>(o.x_n.size(), 0), std::make_unique<DoubledForces>(), {}, 1.0,
-                        2.0);
+  Integrator integrator(M, {&term}, std::vector<char>(o.x_n.size(), 0), std::make_unique<DoubledForces>(), {},
+                        1.0, 2.0);
   State s{o.x_n, o.v_n, Eigen::VectorXd::Zero(o.x_n.size())};
   ASSERT_TRUE(integrator.step(s, 0.01).converged);
   ASSERT_FALSE(term.factors.empty());

@@ -28,7 +28,8 @@ TEST(CliHardening, HelpGoesToStdoutWithExit0) {
 
 TEST(CliHardening, UnusableScenesAreExit2NeverAnAbort) {
   TempDir dir;
-  nlohmann::json bar = nlohmann::json::parse(std::ifstream(std::string(STOSS_SOURCE_DIR) + "/api/examples/tumbling_bar.json"));
+  nlohmann::json bar =
+      nlohmann::json::parse(std::ifstream(std::string(STOSS_SOURCE_DIR) + "/api/examples/tumbling_bar.json"));
   std::string every = bar.dump();
   every.replace(every.find("\"every\":4"), 9, "\"every\":4294967296");
   const std::vector<std::pair<std::string, std::string>> cases = {
@@ -39,8 +40,10 @@ TEST(CliHardening, UnusableScenesAreExit2NeverAnAbort) {
       {"garbage", std::string("\x00\xff{", 3)}};
   for (const auto& [name, text] : cases) {
     const std::string path = write_file(dir.path() / (name + ".json"), text);
-    for (const auto& args : std::vector<std::vector<std::string>>{
-             {"validate", path}, {"validate", path, "--json"}, {"run", path, "-o", (dir.path() / "o").string()}}) {
+    for (const auto& args :
+         std::vector<std::vector<std::string>>{{"validate", path},
+                                               {"validate", path, "--json"},
+                                               {"run", path, "-o", (dir.path() / "o").string()}}) {
       const auto r = run_stoss(args);
       EXPECT_EQ(r.signal, 0) << name << " " << args[0];
       EXPECT_EQ(r.exit_code, 2) << name << " " << args[0] << ": " << r.out << r.err;

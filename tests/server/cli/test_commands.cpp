@@ -48,7 +48,8 @@ std::string write(const test::TempDir& dir, const nlohmann::json& scene) {
 }
 
 TEST(Cli, ValidatePrintsEffectsCountsAndSteps) {
-  const Command c = stoss("validate " + std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json");
+  const Command c =
+      stoss("validate " + std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json");
   EXPECT_EQ(c.exit_code, 0) << c.output;
   EXPECT_NE(c.output.find("effects: inertia elasticity contact_frictionless"), std::string::npos) << c.output;
   EXPECT_NE(c.output.find("nodes 1521, elements 944, dofs 4563"), std::string::npos) << c.output;

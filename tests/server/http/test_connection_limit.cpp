@@ -10,8 +10,8 @@
 
 #include <thread>
 
-#include "server/http/connection_limit.hpp"
 #include "server/cli/serve.hpp"
+#include "server/http/connection_limit.hpp"
 #include "tests/server/live_server.hpp"
 
 namespace stoss::test {
@@ -60,7 +60,8 @@ TEST(ConnectionLimit, TheFlagHasADefaultAndARange) {
     cli::parse_serve_options({"--max-connections-per-client", "0"});
     ADD_FAILURE() << "0 must be refused";
   } catch (const cli::UsageError& e) {
-    EXPECT_EQ(std::string(e.what()), "--max-connections-per-client needs an integer in [1, 1000000], got '0'");
+    EXPECT_EQ(std::string(e.what()),
+              "--max-connections-per-client needs an integer in [1, 1000000], got '0'");
   }
 }
 
@@ -118,12 +119,14 @@ Reply exchange(int fd, const std::string& request, bool expect_close) {
 const std::string healthz = "GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n";
 const std::string schema = "GET /v1/schema/scene HTTP/1.1\r\nHost: x\r\n\r\n";
 
-bool is_status(const Reply& r, int status) { return r.head.rfind("HTTP/1.1 " + std::to_string(status), 0) == 0; }
+bool is_status(const Reply& r, int status) {
+  return r.head.rfind("HTTP/1.1 " + std::to_string(status), 0) == 0;
+}
 
 TEST(ConnectionLimitLive, AConnectionOverTheCapIs503AndClosedWhileOtherClientsAreServed) {
   TempDir dir;
-  LiveServer server(dir.path() / "data", {"--workers", "0", "--max-connections-per-client", "4",
-                                          "--read-timeout", "30"});
+  LiveServer server(dir.path() / "data",
+                    {"--workers", "0", "--max-connections-per-client", "4", "--read-timeout", "30"});
   // 127.0.0.1 holds four kept-alive connections; each has been answered, so each is counted.
   std::vector<int> held;
   for (int i = 0; i < 4; ++i) {

@@ -13,9 +13,9 @@
 #include <thread>
 
 #include "core/model/model.hpp"
+#include "server/cli/serve.hpp"
 #include "server/http/limits.hpp"
 #include "server/http/request_gate.hpp"
-#include "server/cli/serve.hpp"
 #include "tests/server/live_server.hpp"
 
 namespace stoss::test {

@@ -6,8 +6,8 @@
 #include <regex>
 #include <set>
 
-#include "server/http/routes.hpp"
 #include "server/common/sha256.hpp"
+#include "server/http/routes.hpp"
 #include "tests/server/live_server.hpp"
 
 namespace stoss::test {

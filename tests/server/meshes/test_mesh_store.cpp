@@ -151,9 +151,10 @@ TEST_F(MeshUpload, AJobNamingTheIdRunsAsTheSameSceneWithFileOnTheCommandLine) {
 
   TempDir cli;
   const auto scene_path = cli.path() / "scene.json";
-  std::ofstream(scene_path)
-      << block_scene({{"file", (meshes / "two_blocks_ascii.msh").string()}, {"elements", "left"}, {"transform", transform}})
-             .dump();
+  std::ofstream(scene_path) << block_scene({{"file", (meshes / "two_blocks_ascii.msh").string()},
+                                            {"elements", "left"},
+                                            {"transform", transform}})
+                                   .dump();
   const CommandResult run = run_stoss({"run", scene_path.string(), "-o", (cli.path() / "out").string()});
   ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
   const auto expected = output::series_json(cli.path() / "out" / "result.h5");

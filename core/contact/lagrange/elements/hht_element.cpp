@@ -15,12 +15,12 @@ HhtElementResult hht_element(const Vector15& x_1, double lambda, double f3, doub
   out.end = project(x_1, xi_start);
   out.converged = out.end.converged;
   const GapVariations end = gap_variations(out.end.frame, out.end.gap);
-  const double step_weight = h * weight;  // (2.11), (2.12): w on the t_{n+1} forces
-  out.Rx = step_weight * lambda * end.Ns;       // (2.11), (3.6)
-  out.Rl = out.end.gap - f3;               // (2.11): g(x_{n+1}) = 0 for active constraints
-  out.Kxx = step_weight * lambda * end.dNs;     // (3.9)
-  out.Kxl = step_weight * end.Ns;               // (3.6)
-  out.Klx = end.Ns.transpose();            // (3.6)
+  const double step_weight = h * weight;     // (2.11), (2.12): w on the t_{n+1} forces
+  out.Rx = step_weight * lambda * end.Ns;    // (2.11), (3.6)
+  out.Rl = out.end.gap - f3;                 // (2.11): g(x_{n+1}) = 0 for active constraints
+  out.Kxx = step_weight * lambda * end.dNs;  // (3.9)
+  out.Kxl = step_weight * end.Ns;            // (3.6)
+  out.Klx = end.Ns.transpose();              // (3.6)
   return out;
 }
 

@@ -25,10 +25,10 @@ void MixedContactTerm::add_smooth(const time::StepContext& step, const Eigen::Ve
   for (size_t k = 0; k < elements_.size(); ++k) {
     const ContactElement& e = elements_[k];
     const int o = element_offset(static_cast<int>(k));
-    const PatchMixedResult r =
-        patch_mixed_element(surfaces_.patches[e.face], patch_state(e, step.x_n, e.d_n, e.xi_n),
-                            patch_state(e, z, z.segment<3>(o), z.segment<2>(o + 3)), z.segment<6>(o + 5), e.f3,
-                            step.force_factor);  // docs/smooth_master_surface.md (3.5)
+    const PatchMixedResult r = patch_mixed_element(
+        surfaces_.patches[e.face], patch_state(e, step.x_n, e.d_n, e.xi_n),
+        patch_state(e, z, z.segment<3>(o), z.segment<2>(o + 3)), z.segment<6>(o + 5), e.f3,
+        step.force_factor);  // docs/smooth_master_surface.md (3.5)
     const std::vector<int> dofs = element_dofs(slave_node(e), surfaces_, e.face);
     const int n = static_cast<int>(dofs.size());
     for (int i = 0; i < n; ++i) R[dofs[i]] += r.Rq[i];
@@ -47,7 +47,8 @@ void MixedContactTerm::add(const time::StepContext& step, const Eigen::VectorXd&
     const int o = element_offset(static_cast<int>(k));
     const Vector20 q_n = coordinates(e, step.x_n, e.d_n, e.xi_n);
     const Vector20 q_1 = coordinates(e, z, z.segment<3>(o), z.segment<2>(o + 3));
-    const MixedResult r = mixed_element(q_n, q_1, z.segment<6>(o + 5), e.f3, step.force_factor);  // (4.9)–(4.10)
+    const MixedResult r =
+        mixed_element(q_n, q_1, z.segment<6>(o + 5), e.f3, step.force_factor);  // (4.9)–(4.10)
     const std::array<int, 15> dofs = element_dofs(slave_node(e), face_of(e));
     for (int i = 0; i < 15; ++i) R[dofs[i]] += r.Rq[i];
     R.segment<5>(o) += r.Rq.tail<5>();
@@ -115,10 +116,12 @@ void MixedContactTerm::add_impact_impulse(const time::StepContext& step, const E
     energy_jump += lambda.dot(e.g_n);  // ΔH_imp (4.11)
     const Eigen::Vector3d d = z.segment<3>(o);
     const Eigen::Vector2d xi = z.segment<2>(o + 3);
-    const std::vector<double> N = surfaces_.smooth() ? patch_values(surfaces_.patches[e.face], xi[0], xi[1]).N
-                                                     : patch_values(bilinear_patch(face_of(e)), xi[0], xi[1]).N;
+    const std::vector<double> N = surfaces_.smooth()
+                                      ? patch_values(surfaces_.patches[e.face], xi[0], xi[1]).N
+                                      : patch_values(bilinear_patch(face_of(e)), xi[0], xi[1]).N;
     const std::vector<int> dofs = element_dofs(slave_node(e), surfaces_, e.face);
-    for (int i = 0; i < 3; ++i) b[dofs[i]] += step.force_factor * lambda[0] * d[i];  // G_s = [d; −N_K d] (4.12)
+    for (int i = 0; i < 3; ++i)
+      b[dofs[i]] += step.force_factor * lambda[0] * d[i];  // G_s = [d; −N_K d] (4.12)
     for (size_t K = 0; K < N.size(); ++K)
       for (int i = 0; i < 3; ++i) b[dofs[3 + 3 * K + i]] -= step.force_factor * lambda[0] * N[K] * d[i];
   }

@@ -2,8 +2,8 @@
 /// @file Frictionless Lagrange contact in the mixed energy–momentum form (docs/theory.md §4.3): per
 /// active element 11 auxiliary unknowns w = (d, ξ, λ) after x_{n+1} in z.
 
-#include "core/contact/lagrange/lagrange_term.hpp"
 #include "core/contact/lagrange/elements/patch_mixed_element.hpp"
+#include "core/contact/lagrange/lagrange_term.hpp"
 
 namespace stoss::contact {
 

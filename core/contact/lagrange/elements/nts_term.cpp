@@ -10,7 +10,8 @@
 
 namespace stoss::contact {
 
-NtsContactTerm::NtsContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair, const time::ForceRule& rule)
+NtsContactTerm::NtsContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair,
+                               const time::ForceRule& rule)
     : LagrangeContactTerm(mesh, pair), end_point_(rule.is_end_point()) {
   for (const TensorPatch& patch : surfaces_.patches) local_patches_.push_back(local_patch(patch));
 }
@@ -34,7 +35,8 @@ void NtsContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z
   if (!end_point_) return add_midpoint(step, z, R, K);
   for (const auto& [dofs, force] : previous_force_)
     for (size_t i = 0; i < dofs.size(); ++i)
-      R[dofs[i]] += step.rule.previous_weight * step.force_factor * force[i];  // h w_n λ_n N_s(x_n) (2.11), (2.12)
+      R[dofs[i]] +=
+          step.rule.previous_weight * step.force_factor * force[i];  // h w_n λ_n N_s(x_n) (2.11), (2.12)
   add_end_point(step, z, R, K);
 }
 
@@ -43,9 +45,9 @@ void NtsContactTerm::add_midpoint(const time::StepContext& step, const Eigen::Ve
   for_each_element([&](const ContactElement& e, int o) {
     if (surfaces_.smooth()) {
       const TensorPatch& patch = surfaces_.patches[e.face];
-      const PatchNtsResult r =
-          patch_midpoint_element(local_patch_of(e.face), local_positions(slave_node(e), patch, step.x_n),
-                                 local_positions(slave_node(e), patch, z), z[o], e.f3, step.force_factor, e.xi);  // (4.2)
+      const PatchNtsResult r = patch_midpoint_element(
+          local_patch_of(e.face), local_positions(slave_node(e), patch, step.x_n),
+          local_positions(slave_node(e), patch, z), z[o], e.f3, step.force_factor, e.xi);  // (4.2)
       return scatter_patch(e, o, r, R, K);
     }
     const Vector15 x_n = element_positions(slave_node(e), face_of(e), step.x_n);
@@ -54,14 +56,14 @@ void NtsContactTerm::add_midpoint(const time::StepContext& step, const Eigen::Ve
   });
 }
 
-void NtsContactTerm::add_end_point(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
-                                   solve::BlockPattern* K) const {
+void NtsContactTerm::add_end_point(const time::StepContext& step, const Eigen::VectorXd& z,
+                                   Eigen::VectorXd& R, solve::BlockPattern* K) const {
   for_each_element([&](const ContactElement& e, int o) {
     if (surfaces_.smooth()) {
       const TensorPatch& patch = surfaces_.patches[e.face];
       return scatter_patch(e, o,
-                           patch_hht_element(local_patch_of(e.face), local_positions(slave_node(e), patch, z), z[o],
-                                             e.f3, step.force_factor, step.rule.weight, e.xi),
+                           patch_hht_element(local_patch_of(e.face), local_positions(slave_node(e), patch, z),
+                                             z[o], e.f3, step.force_factor, step.rule.weight, e.xi),
                            R, K);  // (2.11)
     }
     const Vector15 x_1 = element_positions(slave_node(e), face_of(e), z);
@@ -83,12 +85,14 @@ void NtsContactTerm::end_step(const time::StepContext& step, const Eigen::Vector
     const TensorPatch& local = local_patch_of(e.face);
     const Eigen::VectorXd x = local_positions(slave_node(e), surfaces_.patches[e.face], z);
     const Projection p = patch_projection(x.head<3>(), local, x, e.xi);
-    previous_force_.emplace_back(dofs, p.converged ? Eigen::VectorXd(e.lambda[0] * patch_gap_gradient(local, x, p.xi))
-                                                   : Eigen::VectorXd::Zero(dofs.size()));  // λ N_s (3.6)
+    previous_force_.emplace_back(dofs, p.converged
+                                           ? Eigen::VectorXd(e.lambda[0] * patch_gap_gradient(local, x, p.xi))
+                                           : Eigen::VectorXd::Zero(dofs.size()));  // λ N_s (3.6)
   }
 }
 
-double NtsContactTerm::auxiliary_residual_measure(const Eigen::VectorXd& R, const time::MeasureScales&) const {
+double NtsContactTerm::auxiliary_residual_measure(const Eigen::VectorXd& R,
+                                                  const time::MeasureScales&) const {
   double worst = 0;
   for (size_t k = 0; k < elements_.size(); ++k)
     worst = std::max(worst, std::abs(R[element_offset(static_cast<int>(k))]) / face_size(elements_[k]));

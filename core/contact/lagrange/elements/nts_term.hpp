@@ -7,9 +7,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/contact/lagrange/lagrange_term.hpp"
-#include "core/contact/lagrange/elements/patch_nts_element.hpp"
 #include "core/contact/geometry/surface.hpp"
+#include "core/contact/lagrange/elements/patch_nts_element.hpp"
+#include "core/contact/lagrange/lagrange_term.hpp"
 
 namespace stoss::contact {
 

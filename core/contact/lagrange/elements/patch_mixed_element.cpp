@@ -19,9 +19,9 @@ struct Square {
 };
 
 /// S_k of (3.2) for k = 0 … 5 in the generator order (r, e_1 … e_{M−1}, d): linear entries from
-/// `lin`, the Π entries of the two CPP rows from the bilinear form −¼ s (p_{,α} ⊗ q + q_{,α} ⊗ p + transposes)
-/// (s = 1, p = q = values: the matrices themselves; s = 2, p = divided differences, q = means: their
-/// divided differences by the product rule), constant entries scaled by `constants`.
+/// `lin`, the Π entries of the two CPP rows from the bilinear form −¼ s (p_{,α} ⊗ q + q_{,α} ⊗ p +
+/// transposes) (s = 1, p = q = values: the matrices themselves; s = 2, p = divided differences, q = means:
+/// their divided differences by the product rule), constant entries scaled by `constants`.
 template <class T>
 std::array<Square<T>, 6> constraint_matrices(int M, const BasisValues<T>& lin, const BasisValues<T>& p,
                                              const BasisValues<T>& q, double s, double constants) {
@@ -74,7 +74,8 @@ Jet to_jet(const Square<Dual>& s) {
 }
 
 Eigen::MatrixXd to_matrix(const Square<double>& s) {
-  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(s.a.data(), s.n, s.n);
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(s.a.data(),
+                                                                                                  s.n, s.n);
 }
 
 std::array<Eigen::MatrixXd, 6> matrices_at(const TensorPatch& p, const Eigen::Vector2d& xi) {
@@ -96,8 +97,8 @@ std::array<Jet, 6> matrices_with_slopes(const TensorPatch& p, const Dual& b1, co
 
 /// ∇̄_α S_k (3.4): the mean of the divided differences in direction α at the other coordinate of
 /// ξ_a and of ξ_b, with their ξ_b derivatives. Indexed [k][α].
-std::array<std::array<Jet, 2>, 6> divided_matrices(const TensorPatch& p, const Eigen::Vector2d& a, const Dual& b1,
-                                                   const Dual& b2) {
+std::array<std::array<Jet, 2>, 6> divided_matrices(const TensorPatch& p, const Eigen::Vector2d& a,
+                                                   const Dual& b1, const Dual& b2) {
   const int M = p.size();
   const Dual a1(a[0]), a2(a[1]);
   const Dual lo[2] = {a1, a2}, hi[2] = {b1, b2};
@@ -139,9 +140,13 @@ Eigen::MatrixXd generator_map(int M) {
   return T;
 }
 
-double contract(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) { return A.cwiseProduct(B).sum(); }
+double contract(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
+  return A.cwiseProduct(B).sum();
+}
 
-constexpr double offsets(int k, double f3) { return k == 0 ? -f3 : k == 3 ? -0.5 : 0.0; }  // κ_k (3.2)
+constexpr double offsets(int k, double f3) {
+  return k == 0 ? -f3 : k == 3 ? -0.5 : 0.0;
+}  // κ_k (3.2)
 
 /// Writes the node-level rows (M+2 nodes × 3) of a generator-level quantity G_U into a vector.
 void put_nodes(const Eigen::MatrixXd& T, const Eigen::MatrixXd& G_U, Eigen::Ref<Eigen::VectorXd> out) {
@@ -161,7 +166,8 @@ Vector6 patch_constraints(const TensorPatch& p, const PatchMixedState& s, double
 }
 
 PatchMixedResult patch_mixed_element(const TensorPatch& p, const PatchMixedState& at_n,
-                                     const PatchMixedState& at_1, const Vector6& lambda, double f3, double h) {
+                                     const PatchMixedState& at_1, const Vector6& lambda, double f3,
+                                     double h) {
   const int M = p.size(), nodes = M + 2, xi = 3 * nodes, lam = xi + 2;
   const Eigen::MatrixXd T = generator_map(M);
   const Eigen::MatrixXd Ua = generators(at_n), Ub = generators(at_1), Um = 0.5 * (Ua + Ub);
@@ -184,7 +190,7 @@ PatchMixedResult patch_mixed_element(const TensorPatch& p, const PatchMixedState
   PatchMixedResult out;
   out.Rq = Eigen::VectorXd::Zero(lam);
   out.K = Eigen::MatrixXd::Zero(lam + 6, lam + 6);
-  put_nodes(T, 2 * h * S_mean_lambda * Um, out.Rq.head(xi));  // (3.5) h B_xᵀμ, B_dᵀμ
+  put_nodes(T, 2 * h * S_mean_lambda * Um, out.Rq.head(xi));                    // (3.5) h B_xᵀμ, B_dᵀμ
   for (int a = 0; a < 2; ++a) out.Rq[xi + a] = h * contract(Gm, DG_lambda[a]);  // (3.5) R_ξ
   for (int k = 0; k < 6; ++k) {
     out.Rl[k] = contract(Sb[k].v, Gb) + offsets(k, f3);  // (3.5) g(π_{n+1})

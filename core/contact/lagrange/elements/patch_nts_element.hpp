@@ -26,12 +26,13 @@ struct PatchNtsResult {
 };
 
 /// Midpoint (4.2): h λ N_s(x_m), g_N(x_{n+1}) − f_3; both CPPs start from `xi_start`.
-PatchNtsResult patch_midpoint_element(const TensorPatch& local, const Eigen::VectorXd& x_n, const Eigen::VectorXd& x_1,
-                                      double lambda, double f3, double h, const Eigen::Vector2d& xi_start);
+PatchNtsResult patch_midpoint_element(const TensorPatch& local, const Eigen::VectorXd& x_n,
+                                      const Eigen::VectorXd& x_1, double lambda, double f3, double h,
+                                      const Eigen::Vector2d& xi_start);
 
 /// HHT-α (2.11) and generalized-α (2.12): h w λ N_s(x_{n+1}), g_N(x_{n+1}) − f_3, with the weight w of
 /// the t_{n+1} forces (1+α; 1−α_f).
-PatchNtsResult patch_hht_element(const TensorPatch& local, const Eigen::VectorXd& x_1, double lambda, double f3,
-                                 double h, double weight, const Eigen::Vector2d& xi_start);
+PatchNtsResult patch_hht_element(const TensorPatch& local, const Eigen::VectorXd& x_1, double lambda,
+                                 double f3, double h, double weight, const Eigen::Vector2d& xi_start);
 
 }  // namespace stoss::contact

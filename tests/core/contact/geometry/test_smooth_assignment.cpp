@@ -73,7 +73,8 @@ TEST(SmoothAssignment, EveryNodeInTheContactZoneFindsTheClosestSurfacePoint) {
     ++zone;
     const FaceProjection found = best_face(p, b.broad.candidates(i), b.s, b.x);
     ASSERT_TRUE(found.found()) << "slave node " << b.s.slave_nodes[i] << " at gap " << expected;
-    EXPECT_NEAR(found.projection.gap, expected, 1e-9 * b.s.mean_face_size) << "slave node " << b.s.slave_nodes[i];
+    EXPECT_NEAR(found.projection.gap, expected, 1e-9 * b.s.mean_face_size)
+        << "slave node " << b.s.slave_nodes[i];
     checked_near_vertex += b.s.patches[found.face].pieces != nullptr;
   }
   EXPECT_GT(zone, 10) << "the balls overlap over a patch of slave nodes";

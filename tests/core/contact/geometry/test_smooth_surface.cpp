@@ -50,7 +50,8 @@ TEST(SmoothSurface, FlatUniformGridIsReproducedExactly) {
   const SmoothSurface s = smooth_surface(g.faces);
   ASSERT_TRUE(s.ok());
   for (int f = 0; f < static_cast<int>(g.faces.size()); ++f)
-    for (const Eigen::Vector2d xi : {Eigen::Vector2d(-1, -1), Eigen::Vector2d(0.3, -0.7), Eigen::Vector2d(1, 1)}) {
+    for (const Eigen::Vector2d xi :
+         {Eigen::Vector2d(-1, -1), Eigen::Vector2d(0.3, -0.7), Eigen::Vector2d(1, 1)}) {
       const TensorPatch bilinear = bilinear_patch(g.faces[f]);
       EXPECT_LT((point(s.patches[f], g.x, xi) - point(bilinear, g.x, xi)).norm(), 1e-14) << "face " << f;
     }

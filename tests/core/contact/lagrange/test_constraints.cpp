@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
+#include "core/contact/geometry/projection.hpp"
 #include "core/contact/lagrange/constraints.hpp"
 #include "core/contact/lagrange/invariants.hpp"
-#include "core/contact/geometry/projection.hpp"
 #include "tests/core/contact/contact_test_utils.hpp"
 
 namespace stoss::contact {

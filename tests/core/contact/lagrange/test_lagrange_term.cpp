@@ -262,9 +262,12 @@ TEST(ContactTerm, RestoredEndPointTermAddsTheSameTnForce) {
 
 TEST(ContactTerm, EachSchemeGetsTheTermOfItsForceRule) {
   const mesh::Mesh m = cube_over_plate();
-  EXPECT_NE(dynamic_cast<MixedContactTerm*>(lagrange_term(m, pair(), model::Scheme::energy_momentum).get()), nullptr);
-  for (const model::Scheme s : {model::Scheme::midpoint, model::Scheme::hht, model::Scheme::generalized_alpha})
-    EXPECT_NE(dynamic_cast<NtsContactTerm*>(lagrange_term(m, pair(), s).get()), nullptr) << model::to_string(s);
+  EXPECT_NE(dynamic_cast<MixedContactTerm*>(lagrange_term(m, pair(), model::Scheme::energy_momentum).get()),
+            nullptr);
+  for (const model::Scheme s :
+       {model::Scheme::midpoint, model::Scheme::hht, model::Scheme::generalized_alpha})
+    EXPECT_NE(dynamic_cast<NtsContactTerm*>(lagrange_term(m, pair(), s).get()), nullptr)
+        << model::to_string(s);
 }
 
 }  // namespace

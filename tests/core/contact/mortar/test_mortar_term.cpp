@@ -109,7 +109,8 @@ TEST(MortarTerm, DISABLED_GradientStaysBoundedAtNearlyParallelEdges) {
     SegmentNodes up = slave, down = slave;
     up(2, 1) += d, down(2, 1) -= d;
     const double fd = (mortar::pair_gaps(up, master, mortar::Multipliers::dual).gap[2] -
-                       mortar::pair_gaps(down, master, mortar::Multipliers::dual).gap[2]) / (2 * d);
+                       mortar::pair_gaps(down, master, mortar::Multipliers::dual).gap[2]) /
+                      (2 * d);
     EXPECT_NEAR(g.gradient(2, 7), fd, 1e-6) << "e = " << e;
   }
 }

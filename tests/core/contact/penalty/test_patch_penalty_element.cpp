@@ -39,7 +39,8 @@ class PatchPenaltyElement
     local = local_patch(patch);
     x_n.resize(3 + 3 * patch.size());
     x_n.head<3>() = on.y + g_n * on.normal;
-    for (int K = 0; K < patch.size(); ++K) x_n.segment<3>(3 + 3 * K) = picked.grid.x.segment<3>(3 * patch.nodes[K]);
+    for (int K = 0; K < patch.size(); ++K)
+      x_n.segment<3>(3 + 3 * K) = picked.grid.x.segment<3>(3 * patch.nodes[K]);
     std::mt19937 rng(7);
     std::normal_distribution<double> normal(0, 1);
     x_1 = x_n;
@@ -91,7 +92,8 @@ TEST_P(PatchPenaltyElement, TangentMatchesCentralDifferences) {
 TEST_P(PatchPenaltyElement, WorkIsTractionTimesTheChangeOfGapAndCoordinates) {
   ASSERT_TRUE(r.closed);
   const double work = r.force.dot(x_1 - x_n);
-  const double expected = r.normal_traction * (r.at_1.gap - r.at_n.gap) + r.traction.dot(r.at_1.xi - r.at_n.xi);
+  const double expected =
+      r.normal_traction * (r.at_1.gap - r.at_n.gap) + r.traction.dot(r.at_1.xi - r.at_n.xi);
   EXPECT_NEAR(work, expected, 1e-12 * r.force.norm() * (x_1 - x_n).norm());
 }
 
@@ -122,7 +124,8 @@ INSTANTIATE_TEST_SUITE_P(
                                          test::PatchCase{"rim", 0, 2, {-0.9, 0.3}},
                                          test::PatchCase{"bilinear", 1, 1, {0.3, 0.4}, true},
                                          test::PatchCase{"extraordinary", -1, -1, {0.1, 0.06}, false, true}),
-                       ::testing::Values(Friction{"stick", 2.0}, Friction{"slip", 0.5}, Friction{"frictionless", 0}),
+                       ::testing::Values(Friction{"stick", 2.0}, Friction{"slip", 0.5},
+                                         Friction{"frictionless", 0}),
                        ::testing::Values(NormalRule::discrete_derivative, NormalRule::midpoint),
                        ::testing::Values(0.01, -0.005)),
     case_name);
@@ -159,8 +162,10 @@ TEST(PatchThirdDerivatives, MatchCentralDifferencesOfTheCurvatures) {
     const BasisThirdDerivatives d3 = patch_third_derivatives(picked.patch, picked.xi);
     const double h = 1e-6;
     const Eigen::Vector2d e1(h, 0), e2(0, h);
-    const BasisCurvatures p1 = patch_curvatures(picked.patch, picked.xi + e1), m1 = patch_curvatures(picked.patch, picked.xi - e1);
-    const BasisCurvatures p2 = patch_curvatures(picked.patch, picked.xi + e2), m2 = patch_curvatures(picked.patch, picked.xi - e2);
+    const BasisCurvatures p1 = patch_curvatures(picked.patch, picked.xi + e1),
+                          m1 = patch_curvatures(picked.patch, picked.xi - e1);
+    const BasisCurvatures p2 = patch_curvatures(picked.patch, picked.xi + e2),
+                          m2 = patch_curvatures(picked.patch, picked.xi - e2);
     const double scale = d3.N111.norm() + d3.N222.norm();
     EXPECT_LT((d3.N111 - (p1.N11 - m1.N11) / (2 * h)).norm(), 1e-6 * scale) << c.name;
     EXPECT_LT((d3.N112 - (p1.N12 - m1.N12) / (2 * h)).norm(), 1e-6 * scale) << c.name;

@@ -5,9 +5,9 @@
 #include <tuple>
 #include <vector>
 
-#include "core/contact/penalty/penalty_element.hpp"
 #include "core/contact/geometry/segment.hpp"
 #include "core/contact/geometry/variations.hpp"
+#include "core/contact/penalty/penalty_element.hpp"
 #include "tests/core/contact/contact_test_utils.hpp"
 
 namespace stoss::contact {
@@ -318,7 +318,8 @@ TEST(PenaltyElement, DefaultStiffnessIsTenTimesYoungsModulusTimesFaceSize) {
 
 // ------------------------------------------------------------------------------------------------
 // One fixed state against the design prototype (an independent Python implementation of §5.2, not
-// shipped; its penalty element with commit=True; eps_n = eps_t = 1e3, c.xi = 0, c.tT = (0.8, -0.5, 0.1)), printed with repr() by:
+// shipped; its penalty element with commit=True; eps_n = eps_t = 1e3, c.xi = 0, c.tT = (0.8, -0.5, 0.1)),
+// printed with repr() by:
 //   Y = [[0,0,0],[1,0,0.1],[1.1,1,-0.05],[0,0.9,0.2]]; en = [0.55, 0.42, lift] + Y.ravel()
 //   e1 = en + [0.02,-0.015,-0.012, 0.003,-0.002,0.001, -0.004,0.002,0.003, 0.001,0.0,-0.002,
 //   0.002,-0.003,0.001] f = Model(zeros((5,3)))._pen_local(c, en, e1, commit=True)  -> force, c.tT, c.WN,

@@ -1,7 +1,5 @@
 // Progress reports: the system shall report a run's progress about twice a second, not every step,
 // with an ETA, and once more at the end.
-#include "server/jobs/reporting/job_observer.hpp"
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -10,6 +8,7 @@
 
 #include "core/scene/estimates.hpp"
 #include "core/scene/scene.hpp"
+#include "server/jobs/reporting/job_observer.hpp"
 
 namespace stoss::server::jobs {
 namespace {

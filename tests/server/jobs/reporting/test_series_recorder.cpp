@@ -67,7 +67,8 @@ TEST(SeriesSince, APartialSeriesNamesItsStepsAndIsCutByThem) {
   EXPECT_EQ(after["summary"]["steps"], 4) << "the summary covers every recorded step";
   EXPECT_TRUE(after["summary"]["verdict"].is_null()) << "a run is judged when it ends, not before";
   EXPECT_EQ(after["summary"]["checks"], nlohmann::json::array());
-  EXPECT_EQ(server::jobs::partial_series_csv(file, 2), "time,total_energy,newton_iterations\n1.5,2,9\n2,2,12\n");
+  EXPECT_EQ(server::jobs::partial_series_csv(file, 2),
+            "time,total_energy,newton_iterations\n1.5,2,9\n2,2,12\n");
 }
 
 // A per-item vector series ([S,k,3], model/series.hpp) in a running job's partial series: its JSON rows are
@@ -80,7 +81,8 @@ TEST(SeriesSince, APartialSeriesGivesItemVectorsInTheTablesTextForms) {
     model::SeriesLayout layout;
     layout.series = {{"total_energy", 1, false}, {"pair_force", 6, false, 2}};
     recorder.begin(model::Model{}, layout);
-    for (int step = 0; step <= 2; ++step) recorder.step({step, 0.5 * step, {2.0, 1.0 * step, 0, 0, 0, 0, -1.5}});
+    for (int step = 0; step <= 2; ++step)
+      recorder.step({step, 0.5 * step, {2.0, 1.0 * step, 0, 0, 0, 0, -1.5}});
   }
   const auto series = server::jobs::read_partial_series(file);
   ASSERT_TRUE(series);
@@ -135,7 +137,8 @@ TEST(SeriesSince, PollingARunningJobWithItsLastStepGetsEveryStepOnce) {
       },
       120s));
   EXPECT_EQ(c.Post("/v1/jobs/" + id + "/cancel")->status, 202);
-  for (std::size_t i = 0; i < steps.size(); ++i) ASSERT_EQ(steps[i], static_cast<long long>(i)) << "step " << i;
+  for (std::size_t i = 0; i < steps.size(); ++i)
+    ASSERT_EQ(steps[i], static_cast<long long>(i)) << "step " << i;
   const nlohmann::json job = wait_for_status(c, id, {"canceled", "failed", "succeeded"}, 60s);
   // Once ended, the partial summary carries the job's own verdict and checks (a canceled run is judged too).
   ASSERT_TRUE(job["summary"].is_object()) << job.dump();

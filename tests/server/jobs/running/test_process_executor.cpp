@@ -43,8 +43,8 @@ TEST(JobProcess, ASignalFailsThatJobAloneWithTheSignalNamed) {
   LiveServer server(data, {"--workers", "2"});
   auto c = server.client();
   const std::string victim = id_of(submit(c, long_scene())), bystander = id_of(submit(c, long_scene()));
-  ASSERT_TRUE(eventually([&] { return running_with_progress(c, victim) && running_with_progress(c, bystander); },
-                         120s));
+  ASSERT_TRUE(eventually(
+      [&] { return running_with_progress(c, victim) && running_with_progress(c, bystander); }, 120s));
   const pid_t victim_pid = job_pid(data, victim), bystander_pid = job_pid(data, bystander);
   ASSERT_GT(victim_pid, 0);
   ASSERT_GT(bystander_pid, 0);
@@ -67,7 +67,8 @@ TEST(JobProcess, ASignalFailsThatJobAloneWithTheSignalNamed) {
   EXPECT_EQ(still["status"], "running");
   EXPECT_EQ(still["attempt"], 1);
   const int step_before = still["progress"]["step"];
-  EXPECT_TRUE(eventually([&] { return job(c, bystander)["progress"]["step"].get<int>() > step_before; }, 30s));
+  EXPECT_TRUE(
+      eventually([&] { return job(c, bystander)["progress"]["step"].get<int>() > step_before; }, 30s));
 
   ASSERT_EQ(::kill(bystander_pid, SIGKILL), 0);
   failed = wait_for_status(c, bystander, {"failed", "succeeded", "canceled"}, 60s);
@@ -106,8 +107,8 @@ TEST(JobProcess, AJobOverItsWallTimeLimitFailsWithTheLimitNamed) {
 
 TEST(JobProcess, AJobOverItsMemoryLimitFailsWithTheLimitNamed) {
   TempDir dir;
-  LiveServer server(dir.path() / "data", {"--workers", "1", "--job-memory", "300000000", "--max-nodes",
-                                          "1000000"});
+  LiveServer server(dir.path() / "data",
+                    {"--workers", "1", "--job-memory", "300000000", "--max-nodes", "1000000"});
   auto c = server.client();
   const std::string big = id_of(submit(c, box_scene(40, 10)));  // 68921 nodes: far more than 300 MB
   const auto failed = wait_for_status(c, big, {"failed", "succeeded", "canceled"}, 120s);
@@ -157,8 +158,8 @@ TEST(PartialResults, SeriesAndSummaryOfRunningFailedAndCanceledJobsAreReadableAn
   LiveServer server(data, {"--workers", "2"});
   auto c = server.client();
   const std::string running = id_of(submit(c, long_scene())), doomed = id_of(submit(c, long_scene()));
-  ASSERT_TRUE(eventually([&] { return running_with_progress(c, running) && running_with_progress(c, doomed); },
-                         120s));
+  ASSERT_TRUE(eventually(
+      [&] { return running_with_progress(c, running) && running_with_progress(c, doomed); }, 120s));
   // Running: the series so far (flushed a few times a second), completed: false; no result.
   nlohmann::json series;
   ASSERT_TRUE(eventually(
@@ -212,8 +213,8 @@ TEST(PartialResults, AFrictionalJobsSummaryCarriesTheDissipatedEnergy) {
   TempDir dir;
   LiveServer server(dir.path() / "data", {"--workers", "1"});
   auto c = server.client();
-  nlohmann::json scene =
-      nlohmann::json::parse(std::ifstream(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate_friction.json"));
+  nlohmann::json scene = nlohmann::json::parse(
+      std::ifstream(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate_friction.json"));
   scene["time"]["end"] = 0.4;  // 40 steps: the ball lands and slides on the plate
   const std::string id = id_of(submit(c, scene));
   const auto done = wait_for_status(c, id, {"succeeded", "failed"}, 300s);
@@ -226,11 +227,14 @@ TEST(PartialResults, AFrictionalJobsSummaryCarriesTheDissipatedEnergy) {
   EXPECT_LT(summary["energy_plus_dissipated_drift"].get<double>(), summary["energy_drift"].get<double>());
   // The series' last dissipated_energy is the summary's.
   const auto series = body_json(c.Get("/v1/jobs/" + id + "/series"));
-  EXPECT_DOUBLE_EQ(series["dissipated_energy"].back().get<double>(), summary["dissipated_energy"].get<double>());
+  EXPECT_DOUBLE_EQ(series["dissipated_energy"].back().get<double>(),
+                   summary["dissipated_energy"].get<double>());
   // Solver lines in the log name their step and the time it starts from (the format is checked in
-  // tests/server/jobs/reporting/test_job_observer.cpp; with today's Newton this run may need no line search at all).
+  // tests/server/jobs/reporting/test_job_observer.cpp; with today's Newton this run may need no line search
+  // at all).
   const std::string log = c.Get("/v1/jobs/" + id + "/log")->body;
-  EXPECT_FALSE(std::regex_search(log, std::regex(R"((^|\n)newton:)"))) << "a solver line without its step:\n" << log;
+  EXPECT_FALSE(std::regex_search(log, std::regex(R"((^|\n)newton:)"))) << "a solver line without its step:\n"
+                                                                       << log;
 }
 
 }  // namespace

@@ -1,12 +1,11 @@
 // The rescuer, on a fake clock: the system shall requeue a job whose worker stopped renewing its lease,
 // up to a bounded number of attempts, then fail it with the reason; and shall publish, without spending an
 // attempt, the run of an expired attempt that completed but could not report it (issue 20).
-#include "server/jobs/running/rescuer.hpp"
-
 #include <gtest/gtest.h>
 
 #include <fstream>
 
+#include "server/jobs/running/rescuer.hpp"
 #include "tests/server/live_server.hpp"
 #include "tests/server/pg_cluster.hpp"
 

@@ -1,12 +1,11 @@
 // A study job in isolation: the system shall run the sweep of core/study, report progress as runs done of
 // runs total, stop when canceled, and read its table back exactly as written.
-#include "server/jobs/running/study_job.hpp"
-
 #include <gtest/gtest.h>
 
 #include <sstream>
 
 #include "core/scene/scene.hpp"
+#include "server/jobs/running/study_job.hpp"
 #include "tests/server/live_server.hpp"
 
 namespace stoss::server::jobs {
@@ -42,7 +41,7 @@ TEST(StudyJob, ParametersRoundTripThroughTheirJson) {
   study::Options adaptive = sweep();
   adaptive.tolerances = {1e-3, 1e-4};
   EXPECT_EQ(study_options(study_params_json(adaptive)).tolerances, adaptive.tolerances);
-  EXPECT_EQ(study_run_count(adaptive), 9);  // and 2 schemes × 2 tolerances
+  EXPECT_EQ(study_run_count(adaptive), 9);                          // and 2 schemes × 2 tolerances
   EXPECT_FALSE(study_params_json(sweep()).contains("tolerances"));  // a fixed-step study's JSON as before
   EXPECT_EQ(parse_scheme("hht"), model::Scheme::hht);
   EXPECT_FALSE(parse_scheme("newmark"));

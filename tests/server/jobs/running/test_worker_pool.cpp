@@ -1,8 +1,6 @@
 // The worker pool with a scripted executor: the system shall run claimed jobs, stop a running job when
 // asked, give running jobs back to the queue on shutdown, and report nothing once a lease is lost.
 // Synchronisation is by signals from the executor, not by sleeps.
-#include "server/jobs/running/worker_pool.hpp"
-
 #include <gtest/gtest.h>
 
 #include <condition_variable>
@@ -10,6 +8,7 @@
 #include <mutex>
 
 #include "server/jobs/running/job_runner.hpp"
+#include "server/jobs/running/worker_pool.hpp"
 #include "server/jobs/store/sqlite_store.hpp"
 #include "tests/server/live_server.hpp"
 

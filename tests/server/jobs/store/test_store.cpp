@@ -6,9 +6,9 @@
 #include <set>
 #include <thread>
 
+#include "server/common/sha256.hpp"
 #include "server/jobs/store/pg.hpp"
 #include "server/jobs/store/pg_store.hpp"
-#include "server/common/sha256.hpp"
 #include "server/jobs/store/sqlite.hpp"
 #include "server/jobs/store/sqlite_store.hpp"
 #include "tests/server/live_server.hpp"

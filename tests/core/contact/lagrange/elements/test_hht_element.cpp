@@ -2,8 +2,8 @@
 // central differences through the CPP (§6.1 bound 1e-6), and the force structure that keeps L.
 #include <gtest/gtest.h>
 
-#include "core/contact/lagrange/elements/hht_element.hpp"
 #include "core/contact/geometry/variations.hpp"
+#include "core/contact/lagrange/elements/hht_element.hpp"
 #include "tests/core/contact/contact_test_utils.hpp"
 
 namespace stoss::contact {
@@ -22,7 +22,9 @@ class HhtElement : public ::testing::TestWithParam<unsigned> {
     e = at(x_1, lambda);
     ASSERT_TRUE(e.converged);
   }
-  HhtElementResult at(const Vector15& x, double l) const { return hht_element(x, l, f3, h, 1 + alpha, xi_start); }
+  HhtElementResult at(const Vector15& x, double l) const {
+    return hht_element(x, l, f3, h, 1 + alpha, xi_start);
+  }
   Vector15 x_1;
   double lambda = 0, f3 = 0.02, h = 0.01, alpha = -0.05;
   Eigen::Vector2d xi_start{0, 0};

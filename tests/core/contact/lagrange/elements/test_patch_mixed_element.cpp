@@ -8,9 +8,9 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "core/contact/lagrange/elements/patch_mixed_element.hpp"
 #include "core/contact/geometry/patch_projection.hpp"
 #include "core/contact/geometry/smooth_surface.hpp"
+#include "core/contact/lagrange/elements/patch_mixed_element.hpp"
 #include "tests/core/contact/smooth_test_utils.hpp"
 
 namespace stoss::contact {
@@ -30,7 +30,9 @@ class PatchMixedElement : public ::testing::TestWithParam<Case> {
     const Eigen::Vector2d xi = picked.xi;
     std::mt19937 rng(7 + c.face_i + 5 * c.face_j);
     std::normal_distribution<double> n(0, 1);
-    const auto jitter = [&](double s) -> Eigen::Vector3d { return Eigen::Vector3d(n(rng), n(rng), n(rng)) * s; };
+    const auto jitter = [&](double s) -> Eigen::Vector3d {
+      return Eigen::Vector3d(n(rng), n(rng), n(rng)) * s;
+    };
     const PatchFrame on = patch_frame(patch, grid.x, xi);
     at_n.master.resize(patch.size(), 3);
     for (int K = 0; K < patch.size(); ++K)
@@ -43,7 +45,8 @@ class PatchMixedElement : public ::testing::TestWithParam<Case> {
     for (int K = 0; K < patch.size(); ++K) at_1.master.row(K) += jitter(0.05).transpose();
     at_1.slave += jitter(0.05);
     at_1.d += jitter(0.05);
-    at_1.xi += c.sphere ? Eigen::Vector2d(0.002 * n(rng), 0.002 * n(rng)) : Eigen::Vector2d(0.07 * n(rng), 0.05 * n(rng));
+    at_1.xi += c.sphere ? Eigen::Vector2d(0.002 * n(rng), 0.002 * n(rng))
+                        : Eigen::Vector2d(0.07 * n(rng), 0.05 * n(rng));
     for (int k = 0; k < 6; ++k) lambda[k] = n(rng);
   }
 

@@ -6,9 +6,9 @@
 
 #include <random>
 
-#include "core/contact/lagrange/elements/patch_nts_element.hpp"
 #include "core/contact/geometry/patch_projection.hpp"
 #include "core/contact/geometry/smooth_surface.hpp"
+#include "core/contact/lagrange/elements/patch_nts_element.hpp"
 #include "tests/core/contact/smooth_test_utils.hpp"
 
 namespace stoss::contact {
@@ -59,8 +59,10 @@ class PatchNtsElement : public ::testing::TestWithParam<Case> {
     for (Eigen::Index j = 0; j <= n; ++j) {
       Eigen::VectorXd up = x_1, down = x_1;
       double l_up = lambda, l_down = lambda;
-      if (j < n) up[j] += eps, down[j] -= eps;
-      else l_up += eps, l_down -= eps;
+      if (j < n)
+        up[j] += eps, down[j] -= eps;
+      else
+        l_up += eps, l_down -= eps;
       fd.col(j) = (residual(hht, up, l_up) - residual(hht, down, l_down)) / (2 * eps);
     }
     EXPECT_LT((K - fd).norm(), 1e-6 * fd.norm()) << (K - fd).cwiseAbs().maxCoeff();
@@ -75,14 +77,18 @@ class PatchNtsElement : public ::testing::TestWithParam<Case> {
   double lambda = -3.2, f3 = 0.001, h = 0.01, alpha = -0.1;
 };
 
-TEST_P(PatchNtsElement, MidpointTangentMatchesCentralDifferences) { check_tangent(false); }
-TEST_P(PatchNtsElement, HhtTangentMatchesCentralDifferences) { check_tangent(true); }
+TEST_P(PatchNtsElement, MidpointTangentMatchesCentralDifferences) {
+  check_tangent(false);
+}
+TEST_P(PatchNtsElement, HhtTangentMatchesCentralDifferences) {
+  check_tangent(true);
+}
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, PatchNtsElement,
     ::testing::Values(Case{"interior", 1, 2, {0.2, -0.3}}, Case{"on_edge", 1, 1, {0.98, 0.1}},
-                      Case{"corner", 1, 1, {0.97, -0.99}},
-                      Case{"rim", 0, 2, {-0.9, 0.3}}, Case{"bilinear", 1, 1, {0.3, 0.4}, true},
+                      Case{"corner", 1, 1, {0.97, -0.99}}, Case{"rim", 0, 2, {-0.9, 0.3}},
+                      Case{"bilinear", 1, 1, {0.3, 0.4}, true},
                       Case{"extraordinary", -1, -1, {0.1, 0.06}, false, true}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
