@@ -11,6 +11,7 @@
 
 #include "core/output/durable_file.hpp"
 #include "core/output/result_writer.hpp"
+#include "core/run/series_table.hpp"
 #include "core/scene/scene.hpp"
 #include "core/scene/warnings.hpp"
 #include "core/simulate.hpp"
@@ -35,7 +36,13 @@ std::string join(const std::vector<std::string>& items) {
 
 void print_summary(const model::Model& m, const model::Summary& s) {
   std::printf("steps %d, t = %.6g\n", s.steps, s.end_time);
-  std::printf("energy drift %.3e (relative, max over steps)\n", s.energy_drift);
+  if (stoss::run::is_present(stoss::run::Presence::loads,
+                             m)) {  // loads or prescribed motion: H − W_ext is kept
+    std::printf("external work %.6e (W_ext, series/external_work at the end)\n", s.external_work);
+    std::printf("energy drift %.3e (H − W_ext, relative, max over steps)\n", s.energy_drift);
+  } else {
+    std::printf("energy drift %.3e (relative, max over steps)\n", s.energy_drift);
+  }
   if (model::has_check(s, "linear_momentum_drift"))  // the system is free
     std::printf("momentum drift: linear %.3e, angular %.3e\n", s.linear_momentum_drift,
                 s.angular_momentum_drift);
