@@ -5,7 +5,9 @@
 //   rollers' reaction_force) sum to 0 within 1e-8, and contact_area is the full patch, 1, within 1e-12;
 // - two bars colliding end-on, free: Σ_n h_n contact_force_n equals the momentum the slave bar gains, and
 //   minus the master bar's, within 1e-10 of it (Newton's third law and the impulse of the step's discrete
-//   force), also when located impacts split steps into sub-steps.
+//   force), also when located impacts split steps into sub-steps;
+// - with the master bar's far end held, the support's Σ_n h_n reaction_force_n closes the master bar's
+//   momentum balance within the same bound, with and without sub-steps.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -75,8 +77,7 @@ TEST(ContactForce, ABlockPressedOntoABlockPassesTheLoadThroughThePairOverTheWhol
   EXPECT_NEAR(area, 1.0, 1e-12) << "every slave node in contact: Σ A_I is the interface's area";
   std::printf(
       "pressed blocks: contact force (%.2e, %.2e, %.12f) for a load %.1f, upper rollers (%.2e, %.2e), "
-      "contact "
-      "area %.15f\n",
+      "contact area %.15f\n",
       fx, fy, fz, load, reaction(3, 0) + reaction(4, 0), reaction(3, 1) + reaction(4, 1), area);
 }
 
@@ -89,17 +90,21 @@ double body_momentum_z(const model::Model& m, const solve::SparseMatrix& M, cons
 }
 
 struct ImpulseBalance {
-  double impulse = 0;       ///< Σ_n h_n contact_force_n,z
-  double slave_gain = 0;    ///< Δp_z of the slave bar (left) from the first frame to the last
-  double master_gain = 0;   ///< Δp_z of the master bar (right)
-  double lateral = 0;       ///< largest |contact_force_x|, |contact_force_y|
-  double largest_area = 0;  ///< largest contact_area: the bars' 0.1 × 0.1 end
+  double impulse = 0;           ///< Σ_n h_n contact_force_n,z
+  double slave_gain = 0;        ///< Δp_z of the slave bar (left) from the first frame to the last
+  double master_gain = 0;       ///< Δp_z of the master bar (right)
+  double lateral = 0;           ///< largest |contact_force_x|, |contact_force_y|
+  double largest_force = 0;     ///< largest |contact_force_z|
+  double largest_area = 0;      ///< largest contact_area: the bars' 0.1 × 0.1 end
+  double reaction_impulse = 0;  ///< Σ_n h_n reaction_force_n,z (with the master's far end held)
 };
 
-ImpulseBalance colliding_bars(const std::string& impact) {
+/// The colliding bars with `impact`; `held`: the master bar's far end (right/top) held.
+ImpulseBalance colliding_bars(const std::string& impact, bool held = false) {
   json scene =
       json::parse(std::ifstream(std::string(STOSS_SOURCE_DIR) + "/api/examples/colliding_bars.json"));
   scene["contact"][0]["impact"] = impact;
+  if (held) scene["boundary"] = json::array({{{"surface", "right/top"}}});
   scene["solver"]["tolerance"] = 1e-12;
   const model::Model m = scene::load(scene);
   testing::RecordingObserver r;
@@ -110,23 +115,27 @@ ImpulseBalance colliding_bars(const std::string& impact) {
   for (size_t n = 1; n < fz.size(); ++n) {
     out.impulse += h[n] * fz[n];
     out.largest_area = std::max(out.largest_area, area[n]);
+    out.largest_force = std::max(out.largest_force, std::abs(fz[n]));
+    if (held) out.reaction_impulse += h[n] * r.series("reaction_force", 2)[n];
     for (int c : {0, 1}) out.lateral = std::max(out.lateral, std::abs(r.series("contact_force", c)[n]));
   }
   const Eigen::VectorXd &v0 = r.frames.front().velocity, &v1 = r.frames.back().velocity;
   out.slave_gain = body_momentum_z(m, M, v1, 0) - body_momentum_z(m, M, v0, 0);
   out.master_gain = body_momentum_z(m, M, v1, 1) - body_momentum_z(m, M, v0, 1);
   std::printf(
-      "colliding bars (%s): Σ h F_z = %.15e, slave Δp_z = %.15e, master Δp_z = %.15e, "
+      "colliding bars (%s%s): Σ h F_z = %.15e, slave Δp_z = %.15e, master Δp_z = %.15e, Σ h r_z = %.15e, "
       "largest contact area %.6f\n",
-      impact.c_str(), out.impulse, out.slave_gain, out.master_gain, out.largest_area);
+      impact.c_str(), held ? ", far end held" : "", out.impulse, out.slave_gain, out.master_gain,
+      out.reaction_impulse, out.largest_area);
   return out;
 }
 
 void expect_impulse_is_momentum_gain(const ImpulseBalance& b) {
   ASSERT_LT(b.slave_gain, 0) << "the master pushes the slave back";
   EXPECT_NEAR(b.impulse, b.slave_gain, 1e-10 * std::abs(b.slave_gain));
-  EXPECT_NEAR(b.impulse, -b.master_gain, 1e-10 * std::abs(b.slave_gain)) << "Newton's third law";
-  EXPECT_LT(b.lateral, 1e-10 * std::abs(b.slave_gain) / 0.3) << "an end-on impact pushes along the bars";
+  EXPECT_NEAR(b.impulse, -b.master_gain + b.reaction_impulse, 1e-10 * std::abs(b.slave_gain))
+      << "Newton's third law: the master gains −Σ h f_c, and its support's impulse";
+  EXPECT_LT(b.lateral, 1e-10 * b.largest_force) << "an end-on impact pushes along the bars";
 }
 
 TEST(ContactForce, TheImpulseOfTheContactForceIsTheMomentumTheSlaveBarGains) {
@@ -139,6 +148,18 @@ TEST(ContactForce, TheImpulseOfTheContactForceIsTheMomentumTheSlaveBarGains) {
 // is Σ h_k f_k / h over its sub-steps, or the impulse would miss the sub-steps before the last.
 TEST(ContactForce, StepsSplitAtLocatedImpactsWeightTheirSubstepsForcesByTheirH) {
   expect_impulse_is_momentum_gain(colliding_bars("located"));
+}
+
+// The supports' reaction_force follows the same rule (docs/theory.md (5b.10)): with the master bar's far end
+// held, its impulse Σ_n h_n r_n is what the master bar gains beyond −Σ h f_c, and with located impacts the
+// sub-steps of the reaction are weighted too.
+TEST(ContactForce, TheReactionsImpulseClosesTheHeldMasterBarsMomentumAlsoInSubsteps) {
+  for (const char* impact : {"persist", "located"}) {
+    const ImpulseBalance b = colliding_bars(impact, true);
+    EXPECT_GT(std::abs(b.reaction_impulse), 0.01 * std::abs(b.impulse))
+        << impact << ": the wave reaches the end";
+    expect_impulse_is_momentum_gain(b);
+  }
 }
 
 }  // namespace
