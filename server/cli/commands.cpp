@@ -11,7 +11,6 @@
 
 #include "core/output/durable_file.hpp"
 #include "core/output/result_writer.hpp"
-#include "core/run/series_table.hpp"
 #include "core/scene/scene.hpp"
 #include "core/scene/warnings.hpp"
 #include "core/simulate.hpp"
@@ -36,8 +35,8 @@ std::string join(const std::vector<std::string>& items) {
 
 void print_summary(const model::Model& m, const model::Summary& s) {
   std::printf("steps %d, t = %.6g\n", s.steps, s.end_time);
-  if (stoss::run::is_present(stoss::run::Presence::loads,
-                             m)) {  // loads or prescribed motion: H − W_ext is kept
+  // Loads or prescribed motion, the scenes with series/external_work (core/run/series_table.cpp): H − W_ext
+  if (!m.loads.empty() || m.has_effect(model::effect::prescribed_motion)) {
     std::printf("external work %.6e (W_ext, series/external_work at the end)\n", s.external_work);
     std::printf("energy drift %.3e (H − W_ext, relative, max over steps)\n", s.energy_drift);
   } else {
