@@ -69,6 +69,11 @@ void write_root_attributes(const h5::File& file, const model::Model& model) {
     for (const model::Boundary& b : model.boundary) entries.push_back(b.surface);
     file.write_attribute("/", "boundary_entries", entries);
   }
+  if (!model.contact.empty()) {  // the second axis of series/contact_force and contact_area
+    std::vector<std::string> pairs;
+    for (const model::ContactPair& p : model.contact) pairs.push_back(p.slave + " on " + p.master);
+    file.write_attribute("/", "contact_pairs", pairs);
+  }
   file.write_attribute("/", "scene", model.scene.dump());
   file.write_attribute("/", "complete", 0);
 }

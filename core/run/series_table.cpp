@@ -13,6 +13,19 @@ void put3(const Eigen::Vector3d& v, double* out) {
   for (int k = 0; k < 3; ++k) out[k] = v[k];
 }
 
+/// k vectors of `items` at `out`, 0 where `items` is null or empty (row 0).
+void put_items(const std::vector<Eigen::Vector3d>* items, int k, double* out) {
+  for (int e = 0; e < k; ++e)
+    put3(items && !items->empty() ? (*items)[size_t(e)] : Eigen::Vector3d::Zero(), out + 3 * e);
+}
+
+int boundary_entries(const model::Model& m) {
+  return int(m.boundary.size());
+}
+int contact_pairs(const model::Model& m) {
+  return int(m.contact.size());
+}
+
 // One row per series (docs/results.md "/series" gives their meaning).
 const SeriesColumn table[] = {
     {"kinetic_energy", Shape::scalar, false, Presence::always,
@@ -26,16 +39,11 @@ const SeriesColumn table[] = {
     {"dissipated_energy", Shape::scalar, false, Presence::friction,  // §5.2 item 7
      [](S s, int, double* v) { v[0] = s.balance.dissipated; }},
     {"external_work", Shape::scalar, false,
-     Presence::loads,  // (5b.5), (5b.9): loads' and supports' work since t_0
+     Presence::loads,  // (5b.5), (5b.11): loads' and supports' work since t_0
      [](S s, int, double* v) { v[0] = s.balance.external_work; }},
     {"reaction_force", Shape::item_vectors, false,
-     Presence::boundary,  // (5b.8): per boundary entry, row 0 is 0
-     [](S s, int k, double* v) {
-       for (int e = 0; e < k; ++e)
-         put3(s.reactions && !s.reactions->empty() ? (*s.reactions)[size_t(e)] : Eigen::Vector3d::Zero(),
-              v + 3 * e);
-     },
-     [](const model::Model& m) { return int(m.boundary.size()); }},
+     Presence::boundary,  // (5b.10): per boundary entry, row 0 is 0
+     [](S s, int k, double* v) { put_items(s.reactions, k, v); }, boundary_entries},
     {"linear_momentum", Shape::vector, false, Presence::always,
      [](S s, int, double* v) { put3(s.balance.linear, v); }},
     {"angular_momentum", Shape::vector, false, Presence::always,
@@ -54,6 +62,14 @@ const SeriesColumn table[] = {
      [](S s, int, double* v) { v[0] = s.contact.faceted_penetration; }},
     {"slipping_contacts", Shape::scalar, true, Presence::friction,
      [](S s, int, double* v) { v[0] = s.contact.slipping; }},
+    {"contact_force", Shape::item_vectors, false, Presence::contact,  // (5b.12): per pair, row 0 is 0
+     [](S s, int k, double* v) { put_items(s.contact_forces, k, v); }, contact_pairs},
+    {"contact_area", Shape::item_scalars, false, Presence::contact,  // Σ A_I of the slave nodes in contact
+     [](S s, int k, double* v) {
+       for (int e = 0; e < k; ++e)
+         v[e] = s.contact_areas && !s.contact_areas->empty() ? (*s.contact_areas)[size_t(e)] : 0.0;
+     },
+     contact_pairs},
     {"newton_iterations", Shape::scalar, true, Presence::always,
      [](S s, int, double* v) { v[0] = s.newton ? s.newton->iterations : 0; }},
     {"residual_norm", Shape::scalar, false, Presence::always,

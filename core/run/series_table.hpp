@@ -29,6 +29,12 @@ struct StepMeasures {
   /// The force each boundary entry exerted on its body in the step (Problem::entry_reactions); null or
   /// empty in row 0, where it is 0.
   const std::vector<Eigen::Vector3d>* reactions = nullptr;
+  /// The force each contact pair's master exerted on its slave in the step (MeasuredContact); null or
+  /// empty in row 0, where it is 0.
+  const std::vector<Eigen::Vector3d>* contact_forces = nullptr;
+  /// Each pair's Σ A_I over its slave nodes in contact at the step's end (ContactReport::contact_area);
+  /// null or empty: 0.
+  const std::vector<double>* contact_areas = nullptr;
 };
 
 /// The shape of one row of a series; k (the items) is taken from the scene.

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <sstream>
 
 #include "core/run/checkpoint_schedule.hpp"
 #include "core/run/checks.hpp"
+#include "core/run/measured_contact.hpp"
 #include "core/run/measures.hpp"
 #include "core/run/problem.hpp"
 #include "core/run/recorder.hpp"
@@ -62,6 +64,46 @@ double fixed_step_to(double step, double t, double landing) {
   return remaining <= step * (1 + 1e-6) ? remaining : step;
 }
 
+/// Each contact pair of `p` behind a MeasuredContact, which measures its force on the slave.
+std::vector<std::unique_ptr<MeasuredContact>> measured_pairs(const Problem& p) {
+  std::vector<std::unique_ptr<MeasuredContact>> out;
+  for (const auto& pair : p.contact) out.push_back(std::make_unique<MeasuredContact>(*pair));
+  return out;
+}
+
+/// The integrator's terms: the problem's, its contact pairs (the last ones) behind their measurements.
+std::vector<time::Term*> terms_of(const Problem& p,
+                                  const std::vector<std::unique_ptr<MeasuredContact>>& pairs) {
+  std::vector<time::Term*> terms = p.terms();
+  for (size_t k = 0; k < pairs.size(); ++k) terms[p.first_contact_term() + k] = pairs[k].get();
+  return terms;
+}
+
+/// Per-item forces of one step from those of its converged substeps: Σ h_k f_k / Σ h_k, so that the
+/// step's force times h is the substeps' impulse; exactly the substep's force when there is one.
+class StepForces {
+ public:
+  void clear() { *this = StepForces(); }
+  void add(double h, const std::vector<Eigen::Vector3d>& forces) {
+    if (impulse_.empty()) impulse_.assign(forces.size(), Eigen::Vector3d::Zero());
+    for (size_t k = 0; k < forces.size(); ++k) impulse_[k] += h * forces[k];
+    last_ = forces;
+    h_ += h;
+    ++substeps_;
+  }
+  std::vector<Eigen::Vector3d> step_forces() const {
+    if (substeps_ <= 1) return last_;
+    std::vector<Eigen::Vector3d> out = impulse_;
+    for (Eigen::Vector3d& f : out) f /= h_;
+    return out;
+  }
+
+ private:
+  std::vector<Eigen::Vector3d> impulse_, last_;
+  double h_ = 0;
+  int substeps_ = 0;
+};
+
 std::optional<CheckpointStore> open_store(const Checkpoints& checkpoints) {
   if (checkpoints.directory.empty()) return std::nullopt;
   return CheckpointStore(checkpoints.directory);
@@ -74,7 +116,8 @@ class Run {
       : m_(m),
         observer_(observer),
         problem_(build_problem(m)),
-        terms_(problem_.terms()),
+        measured_(measured_pairs(problem_)),
+        terms_(terms_of(problem_, measured_)),
         integrator_(problem_.mass, terms_, problem_.fixed, time::make_scheme(m.time), newton_options(m),
                     problem_.length_scale, problem_.total_mass),
         s_(initial_state(m, problem_)),
@@ -123,10 +166,12 @@ class Run {
     const auto t_out = Clock::now();
     const Balance b = balance(problem_, s_);
     update_summary(sum_, b0_, b, step.contact);
-    const std::vector<Eigen::Vector3d> reactions = problem_.entry_reactions(integrator_.reaction());
-    recorder_.step(
-        series_.row(s_.step, s_.t,
-                    {b, step.contact, &step.newton, seconds_since(t0), step.h, step.rejections, &reactions}));
+    const std::vector<Eigen::Vector3d> reactions = reactions_.step_forces();
+    const std::vector<Eigen::Vector3d> contact_forces = contact_forces_.step_forces();
+    const std::vector<double> contact_areas = pair_areas();
+    recorder_.step(series_.row(s_.step, s_.t,
+                               {b, step.contact, &step.newton, seconds_since(t0), step.h, step.rejections,
+                                &reactions, &contact_forces, &contact_areas}));
     const bool last = done();
     if (frame_due(n, last, s_.t == landing)) recorder_.frame(n, frame_of(s_, problem_));
     keep_checkpoint(n, last);
@@ -213,8 +258,10 @@ class Run {
     const int step0 = s_.step;
     const double time0 = s_.t;
     const auto log = [&](const std::string& line) { observer_.log(line); };
+    clear_step_forces();
     out.newton = time::step_with_reduction(integrator_, s_, out.h, max_step_halvings, log, [&] {
       add_substep(out.contact, contact_row(problem_, &integrator_));
+      add_step_forces();
     });
     if (!out.newton.converged) fail(failure_message(step0, time0, out.h, out.newton));
     if (by_time() && out.h == landing - time0) s_.t = landing;  // exactly on the frame time
@@ -261,7 +308,28 @@ class Run {
     out.newton.substeps = 1;
     out.contact = contact_row(problem_, &integrator_);
     out.h = h;
+    clear_step_forces();
+    add_step_forces();
     return out;
+  }
+
+  void clear_step_forces() {
+    reactions_.clear();
+    contact_forces_.clear();
+  }
+  /// After a converged integrator step: its supports' and pairs' forces, weighted by the h it advanced.
+  void add_step_forces() {
+    const double h = integrator_.advanced();
+    reactions_.add(h, problem_.entry_reactions(integrator_.reaction()));
+    std::vector<Eigen::Vector3d> forces;
+    for (const auto& pair : measured_) forces.push_back(pair->slave_force());
+    contact_forces_.add(h, forces);
+  }
+  /// Each pair's contact area at the step's end (ContactReport::contact_area).
+  std::vector<double> pair_areas() const {
+    std::vector<double> areas;
+    for (const auto& pair : problem_.contact) areas.push_back(pair->report().contact_area);
+    return areas;
   }
 
   /// Back to the state before a rejected try, as a run resumed there would be (restore_state).
@@ -335,6 +403,7 @@ class Run {
   model::Observer& observer_;
   const Clock::time_point wall0_ = Clock::now();  // before the problem is built: set first
   Problem problem_;
+  std::vector<std::unique_ptr<MeasuredContact>> measured_;  ///< the contact pairs as the integrator sees them
   std::vector<time::Term*> terms_;
   time::Integrator integrator_;
   time::State s_;
@@ -349,7 +418,8 @@ class Run {
   int next_frame_ = 1;                        ///< with output.interval: k of the next frame time
   Balance b0_;
   model::Summary sum_;
-  double output_seconds_ = 0;  ///< series rows, frames and the observer's calls
+  StepForces reactions_, contact_forces_;  ///< of the step being solved: series reaction_force, contact_force
+  double output_seconds_ = 0;              ///< series rows, frames and the observer's calls
 };
 
 }  // namespace

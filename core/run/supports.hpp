@@ -1,5 +1,5 @@
 #pragma once
-/// @file Supports with prescribed motion (scene `boundary[i].displacement`, docs/theory.md §5b.7): the held
+/// @file Supports with prescribed motion (scene `boundary[i].displacement`, docs/theory.md §5b.9): the held
 /// dofs follow x = X + a(t)·u, and the work the supports do enters series/external_work.
 
 #include <Eigen/Core>
@@ -20,7 +20,7 @@ struct PrescribedDof {
 
 /// The supports that move, as a term: it writes x_{n+1} of its dofs into the step's unknowns before
 /// Newton (the integrator holds them there, as it holds every fixed dof), and counts the reaction's work
-/// Σ r_i (x_{n+1} − x_n)_i in the step's discrete form (5b.9). Adds nothing to the residual.
+/// Σ r_i (x_{n+1} − x_n)_i in the step's discrete form (5b.11). Adds nothing to the residual.
 class PrescribedMotion final : public time::Term {
  public:
   PrescribedMotion(std::vector<PrescribedDof> dofs, std::vector<loads::Amplitude> amplitudes);
@@ -30,7 +30,7 @@ class PrescribedMotion final : public time::Term {
   void begin_step(const time::StepContext& step, Eigen::VectorXd& z) override;
   void add(const time::StepContext&, const Eigen::VectorXd&, Eigen::VectorXd&,
            solve::BlockPattern*) const override {}
-  /// Adds Σ r_i Δx_i over the prescribed dofs to the work (5b.9).
+  /// Adds Σ r_i Δx_i over the prescribed dofs to the work (5b.11).
   void take_reaction(const time::StepContext& step, const Eigen::VectorXd& z,
                      const Eigen::VectorXd& reaction) override;
   /// Advances the clock by h.
@@ -39,7 +39,7 @@ class PrescribedMotion final : public time::Term {
   time::TermState save_state() const override;
   void restore_state(const time::TermState& state, const Eigen::VectorXd& x,
                      const Eigen::VectorXd& v) override;
-  /// Σ over the converged steps of the supports' work (5b.9): their part of series/external_work.
+  /// Σ over the converged steps of the supports' work (5b.11): their part of series/external_work.
   double work() const { return work_; }
 
  private:

@@ -98,7 +98,8 @@ function unitOf(key) {
 
 // What each plot's y axis measures (by plot id).
 const Y_LABELS = { energy: 'energy (' + UNITS + ')', 'energy-error': 'relative error', 'momentum-error': 'momentum (' + UNITS + ')',
-                   contact: 'count; penetration (' + UNITS + ')', newton: 'iterations', 'step-size': 'h (' + UNITS + ')', dissipation: 'energy (' + UNITS + ')' };
+                   contact: 'count; penetration (' + UNITS + ')', newton: 'iterations', 'step-size': 'h (' + UNITS + ')', dissipation: 'energy (' + UNITS + ')',
+                   'external-work': 'energy (' + UNITS + ')', 'reaction-force': 'force (' + UNITS + ')', 'contact-force': 'force (' + UNITS + ')' };
 
 function duration(seconds) {
   if (seconds === null || seconds === undefined) return '';
@@ -296,7 +297,21 @@ const PLOTS = [
     labels: ['step size h'], logscale: true, row: (s, i) => [positive(s.step_size[i])] },
   { id: 'dissipation', title: 'Dissipated energy (friction) and H + D', needs: ['dissipated_energy'],
     labels: ['dissipated D', 'H + D'], row: (s, i) => [s.dissipated_energy[i], s.total_energy[i] + s.dissipated_energy[i]] },
+  // With loads or prescribed motion: the work done on the bodies, and H − W, what energy–momentum keeps.
+  { id: 'external-work', title: 'External work W and H − W', needs: ['external_work', 'total_energy'],
+    labels: ['external work W', 'H − W'], row: (s, i) => [s.external_work[i], s.total_energy[i] - s.external_work[i]] },
+  // [S,k,3] series (docs/results.md): a line per item and component, the items numbered as the result
+  // attributes boundary_entries and contact_pairs name them.
+  { id: 'reaction-force', title: 'Reaction force of each boundary entry', needs: ['reaction_force'],
+    labels: (s) => itemLabels(s.reaction_force[0], 'entry'), row: (s, i) => s.reaction_force[i].flat() },
+  { id: 'contact-force', title: 'Contact force of each pair (master on slave)', needs: ['contact_force'],
+    labels: (s) => itemLabels(s.contact_force[0], 'pair'), row: (s, i) => s.contact_force[i].flat() },
 ];
+
+// Labels of an [S,k,3] series' lines from one of its rows: "<word> <k> x", "<word> <k> y", "<word> <k> z".
+function itemLabels(items, word) {
+  return items.flatMap((_, k) => ['x', 'y', 'z'].map((c) => `${word} ${k} ${c}`));
+}
 
 let shown = { id: null };
 
@@ -322,13 +337,14 @@ function plotRows(state, series) {
       const legend = el('div', { class: 'legend' });
       document.getElementById('plots').append(el('div', {}, box, legend));
       state.data[plot.id] = [];
-      state.graphs[plot.id] = { box, legend, plot, graph: null };
+      const labels = typeof plot.labels === 'function' ? plot.labels(series) : plot.labels;
+      state.graphs[plot.id] = { box, legend, plot, labels, graph: null };
     }
     const data = state.data[plot.id];
     const entry = state.graphs[plot.id];
     for (let i = 0; i < count; ++i) data.push([series.time[i], ...plot.row(series, i, state.first)]);
     const y = plot.logscale ? { axisLabelWidth: 64, ticker: logTicks } : { axisLabelWidth: 64 };
-    const options = { labels: ['t', ...plot.labels], title: plot.title, xlabel: 't (' + UNITS + ')', ylabel: Y_LABELS[plot.id] || '',
+    const options = { labels: ['t', ...entry.labels], title: plot.title, xlabel: 't (' + UNITS + ')', ylabel: Y_LABELS[plot.id] || '',
                       logscale: !!plot.logscale, stepPlot: !!plot.stepPlot, series: plot.series || {}, connectSeparatedPoints: true,
                       legend: 'always', labelsDiv: entry.legend, height: 220, axes: { y, y2: { independentTicks: true, axisLabelWidth: 64 } } };
     if (entry.graph) entry.graph.updateOptions({ file: data });

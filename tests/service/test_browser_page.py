@@ -243,7 +243,8 @@ def live_run(browser, out):
     check(True, "the status reaches succeeded")
     browser.wait_for(f"{points} === {EXAMPLE_ROWS}", f"the energy plot ends with {EXAMPLE_ROWS} points", limit=20)
     plots = browser.run("[...document.querySelectorAll('#plots .plot')].map(p => [p.id, Number(p.dataset.points)])")
-    expected = ["plot-energy", "plot-energy-error", "plot-momentum-error", "plot-contact", "plot-newton"]
+    expected = ["plot-energy", "plot-energy-error", "plot-momentum-error", "plot-contact", "plot-newton",
+                "plot-contact-force"]
     check([p[0] for p in plots] == expected, f"the contact run has the plots {expected} (got {plots})")
     check(all(p[1] == EXAMPLE_ROWS for p in plots),
           f"every plot holds each of the {EXAMPLE_ROWS} steps exactly once, polled with ?since")

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/run/series_table.hpp"
 #include "core/scene/estimates.hpp"
 
 namespace stoss::server::jobs {
@@ -58,6 +59,10 @@ void ProgressObserver::report(Millis now) {
   if (sink_) sink_(current_);
 }
 
+void LogObserver::begin(const model::Model&, const model::SeriesLayout& layout) {
+  external_work_ = layout.index_of("external_work") >= 0;
+}
+
 void LogObserver::step(const model::StepRow& row) {
   last_step_ = row.step;
   last_time_ = row.time;
@@ -71,8 +76,10 @@ void LogObserver::log(const std::string& line) {
 
 void LogObserver::end(const model::Summary& s) {
   out_ << (s.completed ? "run completed: " : "run stopped: ") << s.steps << " steps, t = " << s.end_time
-       << ", energy drift " << s.energy_drift << ", " << s.newton_iterations << " Newton iterations, "
-       << s.wall_seconds << " s, verdict " << s.verdict << "\n";
+       << (external_work_ ? ", energy drift (H − W_ext) " : ", energy drift ") << s.energy_drift;
+  if (external_work_) out_ << ", external work " << s.external_work;
+  out_ << ", " << s.newton_iterations << " Newton iterations, " << s.wall_seconds << " s, verdict "
+       << s.verdict << "\n";
   for (const model::Check& c : s.checks)
     if (!c.passed) out_ << "warning: check " << c.name << " failed: " << c.value << " > " << c.bound << "\n";
   out_ << std::flush;
@@ -99,6 +106,7 @@ nlohmann::json summary_json(const model::Summary& s, const model::Model& model) 
                       {"verdict", s.verdict},
                       {"checks", model::checks_json(s.checks)}};
   if (!model.contact.empty()) j["max_penetration"] = s.max_penetration;
+  if (stoss::run::is_present(stoss::run::Presence::loads, model)) j["external_work"] = s.external_work;
   if (s.resumed_from_step > 0) j["resumed_from_step"] = s.resumed_from_step;
   if (s.krylov_iterations_per_solve > 0) {  // a Krylov path (solver.linear iterative, petsc_gamg) ran
     j["krylov_iterations_per_solve"] = s.krylov_iterations_per_solve;

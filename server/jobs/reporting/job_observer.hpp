@@ -50,6 +50,8 @@ class ProgressObserver : public model::Observer {
 class LogObserver : public model::Observer {
  public:
   explicit LogObserver(std::ofstream& out) : out_(out) {}
+  /// Notes whether the run counts external work (series/external_work): the energy line is then H − W_ext.
+  void begin(const model::Model& model, const model::SeriesLayout& layout) override;
   void step(const model::StepRow& row) override;
   /// Solver lines ("newton: …") name the step they belong to and the time it starts from.
   void log(const std::string& line) override;
@@ -59,9 +61,11 @@ class LogObserver : public model::Observer {
   std::ofstream& out_;
   int last_step_ = -1;  ///< the last converged step (0: the initial state)
   double last_time_ = 0;
+  bool external_work_ = false;  ///< the run has series/external_work (loads or prescribed motion)
 };
 
-/// The job summary of docs/api.md from a run's summary; max_penetration only when the model has contact.
+/// The job summary of docs/api.md from a run's summary; max_penetration only when the model has contact,
+/// external_work (the last value of series/external_work) only when it has loads or prescribed motion.
 nlohmann::json summary_json(const model::Summary& summary, const model::Model& model);
 
 }  // namespace stoss::server::jobs

@@ -64,6 +64,7 @@ void SeriesRecorder::begin(const model::Model&, const model::SeriesLayout& layou
   last_flush_ = std::chrono::steady_clock::now();
   total_ = layout.index_of("total_energy");
   dissipated_ = layout.index_of("dissipated_energy");
+  work_ = layout.index_of("external_work");
 }
 
 void SeriesRecorder::step(const model::StepRow& row) {
@@ -78,11 +79,12 @@ void SeriesRecorder::step(const model::StepRow& row) {
   if (total_ >= 0 && dissipated_ >= 0 &&
       static_cast<std::size_t>(std::max(total_, dissipated_)) < row.values.size()) {
     const double h = row.values[static_cast<std::size_t>(total_)],
-                 d = row.values[static_cast<std::size_t>(dissipated_)];
-    if (!initial_energy_) initial_energy_ = h + d;
+                 d = row.values[static_cast<std::size_t>(dissipated_)],
+                 w = work_ >= 0 ? row.values[static_cast<std::size_t>(work_)] : 0.0;  // W_ext
+    if (!initial_energy_) initial_energy_ = h + d - w;
     last_dissipated_ = d;
     const double scale = std::abs(*initial_energy_) > 0 ? std::abs(*initial_energy_) : 1.0;
-    balance_drift_ = std::max(balance_drift_, std::abs(h + d - *initial_energy_) / scale);
+    balance_drift_ = std::max(balance_drift_, std::abs(h + d - w - *initial_energy_) / scale);
   }
 }
 
@@ -112,11 +114,12 @@ std::optional<nlohmann::json> read_partial_series(const std::filesystem::path& p
   out["step"] = step;
   out["time"] = time;
   std::size_t offset = 2;
-  int total = -1, dissipated = -1, newton = -1;
+  int total = -1, dissipated = -1, newton = -1, work = -1;
   for (const model::SeriesSpec& spec : p->layout) {
     if (spec.name == "total_energy") total = static_cast<int>(offset);
     if (spec.name == "dissipated_energy") dissipated = static_cast<int>(offset);
     if (spec.name == "newton_iterations") newton = static_cast<int>(offset);
+    if (spec.name == "external_work") work = static_cast<int>(offset);
     nlohmann::json values = nlohmann::json::array();
     std::vector<double> cells(static_cast<std::size_t>(spec.components));
     for (const auto& row : p->rows) {  // cells past a short row are null
@@ -138,19 +141,30 @@ std::optional<nlohmann::json> read_partial_series(const std::filesystem::path& p
                             {"checks", nlohmann::json::array()}};
   if (total >= 0) {
     const double h0 = p->rows.front()[static_cast<std::size_t>(total)];
+    const auto work_at = [&](const std::vector<double>& row) {
+      return work >= 0 ? row[static_cast<std::size_t>(work)] : 0.0;
+    };
+    // As the run's summary (core/run/measures.cpp): max |H_n − W_n − H_0| over |H_0|, or over max |H_n|
+    // when the run counts external work (a loaded body may start at rest).
+    double largest = std::abs(h0);
+    if (work >= 0)
+      for (const auto& row : p->rows)
+        largest = std::max(largest, std::abs(row[static_cast<std::size_t>(total)]));
     double drift = 0, balance = 0;
-    const double scale = std::abs(h0) > 0 ? std::abs(h0) : 1.0;
+    const double scale = largest > 0 ? largest : 1.0;
     for (const auto& row : p->rows) {
       const double h = row[static_cast<std::size_t>(total)];
-      drift = std::max(drift, std::abs(h - h0) / scale);
+      drift = std::max(drift, std::abs(h - work_at(row) - h0) / scale);
       if (dissipated >= 0) {
         const double d0 = p->rows.front()[static_cast<std::size_t>(dissipated)];
-        balance =
-            std::max(balance, std::abs(h + row[static_cast<std::size_t>(dissipated)] - h0 - d0) / scale);
+        balance = std::max(
+            balance,
+            std::abs(h + row[static_cast<std::size_t>(dissipated)] - work_at(row) - h0 - d0) / scale);
       }
     }
     summary["initial_energy"] = h0;
     summary["energy_drift"] = drift;
+    if (work >= 0) summary["external_work"] = work_at(last);
     if (dissipated >= 0) {
       summary["dissipated_energy"] = last[static_cast<std::size_t>(dissipated)];
       summary["energy_plus_dissipated_drift"] = balance;

@@ -41,7 +41,7 @@ class SeriesRecorder : public model::Observer {
   std::chrono::steady_clock::time_point last_flush_;
   Millis flush_every_;
   static constexpr long long flushed_at_once = 1;  ///< steps up to this one are flushed as they come
-  int total_ = -1, dissipated_ = -1;               ///< value offsets in a row
+  int total_ = -1, dissipated_ = -1, work_ = -1;   ///< value offsets in a row (work_: external_work)
   std::optional<double> initial_energy_, last_dissipated_;
   double balance_drift_ = 0;
   std::optional<model::Summary> summary_;

@@ -63,6 +63,8 @@ TEST(SeriesTable, GravityFrictionAndASmoothMasterAddTheirSeriesWhereTheDocsListT
                                                             "unprojected_nodes",
                                                             "max_faceted_penetration",
                                                             "slipping_contacts",
+                                                            "contact_force",
+                                                            "contact_area",
                                                             "newton_iterations",
                                                             "residual_norm",
                                                             "step_seconds",
@@ -110,7 +112,34 @@ TEST(SeriesTable, ARowIsFilledFromTheStepsMeasuresAtTheLayoutsOffsets) {
   EXPECT_EQ(first.values.at(l.index_of("substeps")), 1) << "row 0 is one (no) step";
 }
 
-// A synthetic per-pair vector series (as reaction_force, contact_force will be) and a per-pair scalar
+// contact_force and contact_area have one item per pair, filled from the step's per-pair measures, and are
+// 0 in row 0 (no measures given).
+TEST(SeriesTable, ThePairsForcesAndAreasFillOneItemEach) {
+  const SeriesRows rows(model_with({"inertia", "elasticity", "contact_frictionless"}, 2));
+  const model::SeriesLayout& l = rows.layout();
+  const Balance b;
+  const ContactRow c;
+  const std::vector<Eigen::Vector3d> forces = {{1, 2, 3}, {-4, 5, -6}};
+  const std::vector<double> areas = {0.25, 0.5};
+  StepMeasures measures{b, c, nullptr, 0};
+  measures.contact_forces = &forces;
+  measures.contact_areas = &areas;
+  const model::StepRow row = rows.row(1, 0.1, measures);
+  const int f = l.index_of("contact_force"), a = l.index_of("contact_area");
+  ASSERT_GE(f, 0);
+  ASSERT_GE(a, 0);
+  EXPECT_EQ(std::vector<double>(row.values.begin() + f, row.values.begin() + f + 6),
+            (std::vector<double>{1, 2, 3, -4, 5, -6}));
+  EXPECT_EQ(std::vector<double>(row.values.begin() + a, row.values.begin() + a + 2),
+            (std::vector<double>{0.25, 0.5}));
+  const model::StepRow first = rows.row(0, 0, {b, c, nullptr, 0});
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(first.values.at(f + k), 0) << "row 0 is 0";
+  for (int k = 0; k < 2; ++k) EXPECT_EQ(first.values.at(a + k), 0);
+  EXPECT_LT(SeriesRows(model_with({"inertia"}, 0)).layout().index_of("contact_force"), 0)
+      << "absent without contact";
+}
+
+// A synthetic per-pair vector series (as reaction_force and contact_force are) and a per-pair scalar
 // (as contact_area): one row each, k = the scene's pairs.
 int pair_count(const model::Model& m) {
   return static_cast<int>(m.contact.size());

@@ -190,6 +190,49 @@ TEST(SummaryJson, CarriesMaxPenetrationOnlyWithContact) {
   EXPECT_EQ(summary_json(s, m)["max_penetration"], 0.25);
 }
 
+// issue 23 §4: the summary names external_work (series/external_work at its end) where the scene has loads
+// or prescribed motion, and only there.
+TEST(SummaryJson, NamesTheExternalWorkOnlyWithLoadsOrPrescribedMotion) {
+  model::Summary s;
+  s.external_work = 0.75;
+  model::Model m = model_of(10);
+  EXPECT_FALSE(summary_json(s, m).contains("external_work"));
+  m.loads.push_back({});
+  EXPECT_EQ(summary_json(s, m)["external_work"], 0.75);
+  m.loads.clear();
+  m.effects.push_back(model::effect::prescribed_motion);
+  EXPECT_EQ(summary_json(s, m)["external_work"], 0.75);
+}
+
+// The log's last line of a run that counts external work gives the drift of H − W_ext and the work.
+TEST(LogObserver, TheEnergyLineOfARunWithExternalWorkIsHMinusW) {
+  const auto end_line = [](bool external_work) {
+    const std::filesystem::path path = std::filesystem::temp_directory_path() / "stoss_log_observer_work.log";
+    {
+      std::ofstream out(path);
+      LogObserver log(out);
+      model::SeriesLayout layout;
+      layout.series.push_back({"total_energy", 1, false, 0});
+      if (external_work) layout.series.push_back({"external_work", 1, false, 0});
+      log.begin(model::Model{}, layout);
+      model::Summary s;
+      s.completed = true;
+      s.energy_drift = 2e-13;
+      s.external_work = 0.5;
+      log.end(s);
+    }
+    std::ifstream in(path);
+    std::string line;
+    std::getline(in, line);
+    std::filesystem::remove(path);
+    return line;
+  };
+  const std::string loaded = end_line(true), free = end_line(false);
+  EXPECT_NE(loaded.find("energy drift (H − W_ext) 2e-13, external work 0.5,"), std::string::npos) << loaded;
+  EXPECT_NE(free.find("energy drift 2e-13,"), std::string::npos) << free;
+  EXPECT_EQ(free.find("external work"), std::string::npos) << free;
+}
+
 // Solver lines in a job's log name the step they belong to and the time it starts from; other lines
 // are written as they come.
 TEST(LogObserver, NewtonLinesNameTheirStepAndItsStartTime) {
