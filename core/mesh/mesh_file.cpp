@@ -111,28 +111,37 @@ void refuse_interior_faces(const std::string& file, const BodyMesh& body) {
 
 }  // namespace
 
+namespace {
+
+/// The hexahedra of the named element set (Abaqus names ignore case), or all of them without a name.
+std::vector<int> selected_elements(const ImportedMesh& mesh, const std::optional<std::string>& element_set) {
+  if (!element_set) {
+    std::vector<int> all(mesh.hex8.size());
+    for (size_t e = 0; e < mesh.hex8.size(); ++e) all[e] = static_cast<int>(e);
+    return all;
+  }
+  auto it = mesh.element_sets.find(*element_set);
+  for (auto other = mesh.element_sets.begin();
+       it == mesh.element_sets.end() && other != mesh.element_sets.end(); ++other)
+    if (upper(other->first) == upper(*element_set)) it = other;
+  if (it == mesh.element_sets.end()) {
+    std::string known;
+    for (const auto& [name, ignored] : mesh.element_sets) known += (known.empty() ? "" : ", ") + name;
+    throw MeshFileError(
+        mesh.file, 0,
+        "has no element set '" + *element_set + "' (it has " + (known.empty() ? "none" : known) + ")");
+  }
+  if (it->second.empty()) throw MeshFileError(mesh.file, 0, "element set '" + it->first + "' is empty");
+  return it->second;
+}
+
+}  // namespace
+
 Selection select_body(const ImportedMesh& mesh, const std::optional<std::string>& element_set,
                       const Transform& transform) {
   if (mesh.hex8.empty()) throw MeshFileError(mesh.file, 0, "has no 8-node hexahedra");
   Selection out;
-  if (element_set) {
-    auto it = mesh.element_sets.find(*element_set);
-    for (auto other = mesh.element_sets.begin();
-         it == mesh.element_sets.end() && other != mesh.element_sets.end(); ++other)
-      if (upper(other->first) == upper(*element_set)) it = other;  // Abaqus names ignore case
-    if (it == mesh.element_sets.end()) {
-      std::string known;
-      for (const auto& [name, ignored] : mesh.element_sets) known += (known.empty() ? "" : ", ") + name;
-      throw MeshFileError(
-          mesh.file, 0,
-          "has no element set '" + *element_set + "' (it has " + (known.empty() ? "none" : known) + ")");
-    }
-    if (it->second.empty()) throw MeshFileError(mesh.file, 0, "element set '" + it->first + "' is empty");
-    out.elements = it->second;
-  } else {
-    out.elements.resize(mesh.hex8.size());
-    for (size_t e = 0; e < mesh.hex8.size(); ++e) out.elements[e] = static_cast<int>(e);
-  }
+  out.elements = selected_elements(mesh, element_set);
   std::vector<int> local_node(mesh.nodes.size(), -1);
   std::vector<int> local_element(mesh.hex8.size(), -1);
   for (int e : out.elements)

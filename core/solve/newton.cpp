@@ -66,6 +66,45 @@ struct Iterate {
   double r = 0;
 };
 
+/// The iterate z with its residual and the residual's measure.
+Iterate evaluated(NonlinearSystem& system, Eigen::VectorXd z) {
+  Iterate iterate{std::move(z), Eigen::VectorXd(), 0};
+  iterate.R.resize(iterate.z.size());
+  system.evaluate(iterate.z, iterate.R, nullptr);
+  iterate.r = system.residual_measure(iterate.R);
+  return iterate;
+}
+
+/// The Jacobian at the iterate, factorised; false, with the failure named, when it is singular.
+bool factorize_at(NonlinearSystem& system, Iterate& current, BlockPattern& A, LinearSolver& solver,
+                  NewtonResult& result) {
+  system.evaluate(current.z, current.R, &A);
+  if (solver.factorize(A)) return true;
+  result.failure = "singular Jacobian";
+  return false;
+}
+
+/// Halves a fresh Newton step −dz while the residual grows by more than max_residual_growth, at most
+/// max_backtracks times; `trial` holds the full step on entry and the step taken on return. Returns its
+/// scale.
+double backtrack(NonlinearSystem& system, const Iterate& current, const Eigen::VectorXd& dz, Iterate& trial,
+                 const NewtonOptions& options, NewtonResult& result,
+                 const std::function<void(const std::string&)>& log) {
+  double scale = 1;
+  for (int cut = 0;
+       !acceptable(trial.r, current.r, options.max_residual_growth) && cut < options.max_backtracks; ++cut) {
+    scale *= 0.5;
+    ++result.backtracks;
+    if (log)
+      log("newton: residual " + format_history({trial.r}) + " after a full step, halving it (scale " +
+          std::to_string(scale) + ")");
+    trial.z = current.z - scale * dz;
+    system.evaluate(trial.z, trial.R, nullptr);
+    trial.r = system.residual_measure(trial.R);
+  }
+  return scale;
+}
+
 }  // namespace
 
 std::string format_history(const std::vector<double>& residuals) {
@@ -82,9 +121,7 @@ NewtonResult newton_solve(NonlinearSystem& system, Eigen::VectorXd& z, BlockPatt
                           const NewtonOptions& options, const std::function<void(const std::string&)>& log) {
   NewtonResult result;
   solver.set_method(options.linear);  // a no-op unless the method changed
-  Iterate current{z, Eigen::VectorXd(z.size()), 0};
-  system.evaluate(current.z, current.R, nullptr);
-  current.r = system.residual_measure(current.R);
+  Iterate current = evaluated(system, z);
   result.residuals.push_back(current.r);
   if (!std::isfinite(current.r)) {
     result.failure = "residual is not finite at the predictor";
@@ -102,11 +139,7 @@ NewtonResult newton_solve(NonlinearSystem& system, Eigen::VectorXd& z, BlockPatt
     if (it == options.max_iterations) break;
     const bool fresh = refactor;
     if (fresh) {
-      system.evaluate(current.z, current.R, &A);  // Jacobian at the current iterate
-      if (!solver.factorize(A)) {
-        result.failure = "singular Jacobian";
-        return result;
-      }
+      if (!factorize_at(system, current, A, solver, result)) return result;
       refactor = !options.reuse_factorization;
       broyden.clear();
     }
@@ -114,27 +147,13 @@ NewtonResult newton_solve(NonlinearSystem& system, Eigen::VectorXd& z, BlockPatt
     if (!fresh && options.broyden_update) dz = -broyden.step(-dz);
     increment = system.increment_measure(dz);
     ++result.iterations;
-    Iterate trial{current.z - dz, Eigen::VectorXd(z.size()), 0};
-    system.evaluate(trial.z, trial.R, nullptr);
-    trial.r = system.residual_measure(trial.R);
+    Iterate trial = evaluated(system, current.z - dz);
     if (!fresh && !keeps_contracting(trial.r, current.r, it, options)) {
       refactor = true;  // the old factorisation no longer pays: refactorise at the better iterate
       broyden.clear();
       if (!(trial.r < current.r)) continue;
     }
-    double scale = 1;
-    for (int cut = 0; fresh && !acceptable(trial.r, current.r, options.max_residual_growth) &&
-                      cut < options.max_backtracks;
-         ++cut) {
-      scale *= 0.5;
-      ++result.backtracks;
-      if (log)
-        log("newton: residual " + format_history({trial.r}) + " after a full step, halving it (scale " +
-            std::to_string(scale) + ")");
-      trial.z = current.z - scale * dz;
-      system.evaluate(trial.z, trial.R, nullptr);
-      trial.r = system.residual_measure(trial.R);
-    }
+    const double scale = fresh ? backtrack(system, current, dz, trial, options, result, log) : 1.0;
     increment *= scale;
     if (fresh && stagnated_at_round_off(trial.r, current.r, increment, options.tolerance)) {
       z = trial.z;

@@ -102,27 +102,32 @@ std::optional<double> SeriesRecorder::energy_plus_dissipated_drift() const {
   return balance_drift_;
 }
 
-std::optional<nlohmann::json> read_partial_series(const std::filesystem::path& path) {
-  const auto p = load(path);
-  if (!p) return std::nullopt;
+namespace {
+
+/// Where a few series the partial summary reads sit in a row (−1: absent).
+struct SummaryColumns {
+  int total = -1, dissipated = -1, newton = -1, work = -1;
+};
+
+/// Each series of the partial file as the result's JSON form, and where the summary's columns sit.
+nlohmann::json series_json(const Partial& p, SummaryColumns& columns) {
   nlohmann::json out = nlohmann::json::object();
   nlohmann::json step = nlohmann::json::array(), time = nlohmann::json::array();
-  for (const auto& row : p->rows) {
+  for (const auto& row : p.rows) {
     step.push_back(static_cast<std::int64_t>(row[0]));
     time.push_back(row.size() > 1 ? row[1] : 0.0);
   }
   out["step"] = step;
   out["time"] = time;
   std::size_t offset = 2;
-  int total = -1, dissipated = -1, newton = -1, work = -1;
-  for (const model::SeriesSpec& spec : p->layout) {
-    if (spec.name == "total_energy") total = static_cast<int>(offset);
-    if (spec.name == "dissipated_energy") dissipated = static_cast<int>(offset);
-    if (spec.name == "newton_iterations") newton = static_cast<int>(offset);
-    if (spec.name == "external_work") work = static_cast<int>(offset);
+  for (const model::SeriesSpec& spec : p.layout) {
+    if (spec.name == "total_energy") columns.total = static_cast<int>(offset);
+    if (spec.name == "dissipated_energy") columns.dissipated = static_cast<int>(offset);
+    if (spec.name == "newton_iterations") columns.newton = static_cast<int>(offset);
+    if (spec.name == "external_work") columns.work = static_cast<int>(offset);
     nlohmann::json values = nlohmann::json::array();
     std::vector<double> cells(static_cast<std::size_t>(spec.components));
-    for (const auto& row : p->rows) {  // cells past a short row are null
+    for (const auto& row : p.rows) {  // cells past a short row are null
       for (std::size_t c = 0; c < cells.size(); ++c)
         cells[c] = offset + c < row.size() ? row[offset + c] : std::nan("");
       values.push_back(model::row_json(spec, cells.data()));
@@ -130,6 +135,46 @@ std::optional<nlohmann::json> read_partial_series(const std::filesystem::path& p
     out[spec.name] = values;
     offset += static_cast<std::size_t>(spec.components);
   }
+  return out;
+}
+
+/// The energy figures of the summary up to the last recorded step, as the run's summary computes them
+/// (core/run/measures.cpp): max |H_n − W_n − H_0| over |H_0|, or over max |H_n| when the run counts
+/// external work (a loaded body may start at rest).
+void add_energy_summary(const Partial& p, const SummaryColumns& c, nlohmann::json& summary) {
+  const auto at = [](const std::vector<double>& row, int column) {
+    return column >= 0 ? row[static_cast<std::size_t>(column)] : 0.0;
+  };
+  const double h0 = at(p.rows.front(), c.total);
+  double largest = std::abs(h0);
+  if (c.work >= 0)
+    for (const auto& row : p.rows) largest = std::max(largest, std::abs(at(row, c.total)));
+  double drift = 0, balance = 0;
+  const double scale = largest > 0 ? largest : 1.0;
+  for (const auto& row : p.rows) {
+    const double h = at(row, c.total);
+    drift = std::max(drift, std::abs(h - at(row, c.work) - h0) / scale);
+    if (c.dissipated >= 0) {
+      const double d0 = at(p.rows.front(), c.dissipated);
+      balance = std::max(balance, std::abs(h + at(row, c.dissipated) - at(row, c.work) - h0 - d0) / scale);
+    }
+  }
+  summary["initial_energy"] = h0;
+  summary["energy_drift"] = drift;
+  if (c.work >= 0) summary["external_work"] = at(p.rows.back(), c.work);
+  if (c.dissipated >= 0) {
+    summary["dissipated_energy"] = at(p.rows.back(), c.dissipated);
+    summary["energy_plus_dissipated_drift"] = balance;
+  }
+}
+
+}  // namespace
+
+std::optional<nlohmann::json> read_partial_series(const std::filesystem::path& path) {
+  const auto p = load(path);
+  if (!p) return std::nullopt;
+  SummaryColumns columns;
+  nlohmann::json out = series_json(*p, columns);
   // The summary up to the last recorded step.
   const auto& last = p->rows.back();
   // The verdict judges a whole run (its bounds grow with the steps: docs/results.md, "Verdict"): it is made
@@ -139,40 +184,10 @@ std::optional<nlohmann::json> read_partial_series(const std::filesystem::path& p
                             {"end_time", last.size() > 1 ? last[1] : 0.0},
                             {"verdict", nullptr},
                             {"checks", nlohmann::json::array()}};
-  if (total >= 0) {
-    const double h0 = p->rows.front()[static_cast<std::size_t>(total)];
-    const auto work_at = [&](const std::vector<double>& row) {
-      return work >= 0 ? row[static_cast<std::size_t>(work)] : 0.0;
-    };
-    // As the run's summary (core/run/measures.cpp): max |H_n − W_n − H_0| over |H_0|, or over max |H_n|
-    // when the run counts external work (a loaded body may start at rest).
-    double largest = std::abs(h0);
-    if (work >= 0)
-      for (const auto& row : p->rows)
-        largest = std::max(largest, std::abs(row[static_cast<std::size_t>(total)]));
-    double drift = 0, balance = 0;
-    const double scale = largest > 0 ? largest : 1.0;
-    for (const auto& row : p->rows) {
-      const double h = row[static_cast<std::size_t>(total)];
-      drift = std::max(drift, std::abs(h - work_at(row) - h0) / scale);
-      if (dissipated >= 0) {
-        const double d0 = p->rows.front()[static_cast<std::size_t>(dissipated)];
-        balance = std::max(
-            balance,
-            std::abs(h + row[static_cast<std::size_t>(dissipated)] - work_at(row) - h0 - d0) / scale);
-      }
-    }
-    summary["initial_energy"] = h0;
-    summary["energy_drift"] = drift;
-    if (work >= 0) summary["external_work"] = work_at(last);
-    if (dissipated >= 0) {
-      summary["dissipated_energy"] = last[static_cast<std::size_t>(dissipated)];
-      summary["energy_plus_dissipated_drift"] = balance;
-    }
-  }
-  if (newton >= 0) {
+  if (columns.total >= 0) add_energy_summary(*p, columns, summary);
+  if (columns.newton >= 0) {
     double iterations = 0;
-    for (const auto& row : p->rows) iterations += row[static_cast<std::size_t>(newton)];
+    for (const auto& row : p->rows) iterations += row[static_cast<std::size_t>(columns.newton)];
     summary["newton_iterations"] = static_cast<std::int64_t>(std::llround(iterations));
   }
   out["completed"] = false;
