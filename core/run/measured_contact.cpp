@@ -11,4 +11,17 @@ void MeasuredContact::end_step(const time::StepContext& step, const Eigen::Vecto
   pair_.end_step(step, z);
 }
 
+std::vector<std::unique_ptr<MeasuredContact>> measured_pairs(const Problem& p) {
+  std::vector<std::unique_ptr<MeasuredContact>> out;
+  for (const auto& pair : p.contact) out.push_back(std::make_unique<MeasuredContact>(*pair));
+  return out;
+}
+
+std::vector<time::Term*> terms_of(const Problem& p,
+                                  const std::vector<std::unique_ptr<MeasuredContact>>& pairs) {
+  std::vector<time::Term*> terms = p.terms();
+  for (size_t k = 0; k < pairs.size(); ++k) terms[p.first_contact_term() + k] = pairs[k].get();
+  return terms;
+}
+
 }  // namespace stoss::run

@@ -4,8 +4,11 @@
 /// only there, before the pair commits the step.
 
 #include <Eigen/Core>
+#include <memory>
+#include <vector>
 
 #include "core/contact/contact_term.hpp"
+#include "core/run/problem.hpp"
 
 namespace stoss::run {
 
@@ -64,5 +67,12 @@ class MeasuredContact final : public time::Term {
   contact::ContactTerm& pair_;
   Eigen::Vector3d force_ = Eigen::Vector3d::Zero();
 };
+
+/// Each contact pair of `p` behind a MeasuredContact, which measures its force on the slave.
+std::vector<std::unique_ptr<MeasuredContact>> measured_pairs(const Problem& p);
+
+/// The integrator's terms: the problem's, its contact pairs (the last ones) behind their measurements.
+std::vector<time::Term*> terms_of(const Problem& p,
+                                  const std::vector<std::unique_ptr<MeasuredContact>>& pairs);
 
 }  // namespace stoss::run

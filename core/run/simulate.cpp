@@ -5,10 +5,10 @@
 #include <limits>
 #include <memory>
 #include <optional>
-#include <sstream>
 
 #include "core/run/checkpoint_schedule.hpp"
 #include "core/run/checks.hpp"
+#include "core/run/landings.hpp"
 #include "core/run/measured_contact.hpp"
 #include "core/run/measures.hpp"
 #include "core/run/problem.hpp"
@@ -16,6 +16,8 @@
 #include "core/run/series_table.hpp"
 #include "core/run/solver_choice.hpp"
 #include "core/run/step_control.hpp"
+#include "core/run/step_forces.hpp"
+#include "core/run/step_messages.hpp"
 #include "core/run/timing.hpp"
 #include "core/time/integrator.hpp"
 #include "core/time/step_reduction.hpp"
@@ -27,82 +29,6 @@ using namespace run;
 
 /// Most halvings of a step whose Newton solve fails (time/step_reduction.hpp): substeps down to h/16.
 constexpr int max_step_halvings = 4;
-
-std::string failure_message(int step, double t, double h, const time::ReducedStep& r) {
-  std::ostringstream out;
-  out << "step " << step + 1 << " (t = " << t << " → " << t + h << ") did not converge: " << r.failure
-      << "; residual history: " << solve::format_history(r.residuals)
-      << ". Hint: reduce time.step, or check the material and initial velocities.";
-  return out.str();
-}
-
-std::string time_text(double t) {
-  std::ostringstream out;
-  out.precision(6);
-  out << t;
-  return out.str();
-}
-
-/// The message of a run whose step controller would need a step below time.min_step.
-std::string below_min_step_message(int step, double t, double h, const std::string& reason,
-                                   const ContactEvents& events, double min_step) {
-  std::ostringstream out;
-  out << "step " << step + 1 << " (t = " << time_text(t)
-      << ") would need a step below time.min_step = " << time_text(min_step)
-      << ": the try at h = " << time_text(h) << " was rejected (" << reason << ")";
-  if (events.changed_nodes > 0 || events.offset > 0)
-    out << "; forced by contact: " << (events.pair.empty() ? "a contact term" : events.pair) << ", "
-        << events.changed_nodes << " nodes changed state";
-  out << ". Hint: lower time.min_step, or raise time.tolerance.";
-  return out.str();
-}
-
-/// The step a run with fixed steps takes from t towards `landing` (a frame time of output.interval or
-/// the end): time.step, or the rest when it is within round-off of a step or shorter.
-double fixed_step_to(double step, double t, double landing) {
-  const double remaining = landing - t;
-  return remaining <= step * (1 + 1e-6) ? remaining : step;
-}
-
-/// Each contact pair of `p` behind a MeasuredContact, which measures its force on the slave.
-std::vector<std::unique_ptr<MeasuredContact>> measured_pairs(const Problem& p) {
-  std::vector<std::unique_ptr<MeasuredContact>> out;
-  for (const auto& pair : p.contact) out.push_back(std::make_unique<MeasuredContact>(*pair));
-  return out;
-}
-
-/// The integrator's terms: the problem's, its contact pairs (the last ones) behind their measurements.
-std::vector<time::Term*> terms_of(const Problem& p,
-                                  const std::vector<std::unique_ptr<MeasuredContact>>& pairs) {
-  std::vector<time::Term*> terms = p.terms();
-  for (size_t k = 0; k < pairs.size(); ++k) terms[p.first_contact_term() + k] = pairs[k].get();
-  return terms;
-}
-
-/// Per-item forces of one step from those of its converged substeps: Σ h_k f_k / Σ h_k, so that the
-/// step's force times h is the substeps' impulse; exactly the substep's force when there is one.
-class StepForces {
- public:
-  void clear() { *this = StepForces(); }
-  void add(double h, const std::vector<Eigen::Vector3d>& forces) {
-    if (impulse_.empty()) impulse_.assign(forces.size(), Eigen::Vector3d::Zero());
-    for (size_t k = 0; k < forces.size(); ++k) impulse_[k] += h * forces[k];
-    last_ = forces;
-    h_ += h;
-    ++substeps_;
-  }
-  std::vector<Eigen::Vector3d> step_forces() const {
-    if (substeps_ <= 1) return last_;
-    std::vector<Eigen::Vector3d> out = impulse_;
-    for (Eigen::Vector3d& f : out) f /= h_;
-    return out;
-  }
-
- private:
-  std::vector<Eigen::Vector3d> impulse_, last_;
-  double h_ = 0;
-  int substeps_ = 0;
-};
 
 std::optional<CheckpointStore> open_store(const Checkpoints& checkpoints) {
   if (checkpoints.directory.empty()) return std::nullopt;
@@ -125,7 +51,7 @@ class Run {
         recorder_(observer, store_ ? &*store_ : nullptr, problem_),
         series_(m),
         schedule_(m.output),
-        end_(run_end(m)) {
+        landings_(m) {
     integrator_.set_velocity_map(problem_.velocity_map);
     integrator_.initialize(s_);
     if (m.time.adaptive()) controller_.emplace(m.time, integrator_.scheme(), initial_acceleration());
@@ -135,7 +61,7 @@ class Run {
   int first_step() const { return s_.step + 1; }
   /// Whether the run reached its end: after time.end / time.step steps, or with a tolerance or frames at
   /// output.interval (steps by time) at the end time.
-  bool done() const { return by_time() ? s_.t >= end_ : s_.step >= steps_; }
+  bool done() const { return by_time() ? s_.t >= landings_.end() : s_.step >= steps_; }
 
   /// Tells the observer of the run, then gives it step 0, or the rows and frames up to the checkpoint.
   void begin() {
@@ -159,7 +85,7 @@ class Run {
   /// @throws SolverError when the step cannot be solved, after observer.end.
   void advance(int n) {
     const auto t0 = Clock::now();
-    const double landing = next_landing();
+    const double landing = landings_.next();
     const SolvedStep step = controller_ ? solve_adaptive(landing) : solve_fixed(landing);
     sum_.newton_iterations += step.newton.iterations;
     if (step.newton.substeps > 1) ++sum_.reduced_steps;
@@ -173,7 +99,7 @@ class Run {
                                {b, step.contact, &step.newton, seconds_since(t0), step.h, step.rejections,
                                 &reactions, &contact_forces, &contact_areas}));
     const bool last = done();
-    if (frame_due(n, last, s_.t == landing)) recorder_.frame(n, frame_of(s_, problem_));
+    if (landings_.frame_due(n, last, s_.t == landing)) recorder_.frame(n, frame_of(s_, problem_));
     keep_checkpoint(n, last);
     output_seconds_ += seconds_since(t_out);
   }
@@ -184,8 +110,8 @@ class Run {
     sum_.steps = s_.step;
     sum_.end_time = s_.t;
     sum_.newton_iterations_per_step = s_.step > 0 ? double(sum_.newton_iterations) / s_.step : 0.0;
-    add_timing();
-    report_linear_solver();
+    add_timing(sum_, integrator_, problem_, seconds_since(wall0_), output_seconds_);
+    report_linear_solver(integrator_.linear_solver(), sum_, observer_);
     add_verdict(m_, sum_, s_.x);
     observer_.end(sum_);
     return sum_;
@@ -199,12 +125,12 @@ class Run {
     sum_ = c.summary;
     sum_.resumed_from_step = s_.step;
     if (controller_) controller_->restore(*c.controller);
-    next_frame_ = static_cast<int>(c.frame_steps.size());
+    landings_.set_next_frame(static_cast<int>(c.frame_steps.size()));
     observer_.resumed(s_.step);
     observer_.log("resumed from step " + std::to_string(s_.step) + " (t = " + std::to_string(s_.t) +
                   ") of the checkpoint " + store_->state_file().string() + ": computing steps " +
                   std::to_string(s_.step + 1) +
-                  (by_time() ? " to t = " + time_text(end_) : " to " + std::to_string(steps_)));
+                  (by_time() ? " to t = " + time_text(landings_.end()) : " to " + std::to_string(steps_)));
   }
 
   /// A step: its Newton solves, contact row, h and the controller's rejections before it.
@@ -225,30 +151,6 @@ class Run {
       if (!problem_.fixed[static_cast<size_t>(i)]) a[i] = (*m_.gravity)[i % 3];
     return a;
   }
-
-  /// Where a run steps by time ends: time.end, or the last frame time of output.interval when time.end is
-  /// that within round-off (so that frames/time[k] = k·interval holds for the last frame too).
-  static double run_end(const model::Model& m) {
-    if (!m.output.interval) return m.time.end;
-    const double frames = std::round(m.time.end / *m.output.interval);
-    const double last = frames * *m.output.interval;
-    return std::abs(last - m.time.end) <= 1e-9 * *m.output.interval ? last : m.time.end;
-  }
-
-  /// The next time the run must land on: the next frame time k·interval before the end, or the end.
-  double next_landing() const {
-    if (!m_.output.interval) return end_;
-    const double frame_time = static_cast<double>(next_frame_) * *m_.output.interval;
-    return frame_time < end_ ? frame_time : end_;
-  }
-
-  bool frame_due(int n, bool last, bool landed) {
-    if (!m_.output.interval) return m_.output.frame_due(n, last ? n : steps_after(n));
-    if (landed || last) ++next_frame_;
-    return landed || last;
-  }
-  /// A step count beyond n: frame_due's "the last step" is then not n.
-  static int steps_after(int n) { return n == std::numeric_limits<int>::max() ? n : n + 1; }
 
   /// Today's fixed step: time.step (or the rest to the landing time), halved when Newton fails.
   SolvedStep solve_fixed(double landing) {
@@ -284,7 +186,7 @@ class Run {
       ContactEvents events;
       std::string reason;
       if (r.converged) {
-        events = contact_events();
+        events = contact_events(terms_, problem_);
         const double taken = integrator_.advanced();  // < h when the step ended at a located event (§4.6.2)
         const StepVerdict verdict = controller_->judge(taken, before, s_, events);
         if (verdict.accepted) return accepted(out, before, taken, landing);
@@ -339,22 +241,6 @@ class Run {
     integrator_.forget_factorization();
   }
 
-  /// The contact events of the last converged try: the largest event_offset, and the pair whose nodes
-  /// changed state most.
-  ContactEvents contact_events() const {
-    ContactEvents events;
-    for (const time::Term* t : terms_) events.offset = std::max(events.offset, t->event_offset());
-    for (const auto& pair : problem_.contact) {
-      const contact::ContactReport& r = pair->report();
-      const int changed = r.activations + r.releases + r.switches;
-      if (changed > events.changed_nodes) {
-        events.changed_nodes = changed;
-        events.pair = pair->name();
-      }
-    }
-    return events;
-  }
-
   /// Logs `message`, ends the run as failed (its partial result stays) and throws SolverError.
   [[noreturn]] void fail(const std::string& message) {
     observer_.log(message);
@@ -373,32 +259,6 @@ class Run {
     integrator_.forget_factorization();  // the next step as a run resumed from here computes it
   }
 
-  /// Where the wall time went (model::Summary): terms in integrator order, elasticity and gravity as
-  /// assembly, the contact pairs as contact.
-  void add_timing() {
-    sum_.wall_seconds = seconds_since(wall0_);
-    sum_.linear_factorization_seconds = integrator_.linear_factorization_seconds();
-    sum_.linear_solve_seconds = integrator_.linear_solve_seconds();
-    sum_.linear_solver_seconds = sum_.linear_factorization_seconds + sum_.linear_solve_seconds;
-    sum_.assembly_seconds = problem_.setup_seconds + integrator_.inertia_seconds();
-    sum_.contact_seconds = problem_.setup_contact_seconds;
-    for (size_t k = 0; k < terms_.size(); ++k)
-      (k < problem_.first_contact_term() ? sum_.assembly_seconds : sum_.contact_seconds) +=
-          integrator_.term_seconds(k);
-    sum_.output_seconds = output_seconds_;
-    sum_.peak_memory_bytes = peak_resident_bytes();
-  }
-
-  void report_linear_solver() {
-    const solve::LinearSolver& linear = integrator_.linear_solver();
-    if (linear.krylov_solves() > 0)
-      sum_.krylov_iterations_per_solve = double(linear.krylov_iterations()) / double(linear.krylov_solves());
-    sum_.krylov_fallbacks = int(linear.krylov_fallbacks());
-    if (linear.krylov_solves() > 0) observer_.log(krylov_line(linear));
-    if (!linear.preconditioner_description().empty())
-      observer_.log("linear solver: " + linear.preconditioner_description());
-  }
-
   const model::Model& m_;
   model::Observer& observer_;
   const Clock::time_point wall0_ = Clock::now();  // before the problem is built: set first
@@ -413,9 +273,8 @@ class Run {
   const SeriesRows series_;
   CheckpointSchedule schedule_;
   const int steps_ = m_.time.steps();
-  const double end_;                          ///< where a run stepping by time ends (run_end)
+  Landings landings_;                         ///< where steps land, when frames are due
   std::optional<StepController> controller_;  ///< with time.tolerance
-  int next_frame_ = 1;                        ///< with output.interval: k of the next frame time
   Balance b0_;
   model::Summary sum_;
   StepForces reactions_, contact_forces_;  ///< of the step being solved: series reaction_force, contact_force

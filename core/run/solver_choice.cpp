@@ -63,4 +63,13 @@ solve::NewtonOptions newton_options(const model::Model& m) {
   return o;
 }
 
+void report_linear_solver(const solve::LinearSolver& linear, model::Summary& sum, model::Observer& observer) {
+  if (linear.krylov_solves() > 0)
+    sum.krylov_iterations_per_solve = double(linear.krylov_iterations()) / double(linear.krylov_solves());
+  sum.krylov_fallbacks = int(linear.krylov_fallbacks());
+  if (linear.krylov_solves() > 0) observer.log(krylov_line(linear));
+  if (!linear.preconditioner_description().empty())
+    observer.log("linear solver: " + linear.preconditioner_description());
+}
+
 }  // namespace stoss::run

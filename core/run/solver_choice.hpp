@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/model/model.hpp"
+#include "core/model/observer.hpp"
 #include "core/solve/linear_solver.hpp"
 #include "core/solve/newton.hpp"
 
@@ -23,5 +24,9 @@ std::string krylov_line(const solve::LinearSolver& linear);
 
 /// Newton from the scene's solver settings.
 solve::NewtonOptions newton_options(const model::Model& m);
+
+/// The summary's Krylov figures of the run's linear solver, and the log's lines on them.
+void report_linear_solver(const solve::LinearSolver& linear, model::Summary& summary,
+                          model::Observer& observer);
 
 }  // namespace stoss::run

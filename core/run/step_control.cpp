@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/run/problem.hpp"
 #include "core/time/generalized_alpha.hpp"
 
 namespace stoss::run {
@@ -98,6 +99,20 @@ bool StepController::can_retry(double rejected_h) {
   if (rejected_h <= time_.min_step) return false;
   state_.next_step = time_.min_step;
   return true;
+}
+
+ContactEvents contact_events(const std::vector<time::Term*>& terms, const Problem& problem) {
+  ContactEvents events;
+  for (const time::Term* t : terms) events.offset = std::max(events.offset, t->event_offset());
+  for (const auto& pair : problem.contact) {
+    const contact::ContactReport& r = pair->report();
+    const int changed = r.activations + r.releases + r.switches;
+    if (changed > events.changed_nodes) {
+      events.changed_nodes = changed;
+      events.pair = pair->name();
+    }
+  }
+  return events;
 }
 
 }  // namespace stoss::run

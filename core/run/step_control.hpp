@@ -4,11 +4,15 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "core/model/model.hpp"
 #include "core/time/scheme.hpp"
+#include "core/time/term.hpp"
 
 namespace stoss::run {
+
+struct Problem;
 
 /// What the controller carries from one accepted step to the next: the part of a checkpoint a run with a
 /// tolerance adds (core/run/checkpoint.hpp).
@@ -27,6 +31,10 @@ struct ContactEvents {
   int changed_nodes = 0;
   std::string pair;  ///< the term name of that pair; empty without changes
 };
+
+/// The contact events of the last converged try of `terms` (the run's, its pairs among them): the largest
+/// event_offset, and the pair of `problem` whose nodes changed state most.
+ContactEvents contact_events(const std::vector<time::Term*>& terms, const Problem& problem);
 
 /// The controller's judgement of one step.
 struct StepVerdict {

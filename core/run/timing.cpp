@@ -5,6 +5,10 @@
 #include <fstream>
 #include <string>
 
+#include "core/model/observer.hpp"
+#include "core/run/problem.hpp"
+#include "core/time/integrator.hpp"
+
 namespace stoss::run {
 
 double peak_resident_bytes() {
@@ -16,6 +20,22 @@ double peak_resident_bytes() {
   rusage usage{};
   if (getrusage(RUSAGE_SELF, &usage) != 0) return 0;
   return double(usage.ru_maxrss) * 1024.0;
+}
+
+void add_timing(model::Summary& sum, const time::Integrator& integrator, const Problem& problem,
+                double wall_seconds, double output_seconds) {
+  sum.wall_seconds = wall_seconds;
+  sum.linear_factorization_seconds = integrator.linear_factorization_seconds();
+  sum.linear_solve_seconds = integrator.linear_solve_seconds();
+  sum.linear_solver_seconds = sum.linear_factorization_seconds + sum.linear_solve_seconds;
+  sum.assembly_seconds = problem.setup_seconds + integrator.inertia_seconds();
+  sum.contact_seconds = problem.setup_contact_seconds;
+  const size_t terms = problem.terms().size();
+  for (size_t k = 0; k < terms; ++k)
+    (k < problem.first_contact_term() ? sum.assembly_seconds : sum.contact_seconds) +=
+        integrator.term_seconds(k);
+  sum.output_seconds = output_seconds;
+  sum.peak_memory_bytes = peak_resident_bytes();
 }
 
 }  // namespace stoss::run
