@@ -4,7 +4,10 @@ moving at -1 hits a rigid wall with node 0 (gap 0.0537), midpoint rule (= energy
 springs), Lagrange constraint on node 0. Final-position error at T against h = coarsest/8, for the impact
 modes persist, exact and located (activations and releases end a sub-step at their linear-interpolated time),
 with node 0 massive or massless (its mass moved to node 1, M' = P^T M P).
-    bench/impact_order_1d.py N T      e.g. bench/impact_order_1d.py 10 2.6
+    bench/impact_order_1d.py N T [h1,h2,h3] [MODE]   e.g. bench/impact_order_1d.py 10 2.6
+                                                          bench/impact_order_1d.py 160 2.6 0.0016,0.0008,0.0004 located
+The reference is h1/8; MODE limits the table to one impact mode with the massless slave node (docs/theory.md
+§4.6.5 sweeps N at fixed steps this way).
 Needs Debian's python3-numpy."""
 import sys
 
@@ -74,9 +77,10 @@ def run(N, h, T, mode, massless, g0=0.0537, v0=-1.0):
 
 if __name__ == "__main__":
     N, T = int(sys.argv[1]), float(sys.argv[2])
-    steps = [0.02, 0.01, 0.005]
-    for massless in (False, True):
-        for mode in ("persist", "exact", "located"):
+    steps = [float(h) for h in sys.argv[3].split(",")] if len(sys.argv) > 3 else [0.02, 0.01, 0.005]
+    only = sys.argv[4] if len(sys.argv) > 4 else None
+    for massless in (False, True) if only is None else (True,):
+        for mode in ("persist", "exact", "located") if only is None else (only,):
             ref, _ = run(N, steps[0] / 8, T, mode, massless)
             errors, drift = [], 0.0
             for h in steps:
@@ -85,5 +89,5 @@ if __name__ == "__main__":
                 drift = max(drift, dH)
             print("%-8s %-8s" % (mode, "massless" if massless else "massive"),
                   " ".join("%.2e" % e for e in errors),
-                  " ratios " + " ".join("%.2f" % (errors[i] / errors[i + 1]) for i in range(2)),
+                  " ratios " + " ".join("%.2f" % (errors[i] / errors[i + 1]) for i in range(len(steps) - 1)),
                   " energy %.1e" % drift)
