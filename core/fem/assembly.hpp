@@ -72,6 +72,8 @@ class GravityTerm : public time::Term {
   void register_blocks(solve::BlockPattern&) override {}
   void add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
            solve::BlockPattern* K) const override;
+  /// f_ext = M g stacked (3 per node).
+  const Eigen::VectorXd& load() const { return load_; }
 
  private:
   Eigen::VectorXd load_;  ///< f_ext = M g stacked

@@ -75,6 +75,10 @@ struct Summary {
   /// − W_n − Σ contact_energy_jump, the largest |E_n − E_0| and E_n − E_0, the largest |H_n|, Σ jumps so far,
   /// and the steps that needed a step reduction.
   double energy_balance_error = 0, energy_balance_rise = 0, max_abs_energy = 0, contact_energy_jumps = 0;
+  /// Where the system is not free: the largest |Δp_n − J_n| over the steps, J_n the step's external impulse
+  /// (loads, gravity, supports), relative to the momenta's and the impulses' magnitudes (docs/results.md
+  /// (V10)).
+  double impulse_balance_error = 0;
   int reduced_steps = 0;
   std::vector<Check> checks;  ///< filled when the run ends
   std::string verdict;        ///< "ok" or "suspect" (a check failed); empty until the run ends

@@ -55,6 +55,7 @@ constexpr SummaryField summary_fields[] = {
     {"energy_balance_rise", &model::Summary::energy_balance_rise},
     {"max_abs_energy", &model::Summary::max_abs_energy},
     {"contact_energy_jumps", &model::Summary::contact_energy_jumps},
+    {"impulse_balance_error", &model::Summary::impulse_balance_error},
 };
 
 void write_summary(const h5::File& file, const model::Summary& summary) {

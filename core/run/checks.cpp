@@ -223,10 +223,13 @@ std::vector<model::Check> run_checks(const model::Model& m, const model::Summary
   // (V6)–(V7)
   checks.push_back(bounded("newton_iterations_per_step", s.newton_iterations_per_step, newton_bound(m)));
   checks.push_back(bounded("reduced_steps", s.reduced_steps, 1.0 + 0.01 * s.steps));
+  const bool midpoint_type =
+      m.time.scheme == model::Scheme::energy_momentum || m.time.scheme == model::Scheme::midpoint;
   if (is_free(m)) {  // (V8)
     checks.push_back(bounded("linear_momentum_drift", s.linear_momentum_drift, 1e-8));
-    if (m.time.scheme == model::Scheme::energy_momentum || m.time.scheme == model::Scheme::midpoint)
-      checks.push_back(bounded("angular_momentum_drift", s.angular_momentum_drift, 1e-8));
+    if (midpoint_type) checks.push_back(bounded("angular_momentum_drift", s.angular_momentum_drift, 1e-8));
+  } else if (midpoint_type) {  // (V10)
+    checks.push_back(bounded("impulse_balance", s.impulse_balance_error, 1e-8));
   }
   return checks;
 }

@@ -81,4 +81,13 @@ void update_summary(model::Summary& sum, const Balance& b0, const Balance& b, co
   sum.energy_balance_rise = std::max(sum.energy_balance_rise, balance);
 }
 
+void update_impulse_balance(model::Summary& sum, const Balance& before, const Balance& after,
+                            const StepImpulse& j) {
+  const double scale = std::max(
+      {before.momentum_scale, after.momentum_scale, j.loads.norm() + j.gravity.norm() + j.supports.norm()});
+  if (scale == 0) return;
+  const Eigen::Vector3d mismatch = after.linear - before.linear - j.loads - j.gravity - j.supports;  // (V10)
+  sum.impulse_balance_error = std::max(sum.impulse_balance_error, mismatch.norm() / scale);
+}
+
 }  // namespace stoss::run

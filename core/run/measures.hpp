@@ -38,4 +38,16 @@ void add_substep(ContactRow& step, const ContactRow& sub);
 /// Folds a step into the summary's maxima: the drifts against the initial balance b0, the penetrations.
 void update_summary(model::Summary& sum, const Balance& b0, const Balance& b, const ContactRow& c);
 
+/// The external impulse of one step on all bodies: the loads' (their impulse's growth), gravity's h·G and
+/// the supports' h·Σ R (the step's reactions, impulse-consistent over substeps).
+struct StepImpulse {
+  Eigen::Vector3d loads = Eigen::Vector3d::Zero(), gravity = Eigen::Vector3d::Zero(),
+                  supports = Eigen::Vector3d::Zero();
+};
+
+/// Folds a step into the summary's impulse balance (docs/results.md (V10)): |p_n − p_{n−1} − J_n| over the
+/// larger of the momenta's magnitudes Σ|p_I| and |J_loads| + |h G| + |h R|.
+void update_impulse_balance(model::Summary& sum, const Balance& before, const Balance& after,
+                            const StepImpulse& impulse);
+
 }  // namespace stoss::run

@@ -113,6 +113,17 @@ double Problem::external_work() const {
   return work;
 }
 
+Eigen::Vector3d Problem::load_impulse() const {
+  Eigen::Vector3d impulse = Eigen::Vector3d::Zero();
+  for (const auto& l : loads) impulse += l->impulse();
+  return impulse;
+}
+
+Eigen::Vector3d Problem::gravity_force() const {
+  if (!gravity) return Eigen::Vector3d::Zero();
+  return gravity->load().reshaped(3, gravity->load().size() / 3).rowwise().sum();
+}
+
 std::vector<Eigen::Vector3d> Problem::entry_reactions(const Eigen::VectorXd& reaction) const {
   std::vector<Eigen::Vector3d> out(held_dofs.size(), Eigen::Vector3d::Zero());
   if (reaction.size() == 0) return out;

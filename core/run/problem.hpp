@@ -44,6 +44,10 @@ struct Problem {
   /// Σ of the loads' and the moving supports' work so far in each step's discrete form (docs/theory.md
   /// (5b.5), (5b.9)): series/external_work.
   double external_work() const;
+  /// Σ of the loads' impulses so far, each step's in its discrete form (loads::SurfaceLoad::impulse).
+  Eigen::Vector3d load_impulse() const;
+  /// The gravity force on all bodies, Σ_I M_I g (0 without gravity).
+  Eigen::Vector3d gravity_force() const;
   /// The force each boundary entry exerted on its body in the step whose held-dof reaction is `reaction`
   /// (Integrator::reaction; empty: 0): series/reaction_force.
   std::vector<Eigen::Vector3d> entry_reactions(const Eigen::VectorXd& reaction) const;

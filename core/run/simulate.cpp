@@ -69,6 +69,7 @@ class Run {
     observer_.begin(m_, series_.layout());
     if (m_.solver.linear != model::LinearSolver::direct) observer_.log(linear_solver_line(m_));
     b0_ = balance(problem_, s_);  // the initial state, also when resuming: the drifts are against it
+    before_ = b0_;
     if (resumed_) {
       resume(*resumed_);
     } else {
@@ -93,6 +94,8 @@ class Run {
     const Balance b = balance(problem_, s_);
     update_summary(sum_, b0_, b, step.contact);
     const std::vector<Eigen::Vector3d> reactions = reactions_.step_forces();
+    update_impulse_balance(sum_, before_, b, step_impulse(step.h, reactions));
+    before_ = b;
     const std::vector<Eigen::Vector3d> contact_forces = contact_forces_.step_forces();
     const std::vector<double> contact_areas = pair_areas();
     recorder_.step(series_.row(s_.step, s_.t,
@@ -122,6 +125,8 @@ class Run {
     recorder_.replay(c);
     s_ = c.state;
     for (size_t k = 0; k < terms_.size(); ++k) terms_[k]->restore_state(c.terms[k].second, s_.x, s_.v);
+    before_ = balance(problem_, s_);
+    load_impulse_ = problem_.load_impulse();
     sum_ = c.summary;
     sum_.resumed_from_step = s_.step;
     if (controller_) controller_->restore(*c.controller);
@@ -227,6 +232,16 @@ class Run {
     for (const auto& pair : measured_) forces.push_back(pair->slave_force());
     contact_forces_.add(h, forces);
   }
+  /// The step's external impulse (StepImpulse) from its h and its supports' reactions.
+  StepImpulse step_impulse(double h, const std::vector<Eigen::Vector3d>& reactions) {
+    StepImpulse j;
+    const Eigen::Vector3d loads = problem_.load_impulse();
+    j.loads = loads - load_impulse_;
+    load_impulse_ = loads;
+    j.gravity = h * problem_.gravity_force();
+    for (const Eigen::Vector3d& r : reactions) j.supports += h * r;
+    return j;
+  }
   /// Each pair's contact area at the step's end (ContactReport::contact_area).
   std::vector<double> pair_areas() const {
     std::vector<double> areas;
@@ -276,6 +291,8 @@ class Run {
   Landings landings_;                         ///< where steps land, when frames are due
   std::optional<StepController> controller_;  ///< with time.tolerance
   Balance b0_;
+  Balance before_;                                          ///< of the last step: the impulse balance's start
+  Eigen::Vector3d load_impulse_ = Eigen::Vector3d::Zero();  ///< the loads' impulse at its end
   model::Summary sum_;
   StepForces reactions_, contact_forces_;  ///< of the step being solved: series reaction_force, contact_force
   double output_seconds_ = 0;              ///< series rows, frames and the observer's calls
