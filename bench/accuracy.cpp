@@ -42,13 +42,19 @@ void plot(const std::string& name, const stoss::study::Result& r, bool tolerance
     // Column 11 (tolerance) is there only when a row has one: empty for the fixed steps.
     const std::string fixed = tolerances ? " && strcol(11) eq ''" : "", adaptive = " && strcol(11) ne ''";
     for (const auto& [scheme, colour] : schemes) {
-      lines += std::string(lines.empty() ? "" : ", ") + "'" + csv.string() + "' using (strcol(1) eq '" +
-               scheme + "' && $4 == 1" + fixed + " ? $8 : 1/0):" + column +
-               " with linespoints lw 2 pt 7 lc rgb '" + colour + "' title '" + scheme + "'";
+      const std::string rows = "'" + csv.string() + "' using (strcol(1) eq '" + scheme + "' && $4 == 1";
+      // Each point labelled with its step (h=0.02), or on the adaptive lines with its tolerance (TOL=0.001).
+      const auto labels = [&](const std::string& which, const std::string& text) {
+        return ", " + rows + which + " ? $8 : 1/0):" + column + ":(" + text +
+               ") with labels offset char 0,0.8 font ',8' tc rgb '" + colour + "' notitle";
+      };
+      lines += std::string(lines.empty() ? "" : ", ") + rows + fixed + " ? $8 : 1/0):" + column +
+               " with linespoints lw 2 pt 7 lc rgb '" + colour + "' title '" + scheme + "'" +
+               labels(fixed, "'h='.strcol(2)");
       if (tolerances)
-        lines += ", '" + csv.string() + "' using (strcol(1) eq '" + scheme + "' && $4 == 1" + adaptive +
-                 " ? $8 : 1/0):" + column + " with linespoints lw 2 dt 2 pt 5 lc rgb '" + colour +
-                 "' title 'adaptive " + scheme + "'";
+        lines += ", " + rows + adaptive + " ? $8 : 1/0):" + column +
+                 " with linespoints lw 2 dt 2 pt 5 lc rgb '" + colour + "' title 'adaptive " + scheme + "'" +
+                 labels(adaptive, "'TOL='.strcol(11)");
     }
     return std::string("set title '") + label + "'\nset ylabel '" + label + "'\nset key inside " + key +
            " box opaque\nplot " + lines + "\n";
@@ -58,8 +64,8 @@ void plot(const std::string& name, const stoss::study::Result& r, bool tolerance
       "set datafile separator ','\nset terminal pngcairo size 1200,480 noenhanced font ',11'\nset output '" +
           png.string() + "'\nset multiplot layout 1,2 title 'accuracy against time: " + name +
           "'\nset logscale xy\nset format y '%.0e'\nset grid\n"
-          "set xlabel 'wall seconds'\n" +
-          panel("5", "displacement error", "top right") +
+          "set xlabel '" +
+          stoss::study::timing_note(r) + "'\n" + panel("5", "displacement error", "top right") +
           panel("6", "energy error (relative)", "right center") + "unset multiplot\n");
   if (std::system(("gnuplot '" + script.string() + "' 2>/dev/null").c_str()) != 0)
     std::cerr << "gnuplot not available: " << png << " not written\n";

@@ -75,4 +75,51 @@ simple.UpdatePipeline(time=times[-1] if times else 0, proxy=other)
 other_points = other.GetDataInformation().GetNumberOfPoints()
 print(f"Xdmf3ReaderT: {len(other.TimestepValues)} time steps, {other_points} points at the last one")
 failures += other_points != info.GetNumberOfPoints()
+
+# Other layouts of the same frames, each opened with OpenDataFile and read without a time: why result.xdmf
+# keeps its layout (docs/results.md, "The XDMF sidecars"). Without a time Xdmf3ReaderS reads every grid in
+# the file, so only a file that holds one frame loads that frame; the others load 0 points or all frames.
+import os  # noqa: E402
+import re  # noqa: E402
+import shutil  # noqa: E402
+import tempfile  # noqa: E402
+
+written = open(f"{directory}/result.xdmf").read()
+head, rest = written.split('    <Grid Name="frames" GridType="Collection" CollectionType="Temporal">\n', 1)
+frames = re.findall(r"      <Grid Name=\"frame_\d+\" GridType=\"Uniform\">.*?\n      </Grid>\n", rest, re.S)
+tail = "  </Domain>\n</Xdmf>\n"
+
+
+def temporal(grids):
+    return '    <Grid Name="frames" GridType="Collection" CollectionType="Temporal">\n' + "".join(grids) + "    </Grid>\n"
+
+
+def spatial(frame):  # the frame's time on a spatial collection around it
+    time = re.search(r"<Time Value=\"[^\"]*\"/>", frame).group(0)
+    return ('      <Grid Name="step" GridType="Collection" CollectionType="Spatial">\n        ' + time + "\n" +
+            frame.replace(time, "") + "      </Grid>\n")
+
+
+mesh = re.sub(r"<Time Value=\"[^\"]*\"/>", "", frames[0]).replace('Name="frame_0"', 'Name="mesh"')
+layouts = [
+    ("as written: a temporal collection of the frames", head + temporal(frames) + tail),
+    ("each frame a spatial collection carrying the time", head + temporal(spatial(f) for f in frames) + tail),
+    ("a mesh grid beside the temporal collection (meshio's TimeSeriesWriter)", head + mesh + temporal(frames) + tail),
+    ("the first frame alone", head + frames[0] + tail),
+]
+scratch = tempfile.mkdtemp()
+os.symlink(os.path.abspath(f"{directory}/result.h5"), f"{scratch}/result.h5")
+n_points = first_frame
+print(f"layouts read without a time ({len(frames)} frames of {n_points} points each):")
+for k, (what, text) in enumerate(layouts):
+    path = f"{scratch}/layout_{k}.xdmf"
+    open(path, "w").write(text)
+    candidate = OpenDataFile(path)
+    values = candidate.TimestepValues
+    steps = len(values) if hasattr(values, "__len__") else int(values is not None)
+    candidate.UpdatePipeline()
+    got = candidate.GetDataInformation()
+    print(f"  {what}: {candidate.GetXMLName()}, {steps} time steps, {got.GetNumberOfPoints()} points "
+          f"({got.GetDataSetTypeAsString()})")
+shutil.rmtree(scratch)
 sys.exit(1 if failures or info.GetNumberOfPoints() == 0 or first_frame == 0 else 0)

@@ -134,7 +134,6 @@ Result run(const model::Model& model, const Options& options) {
   result.reference_step = resolved_reference_step(options);
   result.repeat = std::max(1, options.repeat);
   Eigen::VectorXd reference_position;
-  std::vector<double> walls;  // of the repetitions of the row in progress
   for (const Run& r : plan(model, options)) {
     const Outcome o = run_once(model, r, options);
     if (canceled(options)) {
@@ -142,9 +141,10 @@ Result run(const model::Model& model, const Options& options) {
       return result;
     }
     if (!r.reference) {
-      if (r.repetition == 0) result.rows.push_back(row_of(o, r, reference_position)), walls.clear();
-      walls.push_back(o.summary.wall_seconds);
-      result.rows.back().wall_seconds = median(walls);
+      if (r.repetition == 0) result.rows.push_back(row_of(o, r, reference_position));
+      Row& row = result.rows.back();
+      row.wall_seconds_runs.push_back(o.summary.wall_seconds);
+      row.wall_seconds = median(row.wall_seconds_runs);
       continue;
     }
     if (!o.failure.empty()) throw SolverError("study: the reference run failed: " + o.failure);
@@ -183,6 +183,7 @@ nlohmann::json to_json(const Result& result) {
                      {"energy_error", r.energy_error},
                      {"momentum_error", r.momentum_error},
                      {"wall_seconds", r.wall_seconds},
+                     {"wall_seconds_runs", r.wall_seconds_runs},
                      {"newton_iterations", r.newton_iterations},
                      {"newton_per_step", r.newton_per_step}};
     j["displacement_error"] = r.completed ? nlohmann::json(r.displacement_error) : nlohmann::json(nullptr);
@@ -214,6 +215,9 @@ Result result_from_json(const nlohmann::json& table) {
     r.energy_error = number_or_nan(j, "energy_error");
     r.momentum_error = number_or_nan(j, "momentum_error");
     r.wall_seconds = number_or_nan(j, "wall_seconds");
+    // A table written before the runs were kept has the median alone.
+    if (auto runs = j.find("wall_seconds_runs"); runs != j.end() && runs->is_array())
+      for (const auto& w : *runs) r.wall_seconds_runs.push_back(w.is_number() ? w.get<double>() : NAN);
     r.newton_iterations = j.value("newton_iterations", 0);
     r.newton_per_step = number_or_nan(j, "newton_per_step");
     result.rows.push_back(r);

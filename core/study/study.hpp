@@ -56,10 +56,14 @@ struct Row {
   double energy_error = 0;        ///< max over steps |H_n − H_0| / |H_0|
   double momentum_error =
       0;  ///< max of the relative linear and angular momentum drifts; NaN (null) where the system is not free
-  double wall_seconds = 0;  ///< the median over Result::repeat runs
+  double wall_seconds = 0;  ///< the median of wall_seconds_runs
   int newton_iterations = 0;
   double newton_per_step = 0;
   double tolerance = 0;  ///< > 0: a run with steps chosen by this time.tolerance (step: its first step)
+  /// The wall seconds of each of the Result::repeat runs of this point, in run order (wall time is noisy
+  /// on a shared machine: the spread shows how much). Last, so that rows built field by field keep their
+  /// order.
+  std::vector<double> wall_seconds_runs;
 };
 
 struct Result {

@@ -482,13 +482,23 @@ async function showStudy(job) {
   graph.ready(() => graph.setAnnotations(plotted.map((r) => ({ series: lineOf(r), x: r.wall_seconds, shortText: labelOf(r),
     text: r.tolerance > 0 ? `${r.scheme}, time.tolerance = ${r.tolerance}, ${r.steps} steps` : `${r.scheme}, h = ${r.step}`,
     width: r.tolerance > 0 ? 76 : 48, height: 14, cssClass: 'step-label' }))));
-  document.getElementById('study-timing').textContent = timing + ' of each scheme and step.';
+  document.getElementById('study-timing').textContent = timing + ' of each scheme and step (wall time, not CPU time).';
   const columns = ['scheme', 'step', 'steps', 'displacement_error', 'energy_error', 'momentum_error', 'wall_seconds', 'newton_per_step'];
   if (body.rows.some((r) => r.tolerance > 0)) columns.splice(2, 0, 'tolerance');  // step is then the first step
-  const unitOfColumn = { step: UNITS, tolerance: UNITS, displacement_error: UNITS, energy_error: 'relative', momentum_error: 'relative', wall_seconds: 's' };
+  const unitOfColumn = { step: UNITS, tolerance: UNITS, displacement_error: UNITS, energy_error: 'relative', momentum_error: 'relative',
+    wall_seconds: body.repeat > 1 ? `s, median (fastest–slowest) of ${body.repeat}` : 's' };
   const head = el('tr', {}, ...columns.map((c) => el('th', {}, c + (unitOfColumn[c] ? ` (${unitOfColumn[c]})` : ''))));
+  // Wall seconds: the median, and the fastest and slowest of the point's runs when it ran more than once.
+  const wallCell = (r) => {
+    const runs = r.wall_seconds_runs || [];
+    if (runs.length < 2) return el('td', {}, number(r.wall_seconds));
+    const spread = `${number(Math.min(...runs))}–${number(Math.max(...runs))}`;
+    return el('td', { class: 'wall', title: `${runs.length} runs: ${runs.map(number).join(', ')} s` },
+      `${number(r.wall_seconds)} (${spread})`);
+  };
   const rows = body.rows.map((r) => el('tr', { class: r.completed ? '' : 'failed' },
-    ...columns.map((c) => el('td', {}, r[c] === null || r[c] === undefined ? (r.failure || '') : number(r[c])))));
+    ...columns.map((c) => (c === 'wall_seconds' && r.completed ? wallCell(r)
+      : el('td', {}, r[c] === null || r[c] === undefined ? (r.failure || '') : number(r[c]))))));
   document.getElementById('study-table').replaceChildren(head, ...rows);
 }
 

@@ -309,7 +309,17 @@ def study_view(browser, server, source_dir):
     steps = browser.run("[...document.querySelectorAll('#plot-accuracy .step-label')].map(a => a.textContent).sort()")
     check(steps == ["h=0.05"] * 3 + ["h=0.1"] * 3, f"each point is labelled with its h: {steps}")
     note = browser.run("document.getElementById('study-energy-note').textContent")
-    check("2.0 and 2.3 H₀" in note and "4v/h" in note, "the study page says why HHT-α and generalized-α gain energy")
+    check("2.0 and 2.3 H₀" in note and "6.3 and 7.2 H₀ on the holed_part_plate example" in note and "4v/h" in note,
+          "the study page says how much and why HHT-α and generalized-α gain energy")
+    timing = browser.run("document.getElementById('study-timing').textContent")
+    check(timing == "wall seconds: the median of 3 runs of each scheme and step (wall time, not CPU time).",
+          f"the study page says how it times the runs: {timing!r}")
+    # Each row's wall time: the median of its 3 runs and their range, the runs themselves in the title.
+    walls = browser.run("[...document.querySelectorAll('#study-table td.wall')].map(td => [td.textContent, td.title])")
+    parsed = [re.fullmatch(r"([0-9.e+-]+) \(([0-9.e+-]+)–([0-9.e+-]+)\)", text) for text, _ in walls]
+    check(len(walls) == 6 and all(parsed) and all(float(m[2]) <= float(m[1]) <= float(m[3]) for m in parsed)
+          and all(title.startswith("3 runs: ") and title.count(",") == 2 for _, title in walls),
+          f"each row shows its median wall time between its fastest and slowest of 3 runs: {walls[:2]}")
 
 
 def adaptive_run(browser, server, source_dir):

@@ -102,9 +102,20 @@ TEST(Study, EachPointRunsRepeatTimesAndShowsTheMedianWallTime) {
       EXPECT_EQ(finished[i].first.repetition, static_cast<int>(i - 1 - 3 * k));
       walls.push_back(finished[i].second);
     }
+    // The row keeps the three timings in run order, and shows their median.
+    EXPECT_EQ(r.rows[k].wall_seconds_runs, walls) << r.rows[k].scheme;
     std::sort(walls.begin(), walls.end());
     EXPECT_EQ(r.rows[k].wall_seconds, walls[1]) << r.rows[k].scheme;
+    EXPECT_GT(walls[0], 0) << "each run is timed";
   }
+  const nlohmann::json table = to_json(r);
+  ASSERT_EQ(table["rows"][1]["wall_seconds_runs"].size(), 3u) << table.dump();
+  EXPECT_EQ(table["rows"][1]["wall_seconds_runs"].get<std::vector<double>>(), r.rows[1].wall_seconds_runs);
+  EXPECT_EQ(result_from_json(table).rows[1].wall_seconds_runs, r.rows[1].wall_seconds_runs);
+  EXPECT_TRUE(result_from_json(nlohmann::json{{"rows", {{{"scheme", "hht"}, {"wall_seconds", 1.5}}}}})
+                  .rows[0]
+                  .wall_seconds_runs.empty())
+      << "a table from before the runs were kept reads with the median alone";
   EXPECT_EQ(to_json(r)["timing"], "wall seconds: the median of 3 runs");
   EXPECT_EQ(to_markdown(r).rfind("wall seconds: the median of 3 runs of each scheme and step\n", 0), 0u);
 }

@@ -3,6 +3,8 @@
 // tolerance allows (end/min_step) is held to max_steps as a scene with time.tolerance is.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "server/http/study_check.hpp"
 #include "tests/server/live_server.hpp"
 
@@ -98,6 +100,68 @@ TEST(StudyCheck, AnUnknownMemberNamesTolerancesAmongTheMembers) {
   EXPECT_EQ(errors[0]["pointer"], "/tolerance");
   EXPECT_EQ(errors[0]["message"],
             "is not a member of a study (scene, steps, tolerances, schemes, reference_step, repeat)");
+}
+
+// `repeat` (issue 25 §5): runs of each point whose median wall time the row shows, an integer in [1, 9],
+// 3 when absent; anything else is a 422 at /repeat that says the rule and the value.
+TEST(StudyCheck, RepeatIsAnIntegerFrom1To9And3ByDefault) {
+  nlohmann::json body = test::study_body(test::box_scene(1, 20), {0.02}, {"energy_momentum"});
+  EXPECT_EQ(check_study(body, Limits{}).options.repeat, 3);
+  EXPECT_EQ(check_study(body, Limits{}).runs, 1 + 3);
+  for (int n : {1, 9}) {
+    body["repeat"] = n;
+    EXPECT_EQ(check_study(body, Limits{}).options.repeat, n);
+    EXPECT_EQ(check_study(body, Limits{}).runs, 1 + n);
+  }
+  const std::pair<nlohmann::json, std::string> bad[] = {{0, "0"},
+                                                        {-1, "-1"},
+                                                        {10, "10"},
+                                                        {1.5, "1.5"},
+                                                        {"3", "\"3\""},
+                                                        {nullptr, "null"},
+                                                        {nlohmann::json::array({3}), "an array"}};
+  for (const auto& [value, shown] : bad) {
+    body["repeat"] = value;
+    const Problem p = problem_of(body);
+    EXPECT_EQ(p.status, 422) << value.dump();
+    EXPECT_EQ(p.type, "urn:stoss:problem:invalid-study");
+    const nlohmann::json& errors = p.extra.at("errors");
+    ASSERT_EQ(errors.size(), 1u) << errors.dump();
+    EXPECT_EQ(errors[0]["pointer"], "/repeat");
+    EXPECT_EQ(errors[0]["message"], "must be an integer in [1, 9], got " + shown);
+  }
+}
+
+// Through the live service: a study with repeat = 3 runs each point three times, its table keeps the three
+// timings and shows their median; repeat = 0 is refused at its pointer.
+TEST(StudyCheck, ALiveStudyWithRepeat3KeepsThreeTimingsAndTheirMedian) {
+  test::TempDir dir;
+  test::LiveServer server(dir.path() / "data");
+  auto c = server.client();
+  nlohmann::json body = test::study_body(test::box_scene(1, 20, {0, 0, 0}, 2.0), {0.04}, {"midpoint"});
+  body["repeat"] = 0;
+  auto refused = test::submit_study(c, body);
+  ASSERT_TRUE(refused);
+  EXPECT_EQ(refused->status, 422) << refused->body;
+  EXPECT_EQ(test::body_json(refused)["errors"][0]["pointer"], "/repeat") << refused->body;
+
+  body["repeat"] = 3;
+  auto created = test::submit_study(c, body);
+  ASSERT_TRUE(created);
+  ASSERT_EQ(created->status, 201) << created->body;
+  const std::string id = test::body_json(created)["id"];
+  EXPECT_EQ(test::body_json(created)["study"]["repeat"], 3);
+  ASSERT_EQ(test::wait_for_status(c, id, {"succeeded", "failed", "canceled"})["status"], "succeeded");
+  const nlohmann::json table = test::body_json(c.Get("/v1/jobs/" + id + "/study"));
+  EXPECT_EQ(table["repeat"], 3);
+  EXPECT_EQ(table["timing"], "wall seconds: the median of 3 runs");
+  ASSERT_EQ(table["rows"].size(), 1u) << table.dump();
+  std::vector<double> runs = table["rows"][0]["wall_seconds_runs"].get<std::vector<double>>();
+  ASSERT_EQ(runs.size(), 3u) << table.dump();
+  std::sort(runs.begin(), runs.end());
+  EXPECT_GT(runs[0], 0);
+  EXPECT_EQ(table["rows"][0]["wall_seconds"].get<double>(), runs[1]) << table.dump();
+  EXPECT_EQ(test::job(c, id)["summary"]["runs_done"], 4) << "the reference and the point 3 times";
 }
 
 }  // namespace
