@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <optional>
 #include <stdexcept>
 #include <system_error>
@@ -26,17 +25,6 @@ constexpr const char* stoss_version = "dev";
 
 constexpr hsize_t series_chunk_rows = 512;
 constexpr hsize_t frame_time_chunk_rows = 64;
-
-void write_text_file(const fs::path& path, const std::string& text) {
-  const fs::path partial = path.string() + ".partial";
-  {
-    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) throw std::runtime_error("cannot write " + partial.string());
-  }
-  rename_durably(partial, path);
-}
 
 void remove_earlier_results(const fs::path& directory) {
   for (const char* name : {result_file_name, incomplete_file_name, xdmf_file_name, xdmf_mesh_file_name})
@@ -300,8 +288,8 @@ void ResultWriter::end(const model::Summary& summary) {
   run->file.write_attribute("/", "checks", model::checks_json(summary.checks).dump());
   run->file.close();
   if (summary.completed) {
-    write_text_file(directory_ / xdmf_file_name, xdmf_document(run->xdmf_layout()));
-    write_text_file(directory_ / xdmf_mesh_file_name, xdmf_mesh_document(run->xdmf_layout()));
+    write_durably(directory_ / xdmf_file_name, xdmf_document(run->xdmf_layout()));
+    write_durably(directory_ / xdmf_mesh_file_name, xdmf_mesh_document(run->xdmf_layout()));
     rename_durably(directory_ / partial_file_name, directory_ / result_file_name);
   } else {
     rename_durably(directory_ / partial_file_name, directory_ / incomplete_file_name);
