@@ -97,6 +97,10 @@ struct ContactPair {
   std::optional<double> normal_stiffness;                 ///< ε_N; unset: 10 E ℓ (§5.1)
   std::optional<double> tangential_stiffness;             ///< ε_T; unset: 10 E ℓ
   NormalTraction normal_traction = NormalTraction::discrete_derivative;
+  /// Static steps (docs/theory.md §5b.6): a Lagrange pair's slave nodes that touch the master at a step's
+  /// start begin the step active, since without inertia a body held only by this contact has no other
+  /// support in the first Newton pass. Set by the scene for time.scheme "static".
+  bool closes_touching = false;
 };
 
 /// Why a contact pair cannot run with a time scheme: the pair's field at fault ("impact",
