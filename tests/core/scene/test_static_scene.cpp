@@ -108,6 +108,19 @@ TEST(StaticScene, ABodyHeldThroughAContactWithAHeldBodyNeedsRollersForItsTangent
   EXPECT_NE(issues[0].message.find("translation along x"), std::string::npos) << issues[0].message;
 }
 
+TEST(StaticScene, AContactHoldsOnlyWhereItsSurfacesTouchAtTheStart) {
+  const json rollers =
+      json::array({{{"surface", "upper/xmin"}, {"fix", "x"}}, {{"surface", "upper/ymin"}, {"fix", "y"}}});
+  json apart = stacked(rollers);
+  apart["bodies"][1]["mesh"]["box"]["min"] = {0, 0, 0.51};  // 0.01 above the lower block: nothing holds z
+  apart["bodies"][1]["mesh"]["box"]["max"] = {1, 1, 1.01};
+  const auto issues = issues_of(apart);
+  ASSERT_EQ(issues.size(), 1u) << text(issues);
+  EXPECT_EQ(issues[0].pointer, "/bodies/1");
+  EXPECT_NE(issues[0].message.find("(translation along z)"), std::string::npos)
+      << issues[0].message;
+}
+
 TEST(StaticScene, PrescribedMotionHoldsABody) {
   const json pulled = json::array({{{"surface", "block/bottom"}, {"displacement", {0.1, 0, 0}}}});
   EXPECT_EQ(text(issues_of(static_block(pulled))), "none");
