@@ -56,7 +56,7 @@ double convergence_mass(const model::Model& m, const Problem& p) {
   if (m.time.scheme != model::Scheme::equilibrium) return p.total_mass;
   const double force = static_force_scale(m, p.total_mass, p.length_scale), h = m.time.step;
   if (!(force > 0)) return p.total_mass;
-  return 1e4 * h * h * force / p.length_scale;  // 1e-4 m ℓ / h = h F
+  return 1e4 * h * h * force / p.length_scale;  // 1e-4 m ℓ / h = h F (5b.7a)
 }
 
 }  // namespace stoss::run
