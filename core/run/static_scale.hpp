@@ -7,8 +7,9 @@
 
 namespace stoss::run {
 
-/// F of a static scene (docs/theory.md (5b.7a)): the weight, each load at its largest amplitude over its reference area, and each
-/// prescribed motion as the force E A |u| / ℓ that stretches its body by it (ℓ = `length`); 0 for none.
+/// F of a static scene (docs/theory.md (5b.7a)): the weight, each load at its largest amplitude over its
+/// reference area, and each prescribed motion as the force E A |u| / ℓ that stretches its body by it (ℓ =
+/// `length`); 0 for none.
 double static_force_scale(const model::Model& m, double total_mass, double length);
 
 /// The mass the integrator's residual floor 1e-4 m ℓ / h is given: the problem's total mass for a dynamic

@@ -117,8 +117,7 @@ TEST(StaticScene, AContactHoldsOnlyWhereItsSurfacesTouchAtTheStart) {
   const auto issues = issues_of(apart);
   ASSERT_EQ(issues.size(), 1u) << text(issues);
   EXPECT_EQ(issues[0].pointer, "/bodies/1");
-  EXPECT_NE(issues[0].message.find("(translation along z)"), std::string::npos)
-      << issues[0].message;
+  EXPECT_NE(issues[0].message.find("(translation along z)"), std::string::npos) << issues[0].message;
 }
 
 TEST(StaticScene, PrescribedMotionHoldsABody) {
