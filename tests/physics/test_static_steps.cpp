@@ -4,6 +4,9 @@
 //   load through the pair: contact_force_z equals the pressure's resultant p A_top (A_top the deformed top's
 //   area, from the last frame) and the lower block's support reaction within 1e-10 of the load, over a
 //   contact_area of 1 within 1e-12, with kinetic energy 0 in every row;
+// - a block on rollers pulled by a dead traction σ ramped over 4 steps is held by its bottom with −σ A at
+// each
+//   load level within 1e-10 σ, and its top rises by σ L / E within 3 (σ / E)² (St. Venant–Kirchhoff);
 // - a block pressed by p and then sheared by a prescribed motion of its top over a held block with Coulomb
 //   friction μ (penalty): the pair carries the pressure at each level within 1e-9, its tangential force never
 //   exceeds μ times its normal force (1e-9), every slave node slides at the end of the shear with the
@@ -83,6 +86,32 @@ TEST(StaticSteps, ABlockPressedOntoAHeldBlockCarriesThePressureThroughTheContact
   EXPECT_NEAR(r.series("contact_force", 2)[2], 0.5 * resultant, 1e-3 * pressure);
   std::printf("static pressed blocks: contact force %.15f, bottom reaction %.15f, p A_top %.15f\n", fz,
               bottom, resultant);
+}
+
+TEST(StaticSteps, ABlockOnRollersPulledByADeadTractionIsHeldByItsBottomAtEveryLoadLevel) {
+  const double sigma = 20, E = 1000;  // σ / E = 2 %
+  const model::Model m = scene::load(json::parse(R"({
+    "format": "stoss-scene/1", "name": "block pulled by a traction in load steps",
+    "bodies": [ { "name": "block",
+                  "mesh": { "box": { "min": [0, 0, 0], "max": [1, 1, 1], "divisions": [2, 2, 2] } },
+                  "material": { "youngs_modulus": 1000, "poisson_ratio": 0.3, "density": 1 } } ],
+    "boundary": [ { "surface": "block/bottom", "fix": "z" }, { "surface": "block/xmin", "fix": "x" },
+                  { "surface": "block/ymin", "fix": "y" } ],
+    "loads": [ { "surface": "block/top", "traction": [0, 0, 20], "amplitude": [[0, 0], [1, 1]] } ],
+    "time": { "scheme": "static", "step": 0.25, "end": 1 },
+    "solver": { "tolerance": 1e-12 } })"));
+  EXPECT_TRUE(m.has_effect(model::effect::traction));
+  testing::RecordingObserver r;
+  ASSERT_TRUE(simulate(m, r).completed);
+  const auto bottom = r.series("reaction_force", 2);
+  for (size_t n = 1; n < bottom.size(); ++n)
+    EXPECT_NEAR(bottom[n], -sigma * 0.25 * double(n), 1e-10 * sigma) << "row " << n;
+  // The top rises by about σ L / E (St. Venant–Kirchhoff's quadratic terms add O(σ/E) relative).
+  const int corner = m.mesh.named_nodes("block/top").back();
+  const double rise = r.frames.back().position[3 * corner + 2] - 1;
+  EXPECT_NEAR(rise, sigma / E, 3 * (sigma / E) * (sigma / E));
+  std::printf("static traction: bottom reaction %.15f for σ A = %.1f, top rise %.6f (σ L / E = %.3f)\n",
+              bottom.back(), sigma, rise, sigma / E);
 }
 
 /// The x component of the vector area of `surface` at positions x.
