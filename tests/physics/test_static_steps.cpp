@@ -4,9 +4,8 @@
 //   load through the pair: contact_force_z equals the pressure's resultant p A_top (A_top the deformed top's
 //   area, from the last frame) and the lower block's support reaction within 1e-10 of the load, over a
 //   contact_area of 1 within 1e-12, with kinetic energy 0 in every row;
-// - a block on rollers pulled by a dead traction σ ramped over 4 steps is held by its bottom with −σ A at
-// each
-//   load level within 1e-10 σ, and its top rises by σ L / E within 3 (σ / E)² (St. Venant–Kirchhoff);
+// - a block on rollers pulled by a dead traction σ ramped over 4 steps is held by its bottom with −σ A
+//   at each load level within 1e-10 σ, and its top rises by σ L / E within 3 (σ / E)²;
 // - a block pressed by p and then sheared by a prescribed motion of its top over a held block with Coulomb
 //   friction μ (penalty): the pair carries the pressure at each level within 1e-9, its tangential force never
 //   exceeds μ times its normal force (1e-9), every slave node slides at the end of the shear with the
