@@ -75,8 +75,10 @@ int body_of(const mesh::Mesh& mesh, const std::string& body_slash_surface) {
   return mesh.find_body(body_slash_surface.substr(0, body_slash_surface.find('/')));
 }
 
-/// The surface's nodes along its reference normals (area-weighted over the faces at each node).
-std::vector<HeldDirection> normal_directions(const mesh::Mesh& mesh, const std::string& surface) {
+/// The surface's nodes along its reference normals (area-weighted over the faces at each node); only the
+/// nodes `touching` marks, when it is not empty.
+std::vector<HeldDirection> normal_directions(const mesh::Mesh& mesh, const std::string& surface,
+                                             const std::vector<char>& touching) {
   std::vector<HeldDirection> out;
   std::vector<int> position(mesh.node_count(), -1);
   for (const mesh::Quad& q : mesh.surface(surface)) {
@@ -84,6 +86,7 @@ std::vector<HeldDirection> normal_directions(const mesh::Mesh& mesh, const std::
     const Eigen::Vector3d area =
         0.5 * (X[q[2]] - X[q[0]]).cross(X[q[3]] - X[q[1]]);  // the face's vector area
     for (int node : q) {
+      if (!touching.empty() && !touching[node]) continue;
       if (position[node] < 0) position[node] = static_cast<int>(out.size()), out.push_back({node, {0, 0, 0}});
       out[position[node]].direction += area;
     }
@@ -154,7 +157,8 @@ std::vector<BodyFreedom> free_rigid_modes(const mesh::Mesh& mesh, const std::vec
         applied[2 * p + side] = changed = true;
         for (const std::string& surface :
              side == 0 ? std::vector<std::string>{contact[p].slave} : contact[p].master)
-          for (const HeldDirection& h : normal_directions(mesh, surface)) extra.push_back(h);
+          for (const HeldDirection& h : normal_directions(mesh, surface, contact[p].touching))
+            extra.push_back(h);
       }
     }
     if (changed) freedom = free_rigid_modes(mesh, fixed, extra);

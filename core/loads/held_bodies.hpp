@@ -26,6 +26,8 @@ struct HeldDirection {
 struct ContactSurfaces {
   std::string slave;
   std::vector<std::string> master;
+  /// Per node of the mesh, whether it touches the other side (only those hold); empty: every node does.
+  std::vector<char> touching;
 };
 
 /// A body and a basis of the rigid motions nothing holds (empty: held).

@@ -16,12 +16,14 @@ std::string to_string(Scheme s) {
       return "hht";
     case Scheme::generalized_alpha:
       return "generalized_alpha";
+    case Scheme::equilibrium:
+      return "static";
   }
   return "unknown";
 }
 
 std::optional<Scheme> scheme_from_string(std::string_view name) {
-  for (Scheme s : all_schemes)
+  for (Scheme s : scene_schemes)
     if (to_string(s) == name) return s;
   return std::nullopt;
 }
@@ -46,6 +48,24 @@ std::optional<LinearSolver> linear_solver_from_string(std::string_view name) {
   return std::nullopt;
 }
 
+namespace {
+
+std::string impact_name(ImpactMode impact) {
+  switch (impact) {
+    case ImpactMode::persist:
+      return "persist";
+    case ImpactMode::exact:
+      return "exact";
+    case ImpactMode::velocity_correction:
+      return "velocity_correction";
+    case ImpactMode::located:
+      return "located";
+  }
+  return "unknown";
+}
+
+}  // namespace
+
 std::optional<SchemeConflict> contact_scheme_conflict(Scheme scheme, Enforcement enforcement,
                                                       ImpactMode impact) {
   const std::string name = "\"" + to_string(scheme) + "\"";
@@ -55,6 +75,12 @@ std::optional<SchemeConflict> contact_scheme_conflict(Scheme scheme, Enforcement
   if (enforcement == Enforcement::penalty && (scheme == Scheme::hht || scheme == Scheme::generalized_alpha))
     return SchemeConflict{"enforcement", "\"penalty\" is not implemented with time.scheme " + name +
                                              "; use energy_momentum or midpoint"};
+  // Static steps have no impacts: a Lagrange pair closes its gap at each load level (docs/theory.md §5b.6).
+  if (scheme == Scheme::equilibrium && enforcement == Enforcement::lagrange && impact != ImpactMode::exact)
+    return SchemeConflict{"impact",
+                          "must be \"exact\" with time.scheme \"static\" (no impacts: the gap closes at "
+                          "each load level; \"exact\" is the default there), got \"" +
+                              impact_name(impact) + "\""};
   return std::nullopt;
 }
 
@@ -89,7 +115,8 @@ bool Model::has_effect(const std::string& e) const {
 }
 
 std::vector<std::string> resolve_effects(const Model& m) {
-  std::vector<std::string> out{effect::inertia, effect::elasticity};
+  const bool statics = m.time.scheme == Scheme::equilibrium;
+  std::vector<std::string> out{statics ? effect::static_steps : effect::inertia, effect::elasticity};
   if (m.gravity && m.gravity->norm() > 0) out.push_back(effect::gravity);
   if (!m.boundary.empty()) out.push_back(effect::dirichlet);
   if (std::any_of(m.boundary.begin(), m.boundary.end(), [](const Boundary& b) { return b.moves(); }))

@@ -14,12 +14,17 @@
 
 namespace stoss::model {
 
-enum class Scheme { midpoint, energy_momentum, hht, generalized_alpha };
-/// Every scheme, in the order the docs list them.
+/// `equilibrium` is `time.scheme: "static"` (docs/theory.md §5b.6): load steps without inertia.
+enum class Scheme { midpoint, energy_momentum, hht, generalized_alpha, equilibrium };
+/// Every dynamic scheme, in the order the docs list them (a study compares these).
 inline constexpr Scheme all_schemes[] = {Scheme::energy_momentum, Scheme::midpoint, Scheme::hht,
                                          Scheme::generalized_alpha};
+/// Every scheme a scene may name: the dynamic ones, then static load steps.
+inline constexpr Scheme scene_schemes[] = {Scheme::energy_momentum, Scheme::midpoint, Scheme::hht,
+                                           Scheme::generalized_alpha, Scheme::equilibrium};
+/// The scene's name: energy_momentum, midpoint, hht, generalized_alpha, static.
 std::string to_string(Scheme s);
-/// The scheme named `name` (energy_momentum, midpoint, hht, generalized_alpha), or nullopt.
+/// The scheme named `name` (one of scene_schemes), or nullopt.
 std::optional<Scheme> scheme_from_string(std::string_view name);
 
 /// St. Venant–Kirchhoff parameters (docs/theory.md (1.4)–(1.5)).
@@ -92,6 +97,10 @@ struct ContactPair {
   std::optional<double> normal_stiffness;                 ///< ε_N; unset: 10 E ℓ (§5.1)
   std::optional<double> tangential_stiffness;             ///< ε_T; unset: 10 E ℓ
   NormalTraction normal_traction = NormalTraction::discrete_derivative;
+  /// Static steps (docs/theory.md §5b.6): a Lagrange pair's slave nodes that touch the master at a step's
+  /// start begin the step active, since without inertia a body held only by this contact has no other
+  /// support in the first Newton pass. Set by the scene for time.scheme "static".
+  bool closes_touching = false;
 };
 
 /// Why a contact pair cannot run with a time scheme: the pair's field at fault ("impact",
@@ -103,7 +112,8 @@ struct SchemeConflict {
 };
 /// The conflict of a pair with `enforcement` and `impact` under `scheme`, or nullopt. Rules: the velocity
 /// correction (4.12) restores the identity (4.11) of the mixed energy–momentum form only; penalty contact
-/// has no α-weighted (hht, generalized_alpha) form.
+/// has no α-weighted (hht, generalized_alpha) form; static steps have no impacts, so a Lagrange pair closes
+/// its gap there (impact exact).
 std::optional<SchemeConflict> contact_scheme_conflict(Scheme scheme, Enforcement enforcement,
                                                       ImpactMode impact);
 
@@ -179,6 +189,7 @@ inline constexpr const char* contact_frictional = "contact_frictional";
 inline constexpr const char* pressure = "pressure";
 inline constexpr const char* traction = "traction";
 inline constexpr const char* prescribed_motion = "prescribed_motion";
+inline constexpr const char* static_steps = "static";  ///< time.scheme "static", in place of inertia
 }  // namespace effect
 
 struct Model {
@@ -194,6 +205,13 @@ struct Model {
   SolverSpec solver;
   OutputSpec output;
   std::vector<std::string> effects;  ///< resolved effect list, e.g. {"inertia","elasticity","gravity"}
+  /// Contact pairs of the scene merged into one (docs/scene.md, "Pairs that share a slave"): for each
+  /// merged pair of `contact`, its index there and the indices the pairs had in the scene as written.
+  struct MergedPairs {
+    int pair = 0;
+    std::vector<int> written;
+  };
+  std::vector<MergedPairs> merged_contact;
 
   bool has_effect(const std::string& e) const;
   int dof_count() const { return 3 * mesh.node_count(); }

@@ -15,6 +15,7 @@
 #include "core/run/recorder.hpp"
 #include "core/run/series_table.hpp"
 #include "core/run/solver_choice.hpp"
+#include "core/run/static_scale.hpp"
 #include "core/run/step_control.hpp"
 #include "core/run/step_forces.hpp"
 #include "core/run/step_messages.hpp"
@@ -45,7 +46,7 @@ class Run {
         measured_(measured_pairs(problem_)),
         terms_(terms_of(problem_, measured_)),
         integrator_(problem_.mass, terms_, problem_.fixed, time::make_scheme(m.time), newton_options(m),
-                    problem_.length_scale, problem_.total_mass),
+                    problem_.length_scale, convergence_mass(m, problem_)),
         s_(initial_state(m, problem_)),
         store_(open_store(checkpoints)),
         recorder_(observer, store_ ? &*store_ : nullptr, problem_),

@@ -165,6 +165,8 @@ model::Model build_model(const json& scene, const MeshFiles& mesh_files) {
   const Eigen::Vector3d g = vector3(scene["gravity"]);
   if (g.norm() > 0) m.gravity = g;
   m.time = time_spec(scene["time"]);
+  for (model::ContactPair& pair : m.contact)
+    pair.closes_touching = m.time.scheme == model::Scheme::equilibrium;
   m.solver = {scene["solver"]["tolerance"].get<double>(), scene["solver"]["max_iterations"].get<int>(),
               model::linear_solver_from_string(scene["solver"]["linear"].get<std::string>()).value()};
   const json& output = scene["output"];

@@ -7,6 +7,8 @@
 #include <limits>
 
 #include "core/scene/build.hpp"
+#include "core/scene/contact_merge.hpp"
+#include "core/scene/held_check.hpp"
 #include "core/scene/master_surface.hpp"
 #include "core/scene/validate.hpp"
 #include "core/scene/warnings.hpp"
@@ -48,8 +50,12 @@ model::Model load(const nlohmann::json& scene, const MeshFiles& mesh_files) {
   checker.mesh_files = mesh_files;
   detail::check_scene(filled, checker);
   if (!checker.issues().empty()) throw SceneError(checker.issues());
+  auto merged = detail::merge_contact_pairs(filled, checker);
+  if (!checker.issues().empty()) throw SceneError(checker.issues());
   model::Model m = detail::build_model(filled, mesh_files);
+  m.merged_contact = std::move(merged);
   detail::resolve_master_surfaces(m);
+  if (auto unheld = detail::unheld_bodies(m); !unheld.empty()) throw SceneError(std::move(unheld));
   return m;
 }
 

@@ -284,7 +284,14 @@ std::optional<std::string> check_surface_refs(const json& value, const std::stri
   return c.mark() == start ? body : std::nullopt;
 }
 
-void check_contact_pair(json& e, const std::string& p, const SurfaceIndex& index, Checker& c) {
+/// Whether the scene names time.scheme "static" (read before the time object is checked: pairs default by
+/// it).
+bool names_static(const json& scene) {
+  return scene.is_object() && scene.contains("time") && scene["time"].is_object() &&
+         scene["time"].value("scheme", json()) == "static";
+}
+
+void check_contact_pair(json& e, const std::string& p, const SurfaceIndex& index, bool statics, Checker& c) {
   const std::initializer_list<std::string_view> fields{"slave",
                                                        "master",
                                                        "enforcement",
@@ -310,7 +317,8 @@ void check_contact_pair(json& e, const std::string& p, const SurfaceIndex& index
                    {"lagrange", "penalty"}, c);
   if (frictional && enforcement == "lagrange")
     c.fail(child(p, "enforcement"), "friction > 0 requires enforcement \"penalty\"");
-  choice_field(e, "impact", p, Presence::or_default("persist"),
+  // Static steps have no impacts: the gap closes (model::contact_scheme_conflict).
+  choice_field(e, "impact", p, Presence::or_default(statics ? "exact" : "persist"),
                {"persist", "exact", "velocity_correction", "located"}, c);
   number_field(e, "switch_hysteresis", p, Presence::or_default(0.05), at_least(0), c);
   // Both resolved once the mesh exists (master_surface.hpp): the defaults depend on the surface.
@@ -436,7 +444,7 @@ void check_time(json& t, const std::string& p, Checker& c) {
           t, p, {"scheme", "step", "end", "alpha", "rho_infinity", "tolerance", "min_step", "max_step"}, c))
     return;
   std::vector<std::string> names;
-  for (model::Scheme s : model::all_schemes) names.push_back(model::to_string(s));
+  for (model::Scheme s : model::scene_schemes) names.push_back(model::to_string(s));
   const std::vector<std::string_view> schemes(names.begin(), names.end());
   const auto scheme = choice_field(t, "scheme", p, Presence::or_default("energy_momentum"), schemes, c);
   const auto step = number_field(t, "step", p, Presence::must(), above(0), c);
@@ -449,7 +457,29 @@ void check_time(json& t, const std::string& p, Checker& c) {
   number_field(t, "alpha", p, alpha, between(-1.0 / 3, 0, true, true, "-1/3, 0"), c);
   const Presence rho = scheme == "generalized_alpha" ? Presence::or_default(0.9) : Presence::may();
   number_field(t, "rho_infinity", p, rho, between(0, 1, true, true), c);
+  if (scheme == "static" && t.contains("tolerance")) {
+    c.fail(child(p, "tolerance"),
+           "is not allowed with scheme \"static\": load steps have no time-discretisation error to control "
+           "(give the load levels by step and end, and amplitudes)");
+    return;
+  }
   check_step_control(t, p, step, end, c);
+}
+
+/// Static steps have no inertia (docs/theory.md §5b.6): a body there starts, and stays, at rest.
+void check_static_bodies(const json& scene, Checker& c) {
+  const json& bodies = scene["bodies"];
+  if (!bodies.is_array()) return;
+  const auto nonzero_vector = [](const json& v) {
+    const auto number = [](const json& x) { return x.is_number(); };
+    return v.is_array() && v.size() == 3 && std::all_of(v.begin(), v.end(), number) && v != zero3;
+  };
+  for (size_t i = 0; i < bodies.size(); ++i)
+    for (const char* key : {"initial_velocity", "initial_angular_velocity"})
+      if (bodies[i].is_object() && bodies[i].contains(key) && nonzero_vector(bodies[i][key]))
+        c.fail(child(child(child("", "bodies"), i), key),
+               "must be [0, 0, 0] with time.scheme \"static\" (no inertia: bodies are at rest), got " +
+                   shown(bodies[i][key]));
 }
 
 void check_solver(json& s, const std::string& p, Checker& c) {
@@ -492,9 +522,11 @@ void check_contact_scheme(const json& scene, Checker& c) {
     if (!contact[i].is_object()) continue;
     const auto enforcement = contact[i].value("enforcement", "") == "penalty" ? model::Enforcement::penalty
                                                                               : model::Enforcement::lagrange;
-    const auto impact = contact[i].value("impact", "") == "velocity_correction"
-                            ? model::ImpactMode::velocity_correction
-                            : model::ImpactMode::persist;
+    const std::string named = contact[i].value("impact", "");
+    const auto impact = named == "velocity_correction" ? model::ImpactMode::velocity_correction
+                        : named == "exact"             ? model::ImpactMode::exact
+                        : named == "located"           ? model::ImpactMode::located
+                                                       : model::ImpactMode::persist;
     if (const auto conflict = model::contact_scheme_conflict(*scheme, enforcement, impact))
       c.fail(child(child(child("", "contact"), i), conflict->field), conflict->reason);
   }
@@ -516,7 +548,13 @@ void check_scene(json& scene, Checker& c) {
   SurfaceIndex index;
   if (json* bodies = member(scene, "bodies", "", Presence::must(), c))
     index = check_bodies(*bodies, "/bodies", c);
-  check_entries(scene, "contact", index, check_contact_pair, c);
+  const bool statics = names_static(scene);
+  check_entries(
+      scene, "contact", index,
+      [statics](json& e, const std::string& p, const SurfaceIndex& i, Checker& k) {
+        check_contact_pair(e, p, i, statics, k);
+      },
+      c);
   check_entries(scene, "boundary", index, check_boundary_condition, c);
   check_entries(scene, "loads", index, check_load, c);
   vector3_field(scene, "gravity", "", Presence::or_default(zero3), c);
@@ -526,6 +564,7 @@ void check_scene(json& scene, Checker& c) {
   if (json* o = member(scene, "output", "", Presence::or_default(json::object()), c))
     check_output(*o, "/output", c);
   if (scene.contains("time") && scene["time"].is_object()) check_contact_scheme(scene, c);
+  if (statics) check_static_bodies(scene, c);
 }
 
 }  // namespace stoss::scene::detail

@@ -177,8 +177,29 @@ std::vector<Warning> warnings(const model::Model& m, const Estimates& e) {
   return out;
 }
 
+/// "/contact/0, /contact/1 and /contact/3".
+std::string pair_list(const std::vector<int>& written) {
+  std::string out;
+  for (size_t k = 0; k < written.size(); ++k) {
+    const char* separator = k == 0 ? "" : k + 1 == written.size() ? " and " : ", ";
+    out += separator + std::string("/contact/") + std::to_string(written[k]);
+  }
+  return out;
+}
+
+/// The merge of pairs that share a slave (docs/scene.md, "Pairs that share a slave").
+ResolvedChoice merge_choice(const model::Model& m, const model::Model::MergedPairs& merge) {
+  const nlohmann::json& pair = m.scene["contact"][merge.pair];
+  const std::string master = pair["master"].dump();
+  return {pair_pointer(merge.pair, "master"), master,
+          "pairs " + pair_list(merge.written) + " as written share slave " + pair["slave"].dump() +
+              " and their masters are surfaces of one body: merged into one pair with the union master " +
+              master + ", so a slave node crosses from one surface to the next with no seam"};
+}
+
 std::vector<ResolvedChoice> resolved_choices(const model::Model& m) {
   std::vector<ResolvedChoice> out;
+  for (const model::Model::MergedPairs& merge : m.merged_contact) out.push_back(merge_choice(m, merge));
   for (size_t i = 0; i < m.contact.size(); ++i) {
     const model::ContactPair& p = m.contact[i];
     const bool smooth = p.master_surface == model::MasterSurface::smooth;

@@ -3,6 +3,7 @@
 #include "core/time/energy_momentum.hpp"
 #include "core/time/generalized_alpha.hpp"
 #include "core/time/midpoint.hpp"
+#include "core/time/static_scheme.hpp"
 
 namespace stoss::time {
 
@@ -16,6 +17,8 @@ std::unique_ptr<Scheme> make_scheme(const model::TimeSpec& time) {
       return std::make_unique<GeneralizedAlpha>(GeneralizedAlpha::hht(time.alpha));
     case model::Scheme::generalized_alpha:
       return std::make_unique<GeneralizedAlpha>(GeneralizedAlpha::chung_hulbert(time.rho_infinity));
+    case model::Scheme::equilibrium:
+      return std::make_unique<Static>();
   }
   return nullptr;
 }

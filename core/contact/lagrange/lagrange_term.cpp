@@ -10,6 +10,8 @@ namespace {
 
 /// Activation threshold of §3.5: tol_g = 1e-10 × face size.
 constexpr double activation_gap = 1e-10;
+/// closes_touching: a gap up to this fraction of the face size counts as touching (static steps).
+constexpr double touching_gap = 1e-8;
 /// impact located (§4.6.2): an event closer than this fraction of the step to t_n toggles without a cut.
 constexpr double least_cut = 1e-3;
 /// impact located: events within this fraction of the step after the earliest one share its cut.
@@ -73,6 +75,22 @@ void LagrangeContactTerm::prepare_step(const time::StepContext& step) {
   start_ = elements_;
   reindex();
   start_of_ = element_of_;
+  if (pair_.closes_touching) activate_touching(step);
+}
+
+void LagrangeContactTerm::activate_touching(const time::StepContext& step) {
+  bool changed = false;
+  for (int i : broad_.near_slaves()) {
+    if (element_of_[i] >= 0) continue;
+    const Eigen::Vector3d x_s = step.x_n.segment<3>(3 * surfaces_.slave_nodes[i]);
+    const FaceProjection f = best_face(x_s, broad_.candidates(i), surfaces_, step.x_n);
+    if (!f.found() || !(f.projection.gap <= touching_gap * surfaces_.face_size[f.face])) continue;
+    elements_.push_back(new_element(i, f, step));  // released after the pass if in tension (§3.5)
+    changed = true;
+  }
+  if (!changed) return;
+  reindex();
+  ++generation_;
 }
 
 void LagrangeContactTerm::begin_step(const time::StepContext& step, Eigen::VectorXd& z) {

@@ -98,6 +98,9 @@ class LagrangeContactTerm : public ContactTerm {
   ContactElement new_element(int slave, const FaceProjection& at_end, const time::StepContext& step) const;
   bool release_tensile(const time::StepContext& step, const Eigen::VectorXd& z);
   bool activate_penetrating(const time::StepContext& step, const Eigen::VectorXd& z);
+  /// Static steps (pair closes_touching): the slave nodes within touching_gap of the master at x_n become
+  /// active before the step's first pass.
+  void activate_touching(const time::StepContext& step);
   void reindex();
   /// impact located: whether slave i's event must start a step of its own (§4.6.2).
   bool locates(int slave, const time::StepContext& step) const;

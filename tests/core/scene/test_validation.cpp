@@ -230,7 +230,7 @@ INSTANTIATE_TEST_SUITE_P(Rules, SceneRule, ::testing::Values(
   Violation{"step count", {{"/time/step", 1e-12}, {"/time/end", 10}}, "/time/step",
             "must give at most 1e9 steps, got end / step = 10000000000000"},
   Violation{"scheme value", {{"/time/scheme", "rk4"}}, "/time/scheme",
-            R"(must be one of energy_momentum, midpoint, hht, generalized_alpha, got "rk4")"},
+            R"(must be one of energy_momentum, midpoint, hht, generalized_alpha, static, got "rk4")"},
   Violation{"rho_infinity range", {{"/time/scheme", "generalized_alpha"}, {"/time/rho_infinity", 1.5}},
             "/time/rho_infinity", "must be in [0, 1], got 1.5"},
   Violation{"penalty with generalized_alpha",

@@ -1,0 +1,159 @@
+// The system shall solve static load steps selected in a scene (`time.scheme: "static"`, issue 23 §3;
+// docs/theory.md §5b.6) with contact, friction and loads:
+// - a block pressed onto a held block by a follower pressure p ramped over 4 steps and held for 2 passes the
+//   load through the pair: contact_force_z equals the pressure's resultant p A_top (A_top the deformed top's
+//   area, from the last frame) and the lower block's support reaction within 1e-10 of the load, over a
+//   contact_area of 1 within 1e-12, with kinetic energy 0 in every row;
+// - a block on rollers pulled by a dead traction σ ramped over 4 steps is held by its bottom with −σ A
+//   at each load level within 1e-10 σ, and its top rises by σ L / E within 3 (σ / E)²;
+// - a block pressed by p and then sheared by a prescribed motion of its top over a held block with Coulomb
+//   friction μ (penalty): the pair carries the pressure at each level within 1e-9, its tangential force never
+//   exceeds μ times its normal force (1e-9), every slave node slides at the end of the shear with the
+//   friction above 0.95 μ f_n, and at the end friction, the top's support and the pressure on the tilted top
+//   balance in x within 1e-9 of the load.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "../core/recording_observer.hpp"
+#include "core/scene/scene.hpp"
+#include "core/simulate.hpp"
+
+namespace stoss {
+namespace {
+
+using nlohmann::json;
+
+constexpr double pressure = 5;  // on the upper block's 1 × 1 top
+
+/// A 2 × 2 × 1 block (`upper`) on a 3 × 3 × 1 block (`lower`) whose bottom is held; boundary entry 0 is
+/// lower/bottom, the rest `upper_boundary`; the pressure p on upper/top ramped 0 → 1 over [0, 1].
+json pressed_blocks(const json& upper_boundary, const json& pair) {
+  const json material = {{"youngs_modulus", 1000}, {"poisson_ratio", 0.3}, {"density", 1}};
+  const auto block = [&](const char* name, double z0, int n) {
+    return json{
+        {"name", name},
+        {"mesh", {{"box", {{"min", {0, 0, z0}}, {"max", {1, 1, z0 + 0.5}}, {"divisions", {n, n, 1}}}}}},
+        {"material", material}};
+  };
+  json boundary = json::array({{{"surface", "lower/bottom"}}});
+  for (const json& e : upper_boundary) boundary.push_back(e);
+  return {
+      {"format", "stoss-scene/1"},
+      {"bodies", {block("lower", 0, 3), block("upper", 0.5, 2)}},
+      {"contact", json::array({pair})},
+      {"boundary", boundary},
+      {"loads",
+       json::array({{{"surface", "upper/top"}, {"pressure", pressure}, {"amplitude", {{0, 0}, {1, 1}}}}})},
+      {"time", {{"scheme", "static"}, {"step", 0.25}, {"end", 1.5}}},
+      {"solver", {{"tolerance", 1e-12}}}};
+}
+
+/// z-component of the vector area of `surface` at positions x (flat bilinear faces: exact).
+double area_z(const model::Model& m, const std::string& surface, const Eigen::VectorXd& x) {
+  double a = 0;
+  for (const mesh::Quad& q : m.mesh.surface(surface)) {
+    const auto p = [&](int k) { return Eigen::Vector3d(x.segment<3>(3 * q[k])); };
+    a += 0.5 * (p(2) - p(0)).cross(p(3) - p(1)).z();
+  }
+  return a;
+}
+
+TEST(StaticSteps, ABlockPressedOntoAHeldBlockCarriesThePressureThroughTheContact) {
+  const json rollers =
+      json::array({{{"surface", "upper/xmin"}, {"fix", "x"}}, {{"surface", "upper/ymin"}, {"fix", "y"}}});
+  const model::Model m =
+      scene::load(pressed_blocks(rollers, {{"slave", "upper/bottom"}, {"master", "lower/top"}}));
+  EXPECT_TRUE(m.has_effect(model::effect::static_steps));
+  EXPECT_TRUE(m.has_effect(model::effect::pressure));
+  testing::RecordingObserver r;
+  const model::Summary s = simulate(m, r);
+  ASSERT_TRUE(s.completed);
+  EXPECT_EQ(s.verdict, "ok");
+  const double fz = r.series("contact_force", 2).back(), bottom = r.series("reaction_force", 2).back();
+  const double resultant = pressure * area_z(m, "upper/top", r.frames.back().position);
+  EXPECT_GT(resultant, pressure) << "the top widened under the load";
+  EXPECT_LT(resultant, pressure * 1.01);
+  EXPECT_NEAR(fz, resultant, 1e-10 * pressure) << "the pair carries the pressure's resultant";
+  EXPECT_NEAR(bottom, fz, 1e-10 * pressure) << "and the lower block's support carries the pair";
+  EXPECT_NEAR(r.series("contact_area").back(), 1.0, 1e-12);
+  for (double k : r.series("kinetic_energy")) EXPECT_EQ(k, 0);
+  // Half the load after 2 of the 4 ramp steps: each step is the equilibrium of its load level.
+  EXPECT_NEAR(r.series("contact_force", 2)[2], 0.5 * resultant, 1e-3 * pressure);
+  std::printf("static pressed blocks: contact force %.15f, bottom reaction %.15f, p A_top %.15f\n", fz,
+              bottom, resultant);
+}
+
+TEST(StaticSteps, ABlockOnRollersPulledByADeadTractionIsHeldByItsBottomAtEveryLoadLevel) {
+  const double sigma = 20, E = 1000;  // σ / E = 2 %
+  const model::Model m = scene::load(json::parse(R"({
+    "format": "stoss-scene/1", "name": "block pulled by a traction in load steps",
+    "bodies": [ { "name": "block",
+                  "mesh": { "box": { "min": [0, 0, 0], "max": [1, 1, 1], "divisions": [2, 2, 2] } },
+                  "material": { "youngs_modulus": 1000, "poisson_ratio": 0.3, "density": 1 } } ],
+    "boundary": [ { "surface": "block/bottom", "fix": "z" }, { "surface": "block/xmin", "fix": "x" },
+                  { "surface": "block/ymin", "fix": "y" } ],
+    "loads": [ { "surface": "block/top", "traction": [0, 0, 20], "amplitude": [[0, 0], [1, 1]] } ],
+    "time": { "scheme": "static", "step": 0.25, "end": 1 },
+    "solver": { "tolerance": 1e-12 } })"));
+  EXPECT_TRUE(m.has_effect(model::effect::traction));
+  testing::RecordingObserver r;
+  ASSERT_TRUE(simulate(m, r).completed);
+  const auto bottom = r.series("reaction_force", 2);
+  for (size_t n = 1; n < bottom.size(); ++n)
+    EXPECT_NEAR(bottom[n], -sigma * 0.25 * double(n), 1e-10 * sigma) << "row " << n;
+  // The top rises by about σ L / E (St. Venant–Kirchhoff's quadratic terms add O(σ/E) relative).
+  const int corner = m.mesh.named_nodes("block/top").back();
+  const double rise = r.frames.back().position[3 * corner + 2] - 1;
+  EXPECT_NEAR(rise, sigma / E, 3 * (sigma / E) * (sigma / E));
+  std::printf("static traction: bottom reaction %.15f for σ A = %.1f, top rise %.6f (σ L / E = %.3f)\n",
+              bottom.back(), sigma, rise, sigma / E);
+}
+
+/// The x component of the vector area of `surface` at positions x.
+double area_x(const model::Model& m, const std::string& surface, const Eigen::VectorXd& x) {
+  double a = 0;
+  for (const mesh::Quad& q : m.mesh.surface(surface)) {
+    const auto p = [&](int k) { return Eigen::Vector3d(x.segment<3>(3 * q[k])); };
+    a += 0.5 * (p(2) - p(0)).cross(p(3) - p(1)).x();
+  }
+  return a;
+}
+
+TEST(StaticSteps, ABlockShearedOverAHeldBlockWithFrictionSlidesWithinTheCoulombLimit) {
+  const double mu = 0.3, shift = 0.02;  // far past the stick limit μ p A / (G A / H) ≈ 2e-3
+  const json sheared = json::array({{{"surface", "upper/top"},
+                                     {"fix", "xy"},
+                                     {"displacement", {shift, 0, 0}},
+                                     {"amplitude", {{0, 0}, {1, 0}, {1.5, 1}}}}});
+  json scene =
+      pressed_blocks(sheared, {{"slave", "upper/bottom"}, {"master", "lower/top"}, {"friction", mu}});
+  scene["time"]["end"] = 2.0;
+  const model::Model m = scene::load(scene);
+  EXPECT_TRUE(m.has_effect(model::effect::contact_frictional));
+  testing::RecordingObserver r;
+  const model::Summary s = simulate(m, r);
+  ASSERT_TRUE(s.completed);
+  const auto fx = r.series("contact_force", 0), fy = r.series("contact_force", 1),
+             fz = r.series("contact_force", 2);
+  for (size_t n = 1; n < fz.size(); ++n) {
+    EXPECT_NEAR(fz[n], pressure * std::min(1.0, 0.25 * double(n)), 1e-9 * pressure) << "row " << n;
+    EXPECT_LE(std::hypot(fx[n], fy[n]), mu * fz[n] * (1 + 1e-9)) << "Coulomb's inequality, row " << n;
+  }
+  const size_t ramp_end = 6;  // t = 1.5, the top's last move
+  EXPECT_EQ(r.series("slipping_contacts")[ramp_end], 9) << "every slave node slides";
+  EXPECT_GT(-fx[ramp_end], 0.95 * mu * fz[ramp_end]) << "sliding: friction near μ f_n, against the motion";
+  // The upper block's x balance at the end: friction, the top's support and the pressure on the tilted top.
+  const double pressure_x = -pressure * area_x(m, "upper/top", r.frames.back().position);
+  EXPECT_NEAR(fx.back() + r.series("reaction_force", 3 + 0).back() + pressure_x, 0, 1e-9 * pressure);
+  std::printf(
+      "static sheared block: |f_t| / f_n = %.6f at the ramp's end (μ = %.2f), %.6f at rest; x balance %.1e\n",
+      -fx[ramp_end] / fz[ramp_end], mu, -fx.back() / fz.back(),
+      fx.back() + r.series("reaction_force", 3).back() + pressure_x);
+}
+
+}  // namespace
+}  // namespace stoss
