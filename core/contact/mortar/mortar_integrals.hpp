@@ -63,6 +63,7 @@ FacePairIntegrals<T> face_pair_integrals(const QuadNodes<T>& s, const QuadNodes<
       throw std::domain_error(
           "mortar: the slave face's projection onto its plane is not convex (docs/theory.md §4.7)");
   const Polygon<T> clip = clip_convex(pm_ccw, ps, tol);
+  if (clip.empty()) return out;
   const Eigen::Matrix<T, 4, 4> a = kind == Multipliers::dual
                                        ? dual_coefficients(ps)
                                        : Eigen::Matrix<T, 4, 4>(Eigen::Matrix<T, 4, 4>::Identity());
