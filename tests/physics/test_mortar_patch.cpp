@@ -45,7 +45,7 @@ json stacked_blocks(int lower, int upper, bool upper_is_slave) {
       {"contact", json::array({pair})},
       {"boundary", json::array({{{"surface", "lower/bottom"}}})},
       {"gravity", {0, 0, -gravity}},
-      {"time", {{"scheme", "hht"}, {"alpha", -1.0 / 3}, {"step", 0.04}, {"end", 1.6}}}};
+      {"time", {{"scheme", "hht"}, {"alpha", -1.0 / 3}, {"step", 0.04}, {"end", 16.0}}}};
 }
 
 struct MortarPatch {

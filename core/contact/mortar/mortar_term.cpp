@@ -70,8 +70,9 @@ void MortarContactTerm::find_face_pairs(const time::StepContext& step) {
   const auto same = [](const FacePair& a, const FacePair& b) {
     return a.slave_face == b.slave_face && a.master_face == b.master_face;
   };
-  if (pairs.size() != pairs_.size() || !std::equal(pairs.begin(), pairs.end(), pairs_.begin(), same))
-    ++generation_;
+  // The same pairs keep their registered dofs and blocks (register_blocks runs only on a new generation).
+  if (pairs.size() == pairs_.size() && std::equal(pairs.begin(), pairs.end(), pairs_.begin(), same)) return;
+  ++generation_;
   pairs_ = std::move(pairs);
 }
 
