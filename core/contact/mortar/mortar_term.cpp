@@ -211,8 +211,8 @@ void MortarContactTerm::end_step(const time::StepContext& step, const Eigen::Vec
       report_.max_new_gap_target = std::max(report_.max_new_gap_target, target_[j] / weight[j]);
     report_.max_own_face_penetration =
         std::max(report_.max_own_face_penetration, -(gap[j] - target_[j]) / weight[j]);
-    if (weight[j] > 0)
-      pressure_.emplace_back(surfaces_.slave_nodes[j], std::max(-lambda_[j], 0.0) / weight[j]);  // (4.84)
+    // (4.84): λ_j is conjugate to g̃_j, so slave node j's force is λ_j D_jj n and its pressure −λ_j.
+    if (weight[j] > 0) pressure_.emplace_back(surfaces_.slave_nodes[j], std::max(-lambda_[j], 0.0));
   }
   lambda_n_ = lambda_;
   committed_active_ = active_;
