@@ -132,5 +132,10 @@ TEST(MortarPatch, MatchingMeshesTransmitAUniformPressure) {
   expect_patch_passed(run(3, 3, true));
 }
 
+// DISABLED (too slow for CI, run by hand): 16 slave faces against 49 master faces, 400 steps.
+TEST(MortarPatch, DISABLED_FourByFourOnSevenBySevenTransmitsAUniformPressure) {
+  expect_patch_passed(run(7, 4, true));
+}
+
 }  // namespace
 }  // namespace stoss
