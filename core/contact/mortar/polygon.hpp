@@ -118,7 +118,9 @@ std::vector<ClipVertex<T>> clip_by_line(const std::vector<ClipVertex<T>>& subjec
     if (side[i] == Side::in && start == n) start = i;
     any_out = any_out || side[i] == Side::out;
   }
-  if (!any_out) return subject;  // nothing outside: ON vertices stay (the overlap grows by ≤ tol × length)
+  // A kept ON vertex stays where it is, also up to tol outside: moved onto the line (in value only) it would
+  // no longer be the point whose derivative the dual numbers carry.
+  if (!any_out) return subject;  // nothing outside: every vertex stays
   if (start == n) return {};     // nothing strictly inside: at most a sliver of width tol
   // The crossing of the edge i → i+1 with the clip line (4.70), from the input points of the edge's line; the
   // edge's own ends (clamped) where round-off would put it off the edge.
@@ -152,13 +154,6 @@ std::vector<ClipVertex<T>> clip_by_line(const std::vector<ClipVertex<T>>& subjec
     if (!std::isfinite(t) || -t * length_ij > 2 * tol || (t - 1) * length_ij > 2 * tol) return -1.0;
     return std::abs(s[i] - s[j]) / length_ij;
   };
-  // An ON vertex kept slightly outside moves onto the line in value only, so the overlap never grows.
-  const auto kept = [&](size_t i) {
-    ClipVertex<T> v = subject[i];
-    if (s[i] < 0)
-      for (int c = 0; c < 2; ++c) v.p[c] -= T(s[i] * value_of(inward[c]));
-    return v;
-  };
   // Drop the run (cross the edge beside it that stays outside) unless that edge crosses far less steeply.
   const auto drop_run = [](double dropping, double keeping) {
     return dropping >= 0 && dropping >= 0.25 * keeping;
@@ -181,7 +176,7 @@ std::vector<ClipVertex<T>> clip_by_line(const std::vector<ClipVertex<T>>& subjec
       if (drop_run(steepness(prev), steepness(last))) {
         out.push_back({crossing(prev), k});
       } else {
-        for (size_t r = 0; r < run; ++r) out.push_back(kept((i + r) % n));
+        for (size_t r = 0; r < run; ++r) out.push_back(subject[(i + r) % n]);
         out.push_back({crossing(last), k});
       }
     } else if (before == Side::out && after == Side::in) {
@@ -189,10 +184,10 @@ std::vector<ClipVertex<T>> clip_by_line(const std::vector<ClipVertex<T>>& subjec
         out.push_back({crossing(last), subject[last].line});
       } else {
         out.push_back({crossing(prev), subject[prev].line});
-        for (size_t r = 0; r < run; ++r) out.push_back(kept((i + r) % n));
+        for (size_t r = 0; r < run; ++r) out.push_back(subject[(i + r) % n]);
       }
     } else if (before == Side::in) {
-      for (size_t r = 0; r < run; ++r) out.push_back(kept((i + r) % n));
+      for (size_t r = 0; r < run; ++r) out.push_back(subject[(i + r) % n]);
     }
     step += run;
   }
