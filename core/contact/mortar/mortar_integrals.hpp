@@ -57,9 +57,8 @@ FacePairIntegrals<T> face_pair_integrals(const QuadNodes<T>& s, const QuadNodes<
   if (value_of(signed_area(pm)) < 0) std::reverse(pm_ccw.begin(), pm_ccw.end());
   double size = 0;
   for (int k = 0; k < 4; ++k) size = std::max(size, distance_value<T>(ps[k], ps[(k + 1) % 4]));
-  // (4.70): the ON band. Newton iterates of flat patches hover 1e-13–1e-10 off the kink where a slave rim
-  // edge lies on a master rim edge; inside the band they all see one side of it (1e-14: Newton stalls at
-  // 1e-7).
+  // (4.70): the ON band. Newton iterates of a flat patch move a slave rim edge lying on a master rim edge to
+  // either side of the kink there; inside the band they all see one side (1e-14: Newton stalls at 1e-7).
   const double tol = 1e-9 * size;
   for (int k = 0; k < 4; ++k)  // (4.70) needs a convex clip polygon
     if (value_of(cross2<T>(ps[(k + 1) % 4] - ps[k], ps[(k + 2) % 4] - ps[(k + 1) % 4])) < -tol * tol)
