@@ -132,7 +132,8 @@ TEST(MortarPatch, MatchingMeshesTransmitAUniformPressure) {
   expect_patch_passed(run(3, 3, true));
 }
 
-// DISABLED (too slow for CI, run by hand): 16 slave faces against 49 master faces, 400 steps.
+// DISABLED (too slow for CI, run by hand): 16 slave faces against 49 master faces, 400 steps, 181–469 s.
+// Measured: scatter 1.5e-10, total force / load − 1 = 8.3e-13, 919 Newton iterations.
 TEST(MortarPatch, DISABLED_FourByFourOnSevenBySevenTransmitsAUniformPressure) {
   expect_patch_passed(run(7, 4, true));
 }
