@@ -3,8 +3,9 @@
 // rest), the pair built as a MortarContactTerm by hand (scenes cannot select mortar yet). Under gravity with
 // ν = 0 the exact discrete state is a laterally uniform column whose interface nodes carry p ∫N_j (one
 // element through the height, constant strain): consistent loads of the uniform pressure p = ρ g H. Dual
-// mortar reproduces them on both sides (D diagonal, Σ_j M_jl = ∫N^m_l), so the scatter of p_j = −λ_j/D_jj is
-// round-off, where one-pass NTS scatters by 22–25 % (test_contact_patch.cpp).
+// mortar reproduces them on both sides (D diagonal, Σ_j M_jl = ∫N^m_l), so the scatter of p_j = −λ_j (the
+// node's force λ_j D_jj over D_jj, (4.84)) is round-off, where one-pass NTS scatters by 22–25 %
+// (test_contact_patch.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -45,7 +46,7 @@ json stacked_blocks(int lower, int upper, bool upper_is_slave) {
       {"contact", json::array({pair})},
       {"boundary", json::array({{{"surface", "lower/bottom"}}})},
       {"gravity", {0, 0, -gravity}},
-      {"time", {{"scheme", "hht"}, {"alpha", -1.0 / 3}, {"step", 0.04}, {"end", 1.6}}}};
+      {"time", {{"scheme", "hht"}, {"alpha", -1.0 / 3}, {"step", 0.04}, {"end", 16.0}}}};
 }
 
 struct MortarPatch {
@@ -116,21 +117,25 @@ void expect_patch_passed(const MortarPatch& r) {
   EXPECT_LT(r.penetration, 1e-9);
 }
 
-// DISABLED until the kernel's gradient is fixed at nearly parallel edges: in the first step the slave's
-// rim edges lie on the master's rim edges, a Newton iterate tilts them by e ≈ 1e-9, and the dual-number
-// gradient of g̃ jumps to O(1e-5/e) there (test_mortar_term.cpp,
-// DISABLED_GradientStaysBoundedAtNearlyParallelEdges); Newton then stagnates at a residual of 1e-7 (tolerance
-// 1e-10) after the nodes activate.
-TEST(MortarPatch, DISABLED_TwoByTwoOnThreeByThreeTransmitsAUniformPressure) {
+// Newton converges in every step since each clip vertex stays the intersection of its own edges' lines and
+// rim edges within 1e-9 of each other count as one line (4.70): before, it stalled at 1e-7 in the first step
+// where the slave's rim edges lie on the master's.
+TEST(MortarPatch, TwoByTwoOnThreeByThreeTransmitsAUniformPressure) {
   expect_patch_passed(run(3, 2, true));
 }
 
-TEST(MortarPatch, DISABLED_ThreeByThreeOnTwoByTwoTransmitsAUniformPressure) {
+TEST(MortarPatch, ThreeByThreeOnTwoByTwoTransmitsAUniformPressure) {
   expect_patch_passed(run(3, 2, false));
 }
 
-TEST(MortarPatch, DISABLED_MatchingMeshesTransmitAUniformPressure) {
+TEST(MortarPatch, MatchingMeshesTransmitAUniformPressure) {
   expect_patch_passed(run(3, 3, true));
+}
+
+// DISABLED (too slow for CI, run by hand): 16 slave faces against 49 master faces, 400 steps, 181–469 s.
+// Measured: scatter 1.5e-10, total force / load − 1 = 8.3e-13, 919 Newton iterations.
+TEST(MortarPatch, DISABLED_FourByFourOnSevenBySevenTransmitsAUniformPressure) {
+  expect_patch_passed(run(7, 4, true));
 }
 
 }  // namespace

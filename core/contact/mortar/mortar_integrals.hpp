@@ -57,12 +57,15 @@ FacePairIntegrals<T> face_pair_integrals(const QuadNodes<T>& s, const QuadNodes<
   if (value_of(signed_area(pm)) < 0) std::reverse(pm_ccw.begin(), pm_ccw.end());
   double size = 0;
   for (int k = 0; k < 4; ++k) size = std::max(size, distance_value<T>(ps[k], ps[(k + 1) % 4]));
-  const double tol = 1e-14 * size;  // (4.70)
-  for (int k = 0; k < 4; ++k)       // (4.70) needs a convex clip polygon
+  // (4.70): the ON band. Newton iterates of a flat patch move a slave rim edge lying on a master rim edge to
+  // either side of the kink there; inside the band they all see one side (1e-14: Newton stalls at 1e-7).
+  const double tol = 1e-9 * size;
+  for (int k = 0; k < 4; ++k)  // (4.70) needs a convex clip polygon
     if (value_of(cross2<T>(ps[(k + 1) % 4] - ps[k], ps[(k + 2) % 4] - ps[(k + 1) % 4])) < -tol * tol)
       throw std::domain_error(
           "mortar: the slave face's projection onto its plane is not convex (docs/theory.md §4.7)");
   const Polygon<T> clip = clip_convex(pm_ccw, ps, tol);
+  if (clip.empty()) return out;
   const Eigen::Matrix<T, 4, 4> a = kind == Multipliers::dual
                                        ? dual_coefficients(ps)
                                        : Eigen::Matrix<T, 4, 4>(Eigen::Matrix<T, 4, 4>::Identity());

@@ -70,8 +70,9 @@ void MortarContactTerm::find_face_pairs(const time::StepContext& step) {
   const auto same = [](const FacePair& a, const FacePair& b) {
     return a.slave_face == b.slave_face && a.master_face == b.master_face;
   };
-  if (pairs.size() != pairs_.size() || !std::equal(pairs.begin(), pairs.end(), pairs_.begin(), same))
-    ++generation_;
+  // The same pairs keep their registered dofs and blocks (register_blocks runs only on a new generation).
+  if (pairs.size() == pairs_.size() && std::equal(pairs.begin(), pairs.end(), pairs_.begin(), same)) return;
+  ++generation_;
   pairs_ = std::move(pairs);
 }
 
@@ -210,8 +211,8 @@ void MortarContactTerm::end_step(const time::StepContext& step, const Eigen::Vec
       report_.max_new_gap_target = std::max(report_.max_new_gap_target, target_[j] / weight[j]);
     report_.max_own_face_penetration =
         std::max(report_.max_own_face_penetration, -(gap[j] - target_[j]) / weight[j]);
-    if (weight[j] > 0)
-      pressure_.emplace_back(surfaces_.slave_nodes[j], std::max(-lambda_[j], 0.0) / weight[j]);  // (4.84)
+    // (4.84): λ_j is conjugate to g̃_j, so slave node j's force is λ_j D_jj n and its pressure −λ_j.
+    if (weight[j] > 0) pressure_.emplace_back(surfaces_.slave_nodes[j], std::max(-lambda_[j], 0.0));
   }
   lambda_n_ = lambda_;
   committed_active_ = active_;

@@ -172,9 +172,10 @@ TEST_P(MortarIntegrals, GapJacobianMatchesCentralDifferences) {
 }
 
 // A master vertex crossing a slave edge: the master corner (1 ± δ, 0.5) on the slave edge x = 1. The clip
-// polygon gains or loses a vertex there. On affine faces (a parallelogram master) the rule (4.74) is exact
-// and the dual-number Jacobians at δ = ±1e-12 agree to round-off; on a warped master the inverse map is not
-// polynomial and the fan's quadrature error shows as a jump (measured 4.7e-8 standard, 2.6e-7 dual).
+// polygon gains or loses a vertex there. δ = ±1e-12 lies inside the ON band of (4.70), so both signs are
+// clipped alike; with the first kernel's 1e-14 band the sides agreed to round-off on affine faces (a
+// parallelogram master, rule (4.74) exact) and jumped by the fan's quadrature error on a warped master
+// (4.7e-8 standard, 2.6e-7 dual). The two sides outside the band: test_mortar_topology.cpp.
 void expect_smooth_crossing(const SegmentNodes& m, Multipliers kind, double jump_bound) {
   const SegmentNodes s = rectangle(0, 0, 1, 1, 0.05, true);
   std::vector<Eigen::Matrix<double, 4, 24>> J;
