@@ -8,6 +8,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -31,6 +32,8 @@ class Checker {
   /// "body/surface" → why a surface the body's mesh file defines is not on the body (appended to the
   /// issue of a reference to it).
   std::map<std::string, std::string> surface_notes;
+  /// body → the node sets (Abaqus *NSET) of its mesh file, which a boundary entry may name like a surface.
+  std::map<std::string, std::set<std::string>> node_sets;
 
  private:
   std::vector<Issue> issues_;

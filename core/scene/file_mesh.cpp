@@ -192,6 +192,8 @@ std::optional<std::set<std::string>> check_file_mesh(json& mesh, const std::stri
   std::set<std::string> names;
   for (const auto& [name, quads] : selection.body.surfaces) names.insert(name);
   if (body_name)
+    for (const auto& [name, nodes] : selection.body.node_sets) c.node_sets[*body_name].insert(name);
+  if (body_name)
     for (const std::string& name : selection.empty_surfaces)
       c.surface_notes[*body_name + "/" + name] =
           file + " defines surface '" + name + "', but none of its faces is on " +

@@ -17,7 +17,8 @@ namespace stoss::scene::detail {
 /// Validates a file mesh member (`mesh` has "file" or "id"), reads the file and checks every selected element
 /// (det J0 > 0 at each Gauss point). Returns the body's surface names (nullopt when the mesh is invalid);
 /// surfaces of the file without a face on the body are noted in checker.surface_notes under
-/// "<body>/<surface>", so that a reference to one says why it is missing.
+/// "<body>/<surface>", so that a reference to one says why it is missing; its node sets go to
+/// checker.node_sets (a boundary entry may name one).
 std::optional<std::set<std::string>> check_file_mesh(json& mesh, const std::string& pointer,
                                                      const std::optional<std::string>& body_name,
                                                      Checker& checker);

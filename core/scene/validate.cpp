@@ -236,7 +236,7 @@ SurfaceIndex check_bodies(json& bodies, const std::string& p, Checker& c) {
 
 /// A "body/surface" reference to an existing surface; returns the body name when it names a body.
 std::optional<std::string> check_surface_ref(const json& value, const std::string& p,
-                                             const SurfaceIndex& index, Checker& c) {
+                                             const SurfaceIndex& index, Checker& c, bool node_sets = false) {
   const auto ref = string(value, p, c);
   if (!ref) return std::nullopt;
   const size_t slash = ref->find('/');
@@ -250,12 +250,18 @@ std::optional<std::string> check_surface_ref(const json& value, const std::strin
     c.fail(p, "no body named " + shown(body));
     return std::nullopt;
   }
-  if (it->second && !it->second->contains(surface)) {
-    std::string known;
-    for (const std::string& s : *it->second) known += (known.empty() ? "" : ", ") + s;
+  const auto sets = c.node_sets.find(body);
+  const bool has_sets = node_sets && sets != c.node_sets.end() && !sets->second.empty();
+  if (it->second && !it->second->contains(surface) && !(has_sets && sets->second.contains(surface))) {
+    const auto list = [](const std::set<std::string>& names) {
+      std::string known;
+      for (const std::string& s : names) known += (known.empty() ? "" : ", ") + s;
+      return known;
+    };
     const auto note = c.surface_notes.find(*ref);
-    c.fail(p, "body " + shown(body) + " has no surface " + shown(surface) + " (it has " + known + ")" +
-                  (note != c.surface_notes.end() ? "; " + note->second : ""));
+    c.fail(p, "body " + shown(body) + " has no surface " + (has_sets ? "or node set " : "") + shown(surface) +
+                  " (it has " + list(*it->second) + (has_sets ? "; node sets " + list(sets->second) : "") +
+                  ")" + (note != c.surface_notes.end() ? "; " + note->second : ""));
   }
   return body;
 }
@@ -361,8 +367,8 @@ void check_displacement(const json& u, const std::string& p, const json* fix, Ch
 
 void check_boundary_condition(json& e, const std::string& p, const SurfaceIndex& index, Checker& c) {
   if (!object_with(e, p, {"surface", "fix", "displacement", "amplitude"}, c)) return;
-  if (const json* surface = member(e, "surface", p, Presence::must(), c))
-    check_surface_ref(*surface, child(p, "surface"), index, c);
+  if (const json* surface = member(e, "surface", p, Presence::must(), c))  // a surface or an *NSET
+    check_surface_ref(*surface, child(p, "surface"), index, c, true);
   const json* fix = member(e, "fix", p, Presence::or_default("xyz"), c);
   if (fix) check_fix(*fix, child(p, "fix"), c);
   if (e.contains("displacement")) check_displacement(e["displacement"], child(p, "displacement"), fix, c);

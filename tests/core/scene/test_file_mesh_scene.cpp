@@ -221,6 +221,31 @@ TEST(FileMeshScene, ElementsTheFileLeavesOutAreAWarningAtTheBodysMesh) {
   EXPECT_TRUE(warnings_of("clean.inp").empty());
 }
 
+TEST(FileMeshScene, ABoundaryEntryMayNameAnNsetAndItsNodesStayPut) {
+  // A cube under gravity held by the node set of its base (no surface of that name): the base stays, the
+  // top falls; a name that is neither lists the surfaces and the node sets (issue 25 §4).
+  TempDir dir;
+  dir.write("cube.inp",
+            cube_nodes + "*ELEMENT, TYPE=C3D8R, ELSET=E\n1,1,2,3,4,5,6,7,8\n*NSET, NSET=NBASE\n1,2,3,4\n");
+  json scene = one_body_scene({{"file", "cube.inp"}});
+  scene["gravity"] = {0, 0, -10};
+  scene["boundary"] = {{{"surface", "block/NBASE"}, {"fix", "xyz"}}};
+  const model::Model m = scene::load_file(dir.write("held.json", scene.dump()).string());
+  testing::RecordingObserver r;
+  ASSERT_TRUE(simulate(m, r).completed);
+  const Eigen::VectorXd& x = r.frames.back().position;
+  for (int node = 0; node < 4; ++node) EXPECT_EQ(x.segment<3>(3 * node), m.mesh.nodes[node]) << node;
+  for (int node = 4; node < 8; ++node) EXPECT_LT(x[3 * node + 2], 1.0) << "node " << node << " falls";
+  scene["boundary"][0]["surface"] = "block/NTOP";
+  EXPECT_EQ(issues_of(dir.write("wrong.json", scene.dump())),
+            "/boundary/0/surface: body \"block\" has no surface or node set \"NTOP\" (it has boundary; node "
+            "sets NBASE)");
+  scene["boundary"] = json::array();  // a load needs faces: a node set is no surface there
+  scene["loads"] = {{{"surface", "block/NBASE"}, {"pressure", 1}}};
+  EXPECT_NE(issues_of(dir.write("load.json", scene.dump())).find("has no surface \"NBASE\""),
+            std::string::npos);
+}
+
 TEST(FileMeshScene, ScenesWithoutAFileCannotNameMeshFiles) {
   // The HTTP API loads JSON bodies: a mesh file there would be a path on the server's disk.
   try {
