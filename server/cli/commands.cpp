@@ -36,12 +36,14 @@ std::string join(const std::vector<std::string>& items) {
 void print_summary(const model::Model& m, const model::Summary& s) {
   std::printf("steps %d, t = %.6g\n", s.steps, s.end_time);
   // Loads or prescribed motion, the scenes with series/external_work (core/run/series_table.cpp): H − W_ext
-  if (!m.loads.empty() || m.has_effect(model::effect::prescribed_motion)) {
-    std::printf("external work %.6e (W_ext, series/external_work at the end)\n", s.external_work);
+  const bool external = !m.loads.empty() || m.has_effect(model::effect::prescribed_motion);
+  if (external) std::printf("external work %.6e (W_ext, series/external_work at the end)\n", s.external_work);
+  if (m.time.scheme == model::Scheme::equilibrium)  // equilibria at load levels keep no energy between them
+    std::printf("energy drift: not reported (static load steps)\n");
+  else if (external)
     std::printf("energy drift %.3e (H − W_ext, relative, max over steps)\n", s.energy_drift);
-  } else {
+  else
     std::printf("energy drift %.3e (relative, max over steps)\n", s.energy_drift);
-  }
   if (model::has_check(s, "linear_momentum_drift"))  // the system is free
     std::printf("momentum drift: linear %.3e, angular %.3e\n", s.linear_momentum_drift,
                 s.angular_momentum_drift);

@@ -94,6 +94,24 @@ TEST(Cli, RunWithALoadPrintsTheExternalWorkAndTheDriftOfHMinusW) {
   EXPECT_EQ(free.output.find("external work"), std::string::npos) << "no loads: no external work line";
 }
 
+// Static load steps are equilibria at each load level: no energy is kept between them, so no drift is
+// printed.
+TEST(Cli, StaticRunSaysItsEnergyDriftIsNotReported) {
+  test::TempDir dir;
+  nlohmann::json scene = bar_scene();
+  const std::string body = scene["bodies"][0]["name"];
+  scene["time"] = {{"scheme", "static"}, {"step", 0.5}, {"end", 1}};
+  scene["bodies"][0].erase("initial_velocity");
+  scene["bodies"][0].erase("initial_angular_velocity");
+  scene["boundary"] = {{{"surface", body + "/bottom"}, {"fix", "xyz"}}};
+  scene["loads"] = {{{"surface", body + "/top"}, {"traction", {0, 0, 1}}, {"amplitude", {{0, 0}, {1, 1}}}}};
+  const Command c = stoss("run " + write(dir, scene) + " -o " + (dir.path() / "out").string());
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  EXPECT_NE(c.output.find("external work "), std::string::npos) << c.output;
+  EXPECT_NE(c.output.find("energy drift: not reported (static load steps)"), std::string::npos) << c.output;
+  EXPECT_EQ(c.output.find("max over steps)"), std::string::npos) << c.output;
+}
+
 // A suspect run (docs/results.md "Verdict"): an iteration cap of 10 puts the Newton bound at
 // 0.6 · 10 = 6 iterations per step, and the tumbling bar takes 7. The result is kept either way; the
 // warning block names the failed check, result.h5 carries verdict and checks, and --strict exits 3.
