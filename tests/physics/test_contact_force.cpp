@@ -18,6 +18,7 @@
 #include "core/run/problem.hpp"
 #include "core/scene/scene.hpp"
 #include "core/simulate.hpp"
+#include "stacked_blocks.hpp"
 
 namespace stoss {
 namespace {
@@ -34,23 +35,11 @@ constexpr double pressure = 5;  // on the upper block's top, area 1 × 1
 /// (test_contact_patch.cpp). Boundary entries: 0 lower/bottom, 1 lower/xmin, 2 lower/ymin, 3 upper/xmin,
 /// 4 upper/ymin.
 model::Model pressed_blocks() {
-  const json material = {{"youngs_modulus", 1000}, {"poisson_ratio", 0.3}, {"density", 1}};
-  const auto block = [&](const char* name, double z0, int n) {
-    return json{
-        {"name", name},
-        {"mesh", {{"box", {{"min", {0, 0, z0}}, {"max", {1, 1, z0 + 0.5}}, {"divisions", {n, n, 1}}}}}},
-        {"material", material}};
-  };
-  json boundary = json::array({{{"surface", "lower/bottom"}, {"fix", "z"}}});
-  for (const char* body : {"lower", "upper"}) {
-    boundary.push_back({{"surface", std::string(body) + "/xmin"}, {"fix", "x"}});
-    boundary.push_back({{"surface", std::string(body) + "/ymin"}, {"fix", "y"}});
-  }
   return scene::load(
       json{{"format", "stoss-scene/1"},
-           {"bodies", {block("lower", 0, 3), block("upper", 0.5, 2)}},
+           {"bodies", {testing::stacked_block("lower", 0, 3, 1), testing::stacked_block("upper", 0.5, 2, 1)}},
            {"contact", json::array({{{"slave", "upper/bottom"}, {"master", "lower/top"}}})},
-           {"boundary", boundary},
+           {"boundary", testing::roller_boundary()},
            {"loads", json::array({{{"surface", "upper/top"}, {"traction", {0, 0, -pressure}}}})},
            {"time", {{"scheme", "hht"}, {"alpha", -1.0 / 3}, {"step", 0.04}, {"end", 16.0}}},
            {"solver", {{"tolerance", 1e-12}}},

@@ -15,6 +15,7 @@
 #include "../core/recording_observer.hpp"
 #include "core/scene/scene.hpp"
 #include "core/simulate.hpp"
+#include "stacked_blocks.hpp"
 
 namespace stoss {
 namespace {
@@ -24,22 +25,12 @@ using nlohmann::json;
 constexpr double applied_pressure = 10;
 
 model::Model patch(int slave_divisions, int master_divisions, const std::string& master_surface) {
-  const json material = {{"youngs_modulus", 1000}, {"poisson_ratio", 0.3}, {"density", 1}};
-  const auto block = [&](const char* name, double z0, int n) {
-    return json{
-        {"name", name},
-        {"mesh", {{"box", {{"min", {0, 0, z0}}, {"max", {1, 1, z0 + 0.5}}, {"divisions", {n, n, 2}}}}}},
-        {"material", material}};
-  };
-  json boundary = {{{"surface", "lower/bottom"}, {"fix", "z"}}};
-  for (const char* body : {"lower", "upper"}) {
-    boundary.push_back({{"surface", std::string(body) + "/xmin"}, {"fix", "x"}});
-    boundary.push_back({{"surface", std::string(body) + "/ymin"}, {"fix", "y"}});
-  }
   return scene::load(
       json{{"format", "stoss-scene/1"},
-           {"bodies", {block("lower", 0, master_divisions), block("upper", 0.5, slave_divisions)}},
-           {"boundary", boundary},
+           {"bodies",
+            {testing::stacked_block("lower", 0, master_divisions, 2),
+             testing::stacked_block("upper", 0.5, slave_divisions, 2)}},
+           {"boundary", testing::roller_boundary()},
            {"loads",
             {{{"surface", "upper/top"}, {"pressure", applied_pressure}, {"amplitude", {{0, 0}, {1, 1}}}}}},
            {"contact",

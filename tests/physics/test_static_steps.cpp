@@ -21,6 +21,7 @@
 #include "../core/recording_observer.hpp"
 #include "core/scene/scene.hpp"
 #include "core/simulate.hpp"
+#include "stacked_blocks.hpp"
 
 namespace stoss {
 namespace {
@@ -32,18 +33,11 @@ constexpr double pressure = 5;  // on the upper block's 1 × 1 top
 /// A 2 × 2 × 1 block (`upper`) on a 3 × 3 × 1 block (`lower`) whose bottom is held; boundary entry 0 is
 /// lower/bottom, the rest `upper_boundary`; the pressure p on upper/top ramped 0 → 1 over [0, 1].
 json pressed_blocks(const json& upper_boundary, const json& pair) {
-  const json material = {{"youngs_modulus", 1000}, {"poisson_ratio", 0.3}, {"density", 1}};
-  const auto block = [&](const char* name, double z0, int n) {
-    return json{
-        {"name", name},
-        {"mesh", {{"box", {{"min", {0, 0, z0}}, {"max", {1, 1, z0 + 0.5}}, {"divisions", {n, n, 1}}}}}},
-        {"material", material}};
-  };
   json boundary = json::array({{{"surface", "lower/bottom"}}});
   for (const json& e : upper_boundary) boundary.push_back(e);
   return {
       {"format", "stoss-scene/1"},
-      {"bodies", {block("lower", 0, 3), block("upper", 0.5, 2)}},
+      {"bodies", {testing::stacked_block("lower", 0, 3, 1), testing::stacked_block("upper", 0.5, 2, 1)}},
       {"contact", json::array({pair})},
       {"boundary", boundary},
       {"loads",
