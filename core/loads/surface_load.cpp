@@ -76,10 +76,22 @@ Eigen::VectorXd SurfaceLoad::step_force(const time::StepContext& step, const Eig
   return out;
 }
 
+Eigen::VectorXd SurfaceLoad::force_at(double t, const Eigen::VectorXd& x) const {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(x.size());
+  FaceVector f;
+  for (size_t k = 0; k < faces_.size(); ++k) {
+    face_force(k, face_positions(faces_[k], x), f, nullptr);
+    for (int I = 0; I < 4; ++I) out.segment<3>(3 * faces_[k][I]) += amplitude_(t) * f.segment<3>(3 * I);
+  }
+  return out;
+}
+
 void SurfaceLoad::end_step(const time::StepContext& step, const Eigen::VectorXd& z) {
   const Eigen::Index n = step.x_n.size();
   const Eigen::VectorXd f = step_force(step, z.head(n));
-  work_ += f.dot(z.head(n) - step.x_n);  // W_step = f_alg·Δx (5b.5)
+  // W_step = f_alg·Δx (5b.5); between two equilibria the trapezoid rule (5b.7b)
+  const Eigen::VectorXd f_work = step.inertia ? f : Eigen::VectorXd(0.5 * (force_at(t_, step.x_n) + f));
+  work_ += f_work.dot(z.head(n) - step.x_n);
   impulse_ += step.force_factor * f.reshaped(3, n / 3).rowwise().sum();
   t_ += step.h;
 }

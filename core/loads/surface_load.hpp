@@ -25,14 +25,16 @@ class SurfaceLoad : public time::Term {
   void begin_step(const time::StepContext& step, Eigen::VectorXd& z) override;
   void add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
            solve::BlockPattern* K) const override;
-  /// Adds the step's work f_alg·Δx and impulse to the totals and advances the load's clock by h.
+  /// Adds the step's work (f_alg·Δx, or the trapezoid rule between two equilibria) and impulse to the
+  /// totals and advances the load's clock by h.
   void end_step(const time::StepContext& step, const Eigen::VectorXd& z) override;
   /// "time", "work" and "impulse": the clock and the totals (a checkpoint's record of the load).
   time::TermState save_state() const override;
   void restore_state(const time::TermState& state, const Eigen::VectorXd& x,
                      const Eigen::VectorXd& v) override;
 
-  /// Σ over the converged steps of f_alg·Δx (5b.5): what the load adds to series/external_work.
+  /// Σ over the converged steps of f_alg·Δx (5b.5), in static steps of the trapezoid rule (5b.7b): what
+  /// the load adds to series/external_work.
   double work() const { return work_; }
   /// Σ over the converged steps of force_factor · Σ_I f_alg,I: the load's impulse on the bodies.
   const Eigen::Vector3d& impulse() const { return impulse_; }
@@ -42,6 +44,8 @@ class SurfaceLoad : public time::Term {
   void set_time(double t) { t_ = t; }
   /// f_alg of the step at x_1, stacked like the positions (3 per node, 0 off the surface).
   Eigen::VectorXd step_force(const time::StepContext& step, const Eigen::VectorXd& x_1) const;
+  /// a(t) f(x), stacked like the positions: the load at time t on positions x.
+  Eigen::VectorXd force_at(double t, const Eigen::VectorXd& x) const;
   const std::vector<mesh::Quad>& faces() const { return faces_; }
   const Amplitude& amplitude() const { return amplitude_; }
 

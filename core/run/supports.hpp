@@ -30,12 +30,14 @@ class PrescribedMotion final : public time::Term {
   void begin_step(const time::StepContext& step, Eigen::VectorXd& z) override;
   void add(const time::StepContext&, const Eigen::VectorXd&, Eigen::VectorXd&,
            solve::BlockPattern*) const override {}
-  /// Adds Σ r_i Δx_i over the prescribed dofs to the work (5b.11).
+  /// Adds Σ r_i Δx_i over the prescribed dofs to the work (5b.11); in static steps Σ ½ (r_n,i + r_i) Δx_i,
+  /// the trapezoid rule between two equilibria (5b.7b).
   void take_reaction(const time::StepContext& step, const Eigen::VectorXd& z,
                      const Eigen::VectorXd& reaction) override;
   /// Advances the clock by h.
   void end_step(const time::StepContext& step, const Eigen::VectorXd& z) override;
-  /// "time" and "work": the clock and the supports' work so far.
+  /// "time", "work" and "reaction": the clock, the supports' work so far and the last step's reaction on
+  /// the prescribed dofs (the trapezoid rule's r_n).
   time::TermState save_state() const override;
   void restore_state(const time::TermState& state, const Eigen::VectorXd& x,
                      const Eigen::VectorXd& v) override;
@@ -47,6 +49,7 @@ class PrescribedMotion final : public time::Term {
   std::vector<loads::Amplitude> amplitudes_;
   double t_ = 0;
   double work_ = 0;
+  std::vector<double> reaction_n_;  ///< the last converged step's reaction per prescribed dof
 };
 
 }  // namespace stoss::run

@@ -134,7 +134,7 @@ class Integrator::StepEquations final : public solve::NonlinearSystem {
       : owner_(owner), state_(s), context_{s.x,    s.v,
                                            h,      owner.scheme_->force_rule(),
                                            log,    owner.scheme_->force_factor(h),
-                                           may_cut} {}
+                                           may_cut, owner.scheme_->has_inertia()} {}
   const StepContext& context() const { return context_; }
   /// The residual scale starts at ‖2 M v_n‖; the first evaluation raises it to the predictor's residual.
   void reset_scale() {

@@ -42,6 +42,8 @@ class Scheme {
   virtual void advance(State& s, double h, const Eigen::VectorXd& x_1) const = 0;
   /// Whether the scheme needs an initial acceleration (HHT: M a_0 = f_ext − f_int(x_0)).
   virtual bool needs_initial_acceleration() const { return false; }
+  /// False for static load steps, which solve equilibria without a mass row (§5b.6).
+  virtual bool has_inertia() const { return true; }
 };
 
 /// The scheme a model asks for: the registry of schemes (scheme.cpp), one line each.

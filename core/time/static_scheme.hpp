@@ -20,6 +20,7 @@ class Static : public Scheme {
   Eigen::VectorXd predict(const State& s, double) const override { return s.x; }
   /// s.x = x_1 with v = a = 0: a static solution has no kinetic energy.
   void advance(State& s, double h, const Eigen::VectorXd& x_1) const override;
+  bool has_inertia() const override { return false; }
 };
 
 }  // namespace stoss::time

@@ -57,6 +57,9 @@ struct StepContext {
   /// Whether a term may still ask to cut this step at a located contact event (Term::requested_cut);
   /// false once the integrator's cuts are spent: a term then handles the event inside the step.
   bool may_cut = false;
+  /// False in static load steps (§5b.6): loads and moving supports then count their work between two
+  /// equilibria by the trapezoid rule (5b.7b), not as f_alg·Δx.
+  bool inertia = true;
 };
 
 /// What a term carries from one converged step to the next (active set, multipliers, friction history), as
