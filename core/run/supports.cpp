@@ -15,7 +15,7 @@ void PrescribedMotion::take_reaction(const time::StepContext& step, const Eigen:
   for (size_t i = 0; i < dofs_.size(); ++i) {
     const int dof = dofs_[i].dof;
     const double force = step.inertia ? reaction[dof] : 0.5 * (reaction_n_[i] + reaction[dof]);  // (5b.7b)
-    work_ += force * (z[dof] - step.x_n[dof]);                                                    // (5b.11)
+    work_ += force * (z[dof] - step.x_n[dof]);                                                   // (5b.11)
     reaction_n_[i] = reaction[dof];
   }
 }

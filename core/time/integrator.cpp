@@ -131,9 +131,9 @@ void Integrator::initialize(State& s) {
 class Integrator::StepEquations final : public solve::NonlinearSystem {
  public:
   StepEquations(Integrator& owner, const State& s, double h, const LogFunction* log, bool may_cut)
-      : owner_(owner), state_(s), context_{s.x,    s.v,
-                                           h,      owner.scheme_->force_rule(),
-                                           log,    owner.scheme_->force_factor(h),
+      : owner_(owner), state_(s), context_{s.x,     s.v,
+                                           h,       owner.scheme_->force_rule(),
+                                           log,     owner.scheme_->force_factor(h),
                                            may_cut, owner.scheme_->has_inertia()} {}
   const StepContext& context() const { return context_; }
   /// The residual scale starts at ‖2 M v_n‖; the first evaluation raises it to the predictor's residual.
