@@ -279,8 +279,11 @@ const positive = (v) => (v > 0 && Number.isFinite(v) ? v : null);   // log axes 
 const PLOTS = [
   { id: 'energy', title: 'Energy', needs: ['total_energy'], labels: ['total H', 'kinetic K', 'strain V'],
     row: (s, i) => [s.total_energy[i], s.kinetic_energy[i], s.strain_energy[i]] },
-  { id: 'energy-error', title: 'Energy error |H − H₀| / |H₀|', needs: ['total_energy'], labels: ['energy error'], logscale: true,
-    row: (s, i, first) => [positive(Math.abs(s.total_energy[i] - first.total_energy) / (Math.abs(first.total_energy) || 1))] },
+  // With loads or moving supports W enters, and the scale is max |H| so far, as energy_drift's (docs/results.md):
+  // a loaded body may start at rest, H₀ = 0. Static load steps keep no energy between load levels: no plot.
+  { id: 'energy-error', needs: ['total_energy'], labels: ['energy error'], logscale: true, dynamicOnly: true,
+    title: (s) => ('external_work' in s ? 'Energy error |H − W − H₀| / max |H|' : 'Energy error |H − H₀| / |H₀|'),
+    row: (s, i, first, state) => [positive(energyError(s, i, first, state))] },
   // Only where the system is free (no supports, no gravity: docs/results.md "Verdict"); elsewhere the
   // momenta change by the supports' and gravity's impulse, which is no error.
   { id: 'momentum-error', title: 'Momentum error ‖L − L₀‖, ‖J − J₀‖', needs: ['linear_momentum', 'angular_momentum'], freeOnly: true,
@@ -308,6 +311,14 @@ const PLOTS = [
     labels: (s) => itemLabels(s.contact_force[0], 'pair'), row: (s, i) => s.contact_force[i].flat() },
 ];
 
+// |H − H₀| / |H₀|, or with external work |H − W − H₀| / max |H| over the rows plotted so far.
+function energyError(s, i, first, state) {
+  const H = s.total_energy[i];
+  if (!('external_work' in s)) return Math.abs(H - first.total_energy) / (Math.abs(first.total_energy) || 1);
+  state.largestEnergy = Math.max(state.largestEnergy || 0, Math.abs(H));
+  return Math.abs(H - s.external_work[i] - first.total_energy) / (state.largestEnergy || 1);
+}
+
 // Labels of an [S,k,3] series' lines from one of its rows: "<word> <k> x", "<word> <k> y", "<word> <k> z".
 function itemLabels(items, word) {
   return items.flatMap((_, k) => ['x', 'y', 'z'].map((c) => `${word} ${k} ${c}`));
@@ -331,7 +342,8 @@ function plotRows(state, series) {
     for (const [name, values] of Object.entries(series)) if (Array.isArray(values)) state.first[name] = values[0];
   }
   for (const plot of PLOTS) {
-    if (!plot.needs.every((name) => name in series) || (plot.freeOnly && !state.free) || (plot.adaptiveOnly && !state.adaptive)) continue;
+    if (!plot.needs.every((name) => name in series) || (plot.freeOnly && !state.free) || (plot.adaptiveOnly && !state.adaptive)
+        || (plot.dynamicOnly && state.static)) continue;
     if (!state.graphs[plot.id]) {
       const box = el('div', { class: 'plot', id: 'plot-' + plot.id, 'data-points': '0' });
       const legend = el('div', { class: 'legend' });
@@ -342,9 +354,10 @@ function plotRows(state, series) {
     }
     const data = state.data[plot.id];
     const entry = state.graphs[plot.id];
-    for (let i = 0; i < count; ++i) data.push([series.time[i], ...plot.row(series, i, state.first)]);
+    for (let i = 0; i < count; ++i) data.push([series.time[i], ...plot.row(series, i, state.first, state)]);
     const y = plot.logscale ? { axisLabelWidth: 64, ticker: logTicks } : { axisLabelWidth: 64 };
-    const options = { labels: ['t', ...entry.labels], title: plot.title, xlabel: 't (' + UNITS + ')', ylabel: Y_LABELS[plot.id] || '',
+    const title = typeof plot.title === 'function' ? plot.title(series) : plot.title;
+    const options = { labels: ['t', ...entry.labels], title, xlabel: 't (' + UNITS + ')', ylabel: Y_LABELS[plot.id] || '',
                       logscale: !!plot.logscale, stepPlot: !!plot.stepPlot, series: plot.series || {}, connectSeparatedPoints: true,
                       legend: 'always', labelsDiv: entry.legend, height: 220, axes: { y, y2: { independentTicks: true, axisLabelWidth: 64 } } };
     if (entry.graph) entry.graph.updateOptions({ file: data });
@@ -358,6 +371,7 @@ async function pollSeries(job) {
   if (job.kind !== 'simulation' || job.status === 'queued') return true;
   if (shown.attempt !== job.attempt) { resetPlots(shown); shown.attempt = job.attempt; }
   shown.free = !job.effects.includes('dirichlet') && !job.effects.includes('gravity');
+  shown.static = job.effects.includes('static');
   if (shown.adaptive === undefined) shown.adaptive = await stepsByTolerance(job);
   const since = shown.since === null ? '' : '?since=' + shown.since;
   const response = await api(`/v1/jobs/${job.id}/series${since}`);
@@ -384,10 +398,17 @@ function suspectReasons(summary) {
 // A running job's summary has verdict null: the checks judge the whole run (docs/api.md, "Results": GET …/series).
 const VERDICT_PENDING = 'made when the run ends';
 
+// Figures the job's summary carries that say nothing about this run (docs/web.md): momentum drift where
+// supports or gravity act (the impulse balance check stands in), energy drift of static load steps.
+function meaningless(key) {
+  return (!shown.free && (key === 'linear_momentum_drift' || key === 'angular_momentum_drift'))
+    || (shown.static && key === 'energy_drift');
+}
+
 function showSummary(summary, note) {
   const text = (key, value) => typeof value === 'number' ? number(value)
     : key === 'verdict' && value === null ? VERDICT_PENDING : String(value);
-  const rows = Object.entries(summary).filter(([key]) => key !== 'checks').map(([key, value]) =>
+  const rows = Object.entries(summary).filter(([key]) => key !== 'checks' && !meaningless(key)).map(([key, value]) =>
     el('tr', { class: key === 'verdict' && value ? 'status ' + value : '', 'data-key': key }, el('th', {}, key),
       el('td', {}, text(key, value)), el('td', { class: 'unit' }, unitOf(key))));
   for (const c of summary.checks || [])

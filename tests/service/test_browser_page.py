@@ -345,6 +345,39 @@ def adaptive_run(browser, server, source_dir):
     check("(100 %)" in progress, f"the finished adaptive run's progress is 100 % of its time: {progress!r}")
 
 
+def punch_run(browser, server, source_dir):
+    """A flat punch pressed in by static load steps (api/examples/punch.json, issue 23 §6) is plotted with its
+    external work, the reaction force of each boundary entry and the contact force: the punch's force against
+    its displacement, the picture in docs/measurements.md."""
+    scene = json.loads((source_dir / "api/examples/punch.json").read_text())
+    job = server.post("/v1/jobs", scene)
+    click_job_row(browser, job["id"])
+    browser.wait_for(f"document.getElementById('job-kind').textContent.includes({js(job['id'])}) &&"
+                     " document.getElementById('job-status').textContent === 'succeeded'", "the punch run succeeds")
+    with urllib.request.urlopen(f"{server.url}/v1/jobs/{job['id']}/series", timeout=30) as response:
+        series = json.load(response)
+    rows = len(series["time"])
+    for plot in ["external-work", "reaction-force", "contact-force"]:
+        points = f"Number(document.getElementById('plot-{plot}')?.dataset.points)"
+        browser.wait_for(f"{points} === {rows}", f"the {plot} plot holds the {rows} load levels", limit=20)
+    # The last plotted row: [t, entry 0 x, y, z, entry 1 x, y, z] and [t, pair 0 x, y, z].
+    reaction, contact = browser.run("[shown.data['reaction-force'].at(-1), shown.data['contact-force'].at(-1)]")
+    force = series["contact_force"][-1][0][2]
+    check(contact[3] == force and force < -1, f"the contact-force plot ends at the series' force {force} (got {contact[3]})")
+    check(abs(reaction[6] - force) <= 1e-8 * abs(force),
+          f"the punch top's plotted reaction {reaction[6]} equals the contact force {force}: the supports balance")
+    work = browser.run("shown.data['external-work'].at(-1)")
+    check(abs(work[1] - series["external_work"][-1]) == 0 and abs(work[2]) < 1e-3 * work[1],
+          f"the external work W = {work[1]} is plotted, and H − W = {work[2]} is small beside it")
+    plots = browser.run("[...document.querySelectorAll('#plots .plot')].map(p => p.id)")
+    check("plot-energy-error" not in plots and "plot-momentum-error" not in plots,
+          f"static load steps plot neither an energy nor a momentum error: {plots}")
+    hidden = browser.run("[...document.querySelectorAll('#job-summary th')].map(t => t.textContent)"
+                         ".filter(t => t.endsWith('_drift'))")
+    check(hidden == [], f"nor list the energy or momentum drift in the summary table: {hidden}")
+    browser.run("document.getElementById('plot-external-work').scrollIntoView()")
+
+
 def tolerance_study_view(browser, binary, source_dir, work):
     """A study with tolerances plots them as a line of their own, each point labelled with its TOL. The table
     is a real one (`stoss study --tolerances --json`) served to the page in place of GET …/study."""
@@ -430,6 +463,8 @@ def main():
         fits_1280(browser)  # the study on show (plots drawn at 1400 px keep their width when the window shrinks)
         adaptive_run(browser, server, source_dir)
         browser.screenshot(out / "adaptive.png")
+        punch_run(browser, server, source_dir)
+        browser.screenshot(out / "punch.png")  # docs/images/punch.png
         tolerance_study_view(browser, binary, source_dir, work)
         browser.screenshot(out / "study_tolerance.png")
         token_prompt(browser, binary, work)

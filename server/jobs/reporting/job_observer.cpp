@@ -59,8 +59,9 @@ void ProgressObserver::report(Millis now) {
   if (sink_) sink_(current_);
 }
 
-void LogObserver::begin(const model::Model&, const model::SeriesLayout& layout) {
+void LogObserver::begin(const model::Model& model, const model::SeriesLayout& layout) {
   external_work_ = layout.index_of("external_work") >= 0;
+  static_steps_ = model.time.scheme == model::Scheme::equilibrium;
 }
 
 void LogObserver::step(const model::StepRow& row) {
@@ -75,8 +76,11 @@ void LogObserver::log(const std::string& line) {
 }
 
 void LogObserver::end(const model::Summary& s) {
-  out_ << (s.completed ? "run completed: " : "run stopped: ") << s.steps << " steps, t = " << s.end_time
-       << (external_work_ ? ", energy drift (H − W_ext) " : ", energy drift ") << s.energy_drift;
+  out_ << (s.completed ? "run completed: " : "run stopped: ") << s.steps << " steps, t = " << s.end_time;
+  if (static_steps_)
+    out_ << ", energy drift not reported (static load steps)";
+  else
+    out_ << (external_work_ ? ", energy drift (H − W_ext) " : ", energy drift ") << s.energy_drift;
   if (external_work_) out_ << ", external work " << s.external_work;
   out_ << ", " << s.newton_iterations << " Newton iterations, " << s.wall_seconds << " s, verdict "
        << s.verdict << "\n";

@@ -62,6 +62,7 @@ class LogObserver : public model::Observer {
   int last_step_ = -1;  ///< the last converged step (0: the initial state)
   double last_time_ = 0;
   bool external_work_ = false;  ///< the run has series/external_work (loads or prescribed motion)
+  bool static_steps_ = false;   ///< time.scheme "static": no energy kept between load levels
 };
 
 /// The job summary of docs/api.md from a run's summary; max_penetration only when the model has contact,

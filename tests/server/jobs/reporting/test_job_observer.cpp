@@ -204,9 +204,10 @@ TEST(SummaryJson, NamesTheExternalWorkOnlyWithLoadsOrPrescribedMotion) {
   EXPECT_EQ(summary_json(s, m)["external_work"], 0.75);
 }
 
-// The log's last line of a run that counts external work gives the drift of H − W_ext and the work.
+// The log's last line of a run that counts external work gives the drift of H − W_ext and the work; static
+// load steps keep no energy between load levels, and their line says the drift is not reported.
 TEST(LogObserver, TheEnergyLineOfARunWithExternalWorkIsHMinusW) {
-  const auto end_line = [](bool external_work) {
+  const auto end_line = [](bool external_work, model::Scheme scheme = model::Scheme::energy_momentum) {
     const std::filesystem::path path = std::filesystem::temp_directory_path() / "stoss_log_observer_work.log";
     {
       std::ofstream out(path);
@@ -214,7 +215,9 @@ TEST(LogObserver, TheEnergyLineOfARunWithExternalWorkIsHMinusW) {
       model::SeriesLayout layout;
       layout.series.push_back({"total_energy", 1, false, 0});
       if (external_work) layout.series.push_back({"external_work", 1, false, 0});
-      log.begin(model::Model{}, layout);
+      model::Model m;
+      m.time.scheme = scheme;
+      log.begin(m, layout);
       model::Summary s;
       s.completed = true;
       s.energy_drift = 2e-13;
@@ -231,6 +234,10 @@ TEST(LogObserver, TheEnergyLineOfARunWithExternalWorkIsHMinusW) {
   EXPECT_NE(loaded.find("energy drift (H − W_ext) 2e-13, external work 0.5,"), std::string::npos) << loaded;
   EXPECT_NE(free.find("energy drift 2e-13,"), std::string::npos) << free;
   EXPECT_EQ(free.find("external work"), std::string::npos) << free;
+  const std::string static_steps = end_line(true, model::Scheme::equilibrium);
+  EXPECT_NE(static_steps.find("energy drift not reported (static load steps), external work 0.5,"),
+            std::string::npos)
+      << static_steps;
 }
 
 // Solver lines in a job's log name the step they belong to and the time it starts from; other lines
