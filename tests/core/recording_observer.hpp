@@ -1,5 +1,7 @@
 #pragma once
 // Test helper: keeps every series row and frame of a run in memory.
+#include <gtest/gtest.h>
+
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -14,6 +16,26 @@ namespace stoss::testing {
 
 class RecordingObserver : public model::Observer {
  public:
+  /// Set by a test binary whose every run must end with the verdict "ok" (tests/physics/verdict_ok.cpp,
+  /// docs/results.md "Verdict"): a suspect run fails the test that made it, unless it allow_suspect()s.
+  static inline bool require_ok_verdict = false;
+  RecordingObserver() = default;
+  RecordingObserver(const RecordingObserver&) = default;
+  RecordingObserver& operator=(const RecordingObserver&) = default;
+  ~RecordingObserver() override {
+    if (require_ok_verdict && !suspect_allowed_ && summary.verdict == "suspect")
+      ADD_FAILURE() << "the run ended suspect; its checks: " << failed_checks();
+  }
+  /// For a run meant to break a check (a comparator, a mistake shown on purpose).
+  void allow_suspect() { suspect_allowed_ = true; }
+  /// "name value > bound; " for each failed check of the run.
+  std::string failed_checks() const {
+    std::string out;
+    for (const model::Check& c : summary.checks)
+      if (!c.passed) out += c.name + " " + std::to_string(c.value) + " > " + std::to_string(c.bound) + "; ";
+    return out;
+  }
+
   void begin(const model::Model&, const model::SeriesLayout& l) override { layout = l; }
   void step(const model::StepRow& r) override { rows.push_back(r); }
   void frame(const model::Frame& f) override { frames.push_back(f); }
@@ -65,6 +87,9 @@ class RecordingObserver : public model::Observer {
   std::vector<model::Frame> frames;
   std::vector<std::string> logs;
   model::Summary summary;
+
+ private:
+  bool suspect_allowed_ = false;
 };
 
 /// max_n |s_n − s_0| / scale over every step.

@@ -61,6 +61,7 @@ TEST(BallOnBoxEdge, KeptApartTheTwoPairsLeaveASeamAtTheEdge) {
   xmax.master = "box/xmax";
   m.contact.push_back(xmax);
   testing::RecordingObserver r;
+  r.allow_suspect();  // the seam this comparator shows puts energy in as reported jumps: (V4) fails
   const model::Summary s = simulate(m, r);
   const auto unprojected = r.series("unprojected_nodes");
   const double most_unprojected = *std::max_element(unprojected.begin(), unprojected.end());

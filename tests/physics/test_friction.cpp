@@ -234,6 +234,7 @@ TEST(FrictionB8, FreeFrictionalImpactKeepsMomentaAndNeverGainsEnergy) {
 
 TEST(FrictionB8, TheSeedsMidpointVersionGainsEnergyOnTheSameScene) {
   RecordingObserver r;
+  r.allow_suspect();  // the midpoint version gains energy, as this test shows: (V3) fails
   ASSERT_TRUE(
       simulate(oblique_impact(model::Scheme::midpoint, model::NormalTraction::midpoint), r).completed);
   const EnergyRecord e = energy_record(r);

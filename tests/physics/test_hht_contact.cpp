@@ -26,6 +26,7 @@ class HhtContact : public ::testing::TestWithParam<double> {};
 
 TEST_P(HhtContact, FreeTwoBodyImpactKeepsLinearMomentum) {
   RecordingObserver r;
+  r.allow_suspect();  // HHT-α's known energy gain at contact (docs/measurements.md): (V3) rightly fails
   const model::Summary s = simulate(cube_on_free_plate(GetParam()), r);
   ASSERT_TRUE(s.completed);
   const auto active = r.series("active_contacts");

@@ -219,7 +219,15 @@ TEST(HollowBallPlate, SmoothWholeBoundaryMasterTakesTheBallOnItsEdgeExactly) {
   const model::Model m = scene::load(scene);
   ASSERT_EQ(m.contact.at(0).master_surface, MasterSurface::smooth);
   RecordingObserver r;
+  // (V9) finds 2 ball nodes inside the plate's edge elements at the end: the smooth surface is a limit
+  // surface, inside the node net by about κℓ²/6 (docs/smooth_master_surface.md), so across a 90° edge of
+  // one 0.25 × 0.1 element it rounds the edge inside the hexahedra (measured: a node 8 % of the element
+  // height below the top). The contact holds the node on that surface, as it should.
+  r.allow_suspect();
   ASSERT_TRUE(simulate(m, r).completed);
+  for (const model::Check& c : r.summary.checks)
+    EXPECT_TRUE(c.passed || c.name == "nodes_inside_other_body")
+        << c.name << " " << c.value << " > " << c.bound;
   const auto active = r.series("active_contacts"), unprojected = r.series("unprojected_nodes");
   EXPECT_GT(*std::max_element(active.begin(), active.end()), 0);
   EXPECT_EQ(*std::max_element(unprojected.begin(), unprojected.end()), 0);

@@ -24,6 +24,9 @@ struct SchemeRun {
   RecordingObserver r;
   double energy_error = 0, linear_error = 0, angular_error = 0;
   explicit SchemeRun(const model::Model& m) {
+    // The midpoint rule is the comparator: on the hard sphere's large step its energy drifts 45 %, past
+    // the 1 % of (V3) (docs/results.md "Verdict"), which is what these tests show.
+    if (m.time.scheme == model::Scheme::midpoint) r.allow_suspect();
     EXPECT_TRUE(simulate(m, r).completed);
     const auto H = r.series("total_energy");
     energy_error = max_drift(H, std::abs(H.front()));

@@ -4,6 +4,8 @@
 // - the seed's example with "master": "plate/bottom" (the plate's normals point away from the ball):
 //   contact pumps energy into the run as reported jumps; shortened to t = 0.45, where the ball is in
 //   the plate and Σ contact_energy_jump already exceeds 5 % of H_0 (the full run's H reaches ~640 H_0);
+// - steel with its density in g/cm³ (E = 2e11, ρ = 7.8) on the seed's example: a wave speed of 1.6e5 makes
+//   every step stiff beyond what Newton can follow, and the first step alone takes ~230 iterations;
 // - the frictional example with a normal_stiffness of 10 instead of the default 10 E ℓ (a stiffness
 //   typed in other units): the ball sinks into the plate deeper than half an element.
 #include <gtest/gtest.h>
@@ -72,6 +74,17 @@ TEST(Verdict, WrongMasterSurfaceIsSuspectForItsEnergy) {
   ASSERT_TRUE(s.completed) << "a suspect run still completes";
   EXPECT_EQ(s.verdict, "suspect");
   EXPECT_TRUE(failed(s, "contact_energy_jumps")) << failed_checks(s);
+}
+
+TEST(Verdict, DensityInGramsPerCubicCentimetreIsSuspectForItsNewtonIterations) {
+  nlohmann::json scene = example("hollow_ball_plate.json");
+  for (auto& body : scene["bodies"]) body["material"].update({{"youngs_modulus", 2e11}, {"density", 7.8}});
+  scene["time"]["end"] = scene["time"]["step"];  // one step shows it (measured: 3 steps, 233 its/step)
+  const model::Summary s = run(scene);
+  ASSERT_TRUE(s.completed);
+  EXPECT_EQ(s.verdict, "suspect");
+  EXPECT_TRUE(failed(s, "newton_iterations_per_step")) << failed_checks(s);
+  EXPECT_FALSE(failed(s, "energy_balance")) << "energy–momentum still keeps its energy";
 }
 
 TEST(Verdict, NormalStiffnessInOtherUnitsIsSuspectForItsPenetration) {
