@@ -203,9 +203,13 @@ std::vector<ResolvedChoice> resolved_choices(const model::Model& m) {
   for (size_t i = 0; i < m.contact.size(); ++i) {
     const model::ContactPair& p = m.contact[i];
     const bool smooth = p.master_surface == model::MasterSurface::smooth;
-    const auto why_not = smooth ? std::nullopt : detail::smooth_unavailable(m, p);
+    const bool mortar = p.discretization == model::Discretization::mortar;
+    const auto why_not = smooth || mortar ? std::nullopt : detail::smooth_unavailable(m, p);
     const std::string surface_reason =
         smooth    ? p.master + " qualifies for the smooth surface, the default wherever it can be had"
+        : mortar  ? "discretization \"mortar\" integrates on the faceted surface, the mesh's bilinear faces "
+                    "(docs/theory.md "
+                    "§4.7; asking for smooth would be an error)"
         : why_not ? *why_not + "; faceted is the fallback (asking for smooth would be an error)"
                   : "the scene asks for it (smooth could be had)";
     out.push_back({pair_pointer(i, "master_surface"), smooth ? "smooth" : "faceted", surface_reason});
