@@ -2,12 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace stoss::contact {
 namespace {
 
 /// Activation threshold on the nodal gap g̃_j / D_jj, as §3.5: 1e-10 × the mean face size.
 constexpr double activation_gap = 1e-10;
+/// closes_touching (static steps): a nodal gap g̃_j / D_jj up to this fraction of the mean face size touches,
+/// as the NTS term's.
+constexpr double touching_gap = 1e-8;
 
 /// The discrete-gradient rule has no mortar form yet: its steps evaluate the midpoint form (4.82).
 time::ForceRule configuration_rule(const time::ForceRule& rule) {
@@ -112,7 +116,14 @@ void MortarContactTerm::prepare_step(const time::StepContext& step) {
   report_ = ContactReport{};
   find_face_pairs(step);
   nodal_gaps(step.x_n, gap_n_, weight_n_);
+  if (pair_.closes_touching) activate_touching();
   start_active_ = active_;
+}
+
+void MortarContactTerm::activate_touching() {
+  for (int j = 0; j < auxiliary_count(); ++j)
+    if (!active_[j] && weight_n_[j] > 0 && gap_n_[j] <= touching_gap * length_ * weight_n_[j])
+      active_[j] = 1, target_[j] = 0;  // released after the pass if in tension (§3.5)
 }
 
 void MortarContactTerm::begin_step(const time::StepContext& step, Eigen::VectorXd& z) {
@@ -201,6 +212,7 @@ void MortarContactTerm::end_step(const time::StepContext& step, const Eigen::Vec
   pressure_.clear();
   report_.energy_jump = 0;
   report_.active = 0;
+  report_.contact_area = 0;
   for (int j = 0; j < auxiliary_count(); ++j) {
     lambda_[j] = active_[j] ? z[offset_ + j] : 0.0;
     if (!active_[j]) continue;
@@ -213,6 +225,7 @@ void MortarContactTerm::end_step(const time::StepContext& step, const Eigen::Vec
         std::max(report_.max_own_face_penetration, -(gap[j] - target_[j]) / weight[j]);
     // (4.84): λ_j is conjugate to g̃_j, so slave node j's force is λ_j D_jj n and its pressure −λ_j.
     if (weight[j] > 0) pressure_.emplace_back(surfaces_.slave_nodes[j], std::max(-lambda_[j], 0.0));
+    report_.contact_area += weight[j];  // Σ D_jj of the active nodes (4.84)
   }
   lambda_n_ = lambda_;
   committed_active_ = active_;
@@ -227,6 +240,27 @@ double MortarContactTerm::auxiliary_residual_measure(const Eigen::VectorXd& R,
     if (active_[j])
       worst = std::max(worst, std::abs(R[offset_ + j]) / (surfaces_.tributary_area[j] * length_));
   return worst;
+}
+
+time::TermState MortarContactTerm::save_state() const {
+  time::TermState s;
+  s.integers["active"].assign(committed_active_.begin(), committed_active_.end());
+  s.reals["lambda"].assign(lambda_n_.data(), lambda_n_.data() + lambda_n_.size());
+  s.reals["target"].assign(committed_target_.data(), committed_target_.data() + committed_target_.size());
+  return s;
+}
+
+void MortarContactTerm::restore_state(const time::TermState& state, const Eigen::VectorXd&,
+                                      const Eigen::VectorXd&) {
+  const size_t n = surfaces_.slave_nodes.size();
+  const std::vector<std::int64_t>& active = state.integer("active", n);
+  const std::vector<double>& lambda = state.real("lambda", n);
+  const std::vector<double>& target = state.real("target", n);
+  committed_active_.assign(active.begin(), active.end());
+  lambda_n_ = lambda_ = Eigen::Map<const Eigen::VectorXd>(lambda.data(), static_cast<Eigen::Index>(n));
+  committed_target_ = Eigen::Map<const Eigen::VectorXd>(target.data(), static_cast<Eigen::Index>(n));
+  pairs_.clear();  // the next prepare_step finds them at x_n and lays them out anew
+  ++generation_;
 }
 
 }  // namespace stoss::contact
