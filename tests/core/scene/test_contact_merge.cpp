@@ -134,5 +134,15 @@ TEST(ContactMerge, AnErrorAboutALaterPairPointsAtItAsWritten) {
       << issues[0].message;
 }
 
+TEST(ContactMerge, AWarningAboutALaterPairPointsAtItAsWritten) {
+  const model::Model m =
+      load(edge_scene(json::array({pair("block/boundary", "box/top"), pair("block/boundary", "box/xmax"),
+                                   pair("plate/top", "box/top")})));  // the plate lies below the box's top
+  const Summary s = summarize(m);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_EQ(s.warnings[0].code, "contact_behind_master");
+  EXPECT_EQ(s.warnings[0].pointer, "/contact/2/master") << "the merged list has it at /contact/1";
+}
+
 }  // namespace
 }  // namespace stoss::scene
