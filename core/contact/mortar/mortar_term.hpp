@@ -64,9 +64,15 @@ class MortarContactTerm final : public ContactTerm {
   };
   mortar::PairGaps gaps(const FacePair& p, const Eigen::VectorXd& x) const;
   void find_face_pairs(const time::StepContext& step);
+  /// Releases the active slave nodes that no master face overlaps at x_n (D_jj = 0): their row (4.83) would
+  /// be zero, the Jacobian singular (a body leaving contact; the seed example failed so at t = 0.93).
+  void release_uncovered();
   /// Static steps (pair closes_touching): slave nodes whose nodal gap g̃_j / D_jj at x_n is at most 1e-8 ℓ
   /// start the step active, as the NTS term's (a body held by this contact alone has no other support).
   void activate_touching();
+  /// One face pair's rows of add (4.81)–(4.83). Throws what the integrals throw on a folded projection.
+  void add_pair(const FacePair& p, const time::StepContext& step, const Eigen::VectorXd& z,
+                Eigen::VectorXd& R, solve::BlockPattern* K) const;
   void add_forces(const FacePair& p, const Eigen::VectorXd& x, const Eigen::Vector4d& lambda, double factor,
                   Eigen::VectorXd& R) const;
 
