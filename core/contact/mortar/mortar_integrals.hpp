@@ -48,10 +48,6 @@ Eigen::Matrix<T, 4, 4> dual_coefficients(const Polygon<T>& slave) {
 /// slave's side against the master it rests on) project onto slivers that fold over and stall the inverse map
 /// (4.75).
 inline constexpr double facing_cosine = 0.25;
-/// A master face whose centre lies behind the slave face's plane by more than this fraction of the slave
-/// face's size (4.76) is no contact partner (a face across the body, or one seen at a grazing angle), as
-/// NTS's g_max (§3.4).
-inline constexpr double max_depth_ratio = 0.5;
 
 /// The integrals over the clip polygon of the slave face s and the master face m (4.77)–(4.80). Zero
 /// when the faces do not face each other (4.76) or do not overlap in the slave's plane.
@@ -68,8 +64,6 @@ FacePairIntegrals<T> face_pair_integrals(const QuadNodes<T>& s, const QuadNodes<
   if (value_of(signed_area(pm)) < 0) std::reverse(pm_ccw.begin(), pm_ccw.end());
   double size = 0;
   for (int k = 0; k < 4; ++k) size = std::max(size, distance_value<T>(ps[k], ps[(k + 1) % 4]));
-  if (value_of(T(plane.height((m[0] + m[1] + m[2] + m[3]) * T(0.25)))) < -max_depth_ratio * size)
-    return out;  // (4.76)
   // (4.70): the ON band. Newton iterates of a flat patch move a slave rim edge lying on a master rim edge to
   // either side of the kink there; inside the band they all see one side (1e-14: Newton stalls at 1e-7).
   const double tol = 1e-9 * size;
