@@ -4,6 +4,7 @@
 
 #include "core/contact/lagrange/elements/mixed_term.hpp"
 #include "core/contact/lagrange/elements/nts_term.hpp"
+#include "core/contact/mortar/mortar_term.hpp"
 #include "core/contact/penalty/penalty_term.hpp"
 #include "core/time/scheme.hpp"
 
@@ -36,6 +37,8 @@ std::unique_ptr<ContactTerm> make_lagrange_term(const mesh::Mesh& mesh, const mo
         pair_label(pair) +
         "enforcement \"lagrange\" is frictionless; friction > 0 needs enforcement \"penalty\"");
   const time::ForceRule rule = time::make_scheme(model::TimeSpec{scheme})->force_rule();
+  if (pair.discretization == model::Discretization::mortar)
+    return std::make_unique<MortarContactTerm>(mesh, pair, rule);  // §4.7.1, every rule
   if (rule.kind == time::ForceRule::Kind::discrete_gradient)
     return std::make_unique<MixedContactTerm>(mesh, pair);
   if (rule.is_midpoint() || rule.is_end_point())
@@ -49,6 +52,8 @@ std::unique_ptr<ContactTerm> make_lagrange_term(const mesh::Mesh& mesh, const mo
 
 std::unique_ptr<ContactTerm> make_pair_term(const model::Model& m, const model::ContactPair& pair) {
   check_scheme(pair, m.time.scheme);
+  if (pair.discretization == model::Discretization::mortar && pair.enforcement == model::Enforcement::penalty)
+    throw std::invalid_argument(pair_label(pair) + "discretization \"mortar\" has Lagrange multipliers only");
   if (pair.enforcement != model::Enforcement::penalty) return make_lagrange_term(m.mesh, pair, m.time.scheme);
   return std::make_unique<PenaltyContactTerm>(m.mesh, pair, master_youngs_modulus(m, pair));
 }

@@ -98,7 +98,9 @@ void ContactTerm::measure_closest_penetration(const time::StepContext& step, con
   if (surfaces_.smooth()) measure_faceted_penetration(x);
   // Only a node between two faces is helped by a finer master mesh; beyond the master's boundary there
   // is no face to give it, and the hint would be wrong.
-  if (const int blind = report_.unassigned - report_.outside_footprint; blind > 0)
+  const bool nts =
+      pair_.discretization == model::Discretization::node_to_segment;  // mortar has no blind spot
+  if (const int blind = report_.unassigned - report_.outside_footprint; nts && blind > 0)
     log(step,
         std::to_string(blind) +
             " slave node(s) level with the master surface project onto no face between two of its faces "

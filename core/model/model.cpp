@@ -22,6 +22,10 @@ std::string to_string(Scheme s) {
   return "unknown";
 }
 
+std::string to_string(Discretization d) {
+  return d == Discretization::mortar ? "mortar" : "node_to_segment";
+}
+
 std::optional<Scheme> scheme_from_string(std::string_view name) {
   for (Scheme s : scene_schemes)
     if (to_string(s) == name) return s;

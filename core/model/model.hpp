@@ -84,11 +84,19 @@ enum class MasterSurface {
   smooth,   ///< cubic B-spline patches over each face's 4×4 neighbourhood (C1 and more)
 };
 
+/// How a pair's contact constraint is discretised (scene `contact[i].discretization`): one-pass
+/// node-to-segment (docs/theory.md §3–4) or segment-based mortar with dual multipliers on the faceted master
+/// (§4.7).
+enum class Discretization { node_to_segment, mortar };
+/// The scene's name: "node_to_segment", "mortar".
+std::string to_string(Discretization d);
+
 /// One contact pair (docs/theory.md §3–5). Slave nodes against master faces.
 struct ContactPair {
   std::string slave;   ///< "body/surface"
   std::string master;  ///< "body/surface"
   Enforcement enforcement = Enforcement::lagrange;
+  Discretization discretization = Discretization::node_to_segment;
   double friction = 0;  ///< Coulomb μ; > 0 makes the pair frictional (penalty)
   ImpactMode impact = ImpactMode::persist;
   double switch_hysteresis = 0.05;  ///< ε_sw of §3.4

@@ -76,6 +76,8 @@ model::ContactPair contact_pair(const json& e, mesh::Mesh& mesh) {
   pair.master = contact_side(e["master"], mesh);
   pair.enforcement =
       e["enforcement"] == "penalty" ? model::Enforcement::penalty : model::Enforcement::lagrange;
+  pair.discretization = e.value("discretization", "") == "mortar" ? model::Discretization::mortar
+                                                                  : model::Discretization::node_to_segment;
   pair.friction = e["friction"].get<double>();
   pair.impact = e["impact"] == "exact"                 ? model::ImpactMode::exact
                 : e["impact"] == "velocity_correction" ? model::ImpactMode::velocity_correction

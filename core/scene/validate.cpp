@@ -297,18 +297,31 @@ bool names_static(const json& scene) {
          scene["time"].value("scheme", json()) == "static";
 }
 
+/// What a mortar pair (docs/theory.md §4.7) cannot have, each at the pair's pointer: friction (mortar is
+/// frictionless: issue 24 §5 is not reached), the penalty method (the mortar term has Lagrange multipliers
+/// only) and the smooth master surface (mortar integrates on the mesh's faceted faces).
+void check_mortar_pair(const json& e, const std::string& p, bool frictional, Checker& c) {
+  const std::string mortar = "discretization \"mortar\" ";
+  if (frictional)
+    c.fail(p,
+           mortar +
+               "is frictionless (friction on mortar is not implemented): friction must be 0 with it, got " +
+               shown(e["friction"]) + "; use discretization \"node_to_segment\" for friction");
+  else if (e.value("enforcement", "") == "penalty")
+    c.fail(p, mortar +
+                  "enforces contact with Lagrange multipliers: enforcement must be \"lagrange\" with it, "
+                  "got \"penalty\"");
+  if (e.value("master_surface", "") == "smooth")
+    c.fail(p, mortar +
+                  "integrates on the faceted master surface (the mesh's bilinear faces, docs/theory.md "
+                  "§4.7): master_surface must be \"faceted\" or absent with it, got \"smooth\"");
+}
+
 void check_contact_pair(json& e, const std::string& p, const SurfaceIndex& index, bool statics, Checker& c) {
-  const std::initializer_list<std::string_view> fields{"slave",
-                                                       "master",
-                                                       "enforcement",
-                                                       "friction",
-                                                       "impact",
-                                                       "switch_hysteresis",
-                                                       "switch_gap",
-                                                       "master_surface",
-                                                       "normal_stiffness",
-                                                       "tangential_stiffness",
-                                                       "normal_traction"};
+  const std::initializer_list<std::string_view> fields{
+      "slave",          "master",           "enforcement",          "discretization",
+      "friction",       "impact",           "switch_hysteresis",    "switch_gap",
+      "master_surface", "normal_stiffness", "tangential_stiffness", "normal_traction"};
   if (!object_with(e, p, fields, c)) return;
   const json* slave = member(e, "slave", p, Presence::must(), c);
   const json* master = member(e, "master", p, Presence::must(), c);
@@ -323,6 +336,9 @@ void check_contact_pair(json& e, const std::string& p, const SurfaceIndex& index
                    {"lagrange", "penalty"}, c);
   if (frictional && enforcement == "lagrange")
     c.fail(child(p, "enforcement"), "friction > 0 requires enforcement \"penalty\"");
+  const auto discretization = choice_field(e, "discretization", p, Presence::or_default("node_to_segment"),
+                                           {"node_to_segment", "mortar"}, c);
+  if (discretization == "mortar") check_mortar_pair(e, p, frictional, c);
   // Static steps have no impacts: the gap closes (model::contact_scheme_conflict).
   choice_field(e, "impact", p, Presence::or_default(statics ? "exact" : "persist"),
                {"persist", "exact", "velocity_correction", "located"}, c);

@@ -92,7 +92,8 @@ std::optional<std::string> facing_surface(const model::Model& m, const model::Co
   return best;
 }
 
-void check_orientation(const model::Model& m, size_t i, std::vector<Warning>& out) {
+/// Pair i of the model (after merges), reported at its index as written (`written`).
+void check_orientation(const model::Model& m, size_t i, int written, std::vector<Warning>& out) {
   const model::ContactPair& p = m.contact[i];
   const std::vector<int> slave = sampled_nodes(m.mesh, p.slave);
   if (slave.empty() || side_of(m.mesh, slave, p.master).behind < slave.size()) return;
@@ -100,7 +101,7 @@ void check_orientation(const model::Model& m, size_t i, std::vector<Warning>& ou
   const std::string fix = better ? "did you mean " + *better + "?"
                                  : "name a surface of the master body whose outward normals face " + p.slave;
   out.push_back(
-      {warning::contact_behind_master, pair_pointer(i, "master"),
+      {warning::contact_behind_master, pair_pointer(static_cast<size_t>(written), "master"),
        "every node of " + p.slave + " is behind " + p.master + " (its normals point away); " + fix});
 }
 
@@ -170,7 +171,8 @@ void check_skipped_elements(const model::Model& m, std::vector<Warning>& out) {
 std::vector<Warning> warnings(const model::Model& m, const Estimates& e) {
   std::vector<Warning> out;
   check_skipped_elements(m, out);
-  for (size_t i = 0; i < m.contact.size(); ++i) check_orientation(m, i, out);
+  const std::vector<int> written = detail::written_contact_indices(m);
+  for (size_t i = 0; i < m.contact.size(); ++i) check_orientation(m, i, written[i], out);
   check_units(m, e, out);
   check_contact_step(m, e, out);
   check_mode_step(m, e, out);
@@ -203,9 +205,13 @@ std::vector<ResolvedChoice> resolved_choices(const model::Model& m) {
   for (size_t i = 0; i < m.contact.size(); ++i) {
     const model::ContactPair& p = m.contact[i];
     const bool smooth = p.master_surface == model::MasterSurface::smooth;
-    const auto why_not = smooth ? std::nullopt : detail::smooth_unavailable(m, p);
+    const bool mortar = p.discretization == model::Discretization::mortar;
+    const auto why_not = smooth || mortar ? std::nullopt : detail::smooth_unavailable(m, p);
     const std::string surface_reason =
         smooth    ? p.master + " qualifies for the smooth surface, the default wherever it can be had"
+        : mortar  ? "discretization \"mortar\" integrates on the faceted surface, the mesh's bilinear faces "
+                    "(docs/theory.md "
+                    "§4.7; asking for smooth would be an error)"
         : why_not ? *why_not + "; faceted is the fallback (asking for smooth would be an error)"
                   : "the scene asks for it (smooth could be had)";
     out.push_back({pair_pointer(i, "master_surface"), smooth ? "smooth" : "faceted", surface_reason});

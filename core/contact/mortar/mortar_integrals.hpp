@@ -43,15 +43,22 @@ Eigen::Matrix<T, 4, 4> dual_coefficients(const Polygon<T>& slave) {
   return De * Me.inverse();  // (4.77)
 }
 
+/// A master face faces the slave face when n_s · n̂_m < −facing_cosine (4.76): seen at less than 75.5° from
+/// the slave's normal, its projection keeps at least a quarter of its area. Nearly edge-on faces (a box
+/// slave's side against the master it rests on) project onto slivers that fold over and stall the inverse map
+/// (4.75).
+inline constexpr double facing_cosine = 0.25;
+
 /// The integrals over the clip polygon of the slave face s and the master face m (4.77)–(4.80). Zero
-/// when the faces do not face each other (n_s · n_m ≥ 0) or do not overlap in the slave's plane.
+/// when the faces do not face each other (4.76) or do not overlap in the slave's plane.
 /// The gap is g = (x_m − x_s)·n_s = (x_s − x_m)·n with n = −n_s from the master to the slave (§0).
 template <class T>
 FacePairIntegrals<T> face_pair_integrals(const QuadNodes<T>& s, const QuadNodes<T>& m, Multipliers kind) {
   FacePairIntegrals<T> out;
   const MortarPlane<T> plane = mortar_plane(s);
   const Vec3<T> master_normal = (m[2] - m[0]).cross(m[3] - m[1]);
-  if (!(value_of(T(master_normal.dot(plane.n))) < 0)) return out;
+  const double cosine = value_of(T(master_normal.dot(plane.n))) / value_of(T(master_normal.norm()));
+  if (!(cosine < -facing_cosine)) return out;  // (4.76)
   const Polygon<T> ps = projected(plane, s), pm = projected(plane, m);
   Polygon<T> pm_ccw = pm;
   if (value_of(signed_area(pm)) < 0) std::reverse(pm_ccw.begin(), pm_ccw.end());

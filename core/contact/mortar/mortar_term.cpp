@@ -2,12 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <exception>
+#include <limits>
 
 namespace stoss::contact {
 namespace {
 
 /// Activation threshold on the nodal gap g̃_j / D_jj, as §3.5: 1e-10 × the mean face size.
 constexpr double activation_gap = 1e-10;
+/// closes_touching (static steps): a nodal gap g̃_j / D_jj up to this fraction of the mean face size touches,
+/// as the NTS term's.
+constexpr double touching_gap = 1e-8;
 
 /// The discrete-gradient rule has no mortar form yet: its steps evaluate the midpoint form (4.82).
 time::ForceRule configuration_rule(const time::ForceRule& rule) {
@@ -112,7 +118,20 @@ void MortarContactTerm::prepare_step(const time::StepContext& step) {
   report_ = ContactReport{};
   find_face_pairs(step);
   nodal_gaps(step.x_n, gap_n_, weight_n_);
+  release_uncovered();
+  if (pair_.closes_touching) activate_touching();
   start_active_ = active_;
+}
+
+void MortarContactTerm::release_uncovered() {
+  for (int j = 0; j < auxiliary_count(); ++j)
+    if (active_[j] && !(weight_n_[j] > 0)) active_[j] = 0, lambda_[j] = 0, ++report_.releases;
+}
+
+void MortarContactTerm::activate_touching() {
+  for (int j = 0; j < auxiliary_count(); ++j)
+    if (!active_[j] && weight_n_[j] > 0 && gap_n_[j] <= touching_gap * length_ * weight_n_[j])
+      active_[j] = 1, target_[j] = 0;  // released after the pass if in tension (§3.5)
 }
 
 void MortarContactTerm::begin_step(const time::StepContext& step, Eigen::VectorXd& z) {
@@ -130,35 +149,46 @@ void MortarContactTerm::add_forces(const FacePair& p, const Eigen::VectorXd& x, 
   for (int a = 0; a < 24; ++a) R[p.dofs[a]] += factor * f[a];  // (4.82)
 }
 
-void MortarContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
-                            solve::BlockPattern* K) const {
+void MortarContactTerm::add_pair(const FacePair& p, const time::StepContext& step, const Eigen::VectorXd& z,
+                                 Eigen::VectorXd& R, solve::BlockPattern* K) const {
   const Eigen::VectorXd x_1 = z.head(step.x_n.size());
   const Eigen::VectorXd x_theta = rule_.evaluation_point(step.x_n, x_1);
   const double w = step.force_factor * rule_.weight, w_n = step.force_factor * rule_.previous_weight;
-  const bool at_end = rule_.theta == 1;
+  Eigen::Vector4d lambda, lambda_n;
+  for (int k = 0; k < 4; ++k)
+    lambda[k] = z[offset_ + p.slave_index[k]], lambda_n[k] = lambda_n_[p.slave_index[k]];
+  if (w_n != 0) add_forces(p, step.x_n, lambda_n, w_n, R);  // h w_n λ_n ∂g̃/∂x(x_n) (4.82)
+  mortar::Matrix24 H = mortar::Matrix24::Zero();
+  const bool curved = K && !lambda.isZero(0);
+  const SegmentNodes s = face_positions(slave_faces_[p.slave_face], x_theta);
+  const SegmentNodes m = face_positions(surfaces_.faces[p.master_face], x_theta);
+  const mortar::PairGaps g = curved ? mortar::pair_gaps(s, m, mortar::Multipliers::dual, lambda, H)
+                                    : mortar::pair_gaps(s, m, mortar::Multipliers::dual);
+  const mortar::PairGaps g_1 = rule_.theta == 1 ? g : gaps(p, x_1);
+  const Eigen::Matrix<double, 1, 24> f = lambda.transpose() * g.gradient;
+  for (int a = 0; a < 24; ++a) R[p.dofs[a]] += w * f[a];  // h w λ ∂g̃/∂x(x_θ) (4.82)
+  for (int k = 0; k < 4; ++k)
+    if (active_[p.slave_index[k]]) R[p.dofs[24 + k]] += g_1.gap[k];  // (4.83)
+  if (!K) return;
+  Eigen::Matrix<double, 28, 28> block = Eigen::Matrix<double, 28, 28>::Zero();
+  block.topLeftCorner<24, 24>() = w * rule_.theta * H;         // (4.81), (4.82)
+  block.topRightCorner<24, 4>() = w * g.gradient.transpose();  // (4.82)
+  for (int k = 0; k < 4; ++k)
+    if (active_[p.slave_index[k]]) block.block<1, 24>(24 + k, 0) = g_1.gradient.row(k);  // (4.83)
+  K->scatter(p.block, block);
+}
+
+void MortarContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                            solve::BlockPattern* K) const {
   for (const FacePair& p : pairs_) {
-    Eigen::Vector4d lambda, lambda_n;
-    for (int k = 0; k < 4; ++k)
-      lambda[k] = z[offset_ + p.slave_index[k]], lambda_n[k] = lambda_n_[p.slave_index[k]];
-    if (w_n != 0) add_forces(p, step.x_n, lambda_n, w_n, R);  // h w_n λ_n ∂g̃/∂x(x_n) (4.82)
-    mortar::Matrix24 H = mortar::Matrix24::Zero();
-    const bool curved = K && !lambda.isZero(0);
-    const SegmentNodes s = face_positions(slave_faces_[p.slave_face], x_theta);
-    const SegmentNodes m = face_positions(surfaces_.faces[p.master_face], x_theta);
-    const mortar::PairGaps g = curved ? mortar::pair_gaps(s, m, mortar::Multipliers::dual, lambda, H)
-                                      : mortar::pair_gaps(s, m, mortar::Multipliers::dual);
-    const mortar::PairGaps g_1 = at_end ? g : gaps(p, x_1);
-    const Eigen::Matrix<double, 1, 24> f = lambda.transpose() * g.gradient;
-    for (int a = 0; a < 24; ++a) R[p.dofs[a]] += w * f[a];  // h w λ ∂g̃/∂x(x_θ) (4.82)
-    for (int k = 0; k < 4; ++k)
-      if (active_[p.slave_index[k]]) R[p.dofs[24 + k]] += g_1.gap[k];  // (4.83)
-    if (!K) continue;
-    Eigen::Matrix<double, 28, 28> block = Eigen::Matrix<double, 28, 28>::Zero();
-    block.topLeftCorner<24, 24>() = w * rule_.theta * H;         // (4.81), (4.82)
-    block.topRightCorner<24, 4>() = w * g.gradient.transpose();  // (4.82)
-    for (int k = 0; k < 4; ++k)
-      if (active_[p.slave_index[k]]) block.block<1, 24>(24 + k, 0) = g_1.gradient.row(k);  // (4.83)
-    K->scatter(p.block, block);
+    try {
+      add_pair(p, step, z, R, K);
+    } catch (const std::exception&) {
+      // A Newton iterate that folds a face's projection (4.75) or makes a slave face's non-convex (4.70) is
+      // no configuration to integrate on: a residual that is not finite makes Newton backtrack, or the step
+      // shorter.
+      R[p.dofs[0]] = std::numeric_limits<double>::quiet_NaN();
+    }
   }
   for (int j = 0; j < auxiliary_count(); ++j) {
     if (active_[j]) {
@@ -201,6 +231,7 @@ void MortarContactTerm::end_step(const time::StepContext& step, const Eigen::Vec
   pressure_.clear();
   report_.energy_jump = 0;
   report_.active = 0;
+  report_.contact_area = 0;
   for (int j = 0; j < auxiliary_count(); ++j) {
     lambda_[j] = active_[j] ? z[offset_ + j] : 0.0;
     if (!active_[j]) continue;
@@ -213,6 +244,7 @@ void MortarContactTerm::end_step(const time::StepContext& step, const Eigen::Vec
         std::max(report_.max_own_face_penetration, -(gap[j] - target_[j]) / weight[j]);
     // (4.84): λ_j is conjugate to g̃_j, so slave node j's force is λ_j D_jj n and its pressure −λ_j.
     if (weight[j] > 0) pressure_.emplace_back(surfaces_.slave_nodes[j], std::max(-lambda_[j], 0.0));
+    report_.contact_area += weight[j];  // Σ D_jj of the active nodes (4.84)
   }
   lambda_n_ = lambda_;
   committed_active_ = active_;
@@ -227,6 +259,27 @@ double MortarContactTerm::auxiliary_residual_measure(const Eigen::VectorXd& R,
     if (active_[j])
       worst = std::max(worst, std::abs(R[offset_ + j]) / (surfaces_.tributary_area[j] * length_));
   return worst;
+}
+
+time::TermState MortarContactTerm::save_state() const {
+  time::TermState s;
+  s.integers["active"].assign(committed_active_.begin(), committed_active_.end());
+  s.reals["lambda"].assign(lambda_n_.data(), lambda_n_.data() + lambda_n_.size());
+  s.reals["target"].assign(committed_target_.data(), committed_target_.data() + committed_target_.size());
+  return s;
+}
+
+void MortarContactTerm::restore_state(const time::TermState& state, const Eigen::VectorXd&,
+                                      const Eigen::VectorXd&) {
+  const size_t n = surfaces_.slave_nodes.size();
+  const std::vector<std::int64_t>& active = state.integer("active", n);
+  const std::vector<double>& lambda = state.real("lambda", n);
+  const std::vector<double>& target = state.real("target", n);
+  committed_active_.assign(active.begin(), active.end());
+  lambda_n_ = lambda_ = Eigen::Map<const Eigen::VectorXd>(lambda.data(), static_cast<Eigen::Index>(n));
+  committed_target_ = Eigen::Map<const Eigen::VectorXd>(target.data(), static_cast<Eigen::Index>(n));
+  pairs_.clear();  // the next prepare_step finds them at x_n and lays them out anew
+  ++generation_;
 }
 
 }  // namespace stoss::contact

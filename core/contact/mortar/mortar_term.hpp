@@ -23,7 +23,12 @@ namespace stoss::contact {
 /// decided node by node, −λ_j is the nodal pressure, and the multipliers could be condensed node by
 /// node (they are kept as unknowns here, like the NTS multipliers).
 /// @note g̃⁰_j: the weighted gap at x_n of a node activated in the step (max 0) with impact persist or
-///       located (the frozen gap of §4.5), else 0. Located events are not cut (the step runs to its end).
+///       located (the frozen gap of §4.5), else 0. Located events are not cut (the step runs to its end), and
+///       velocity_correction restores no energy (no impact impulse yet): both act as their frozen-gap or
+///       closed-gap counterparts.
+/// @note series: contact_area is Σ D_jj over the active nodes (their mortar weights, the current area the
+///       multipliers act on); contact_force is measured from the rows as for every pair
+///       (measured_contact.hpp).
 class MortarContactTerm final : public ContactTerm {
  public:
   MortarContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair, const time::ForceRule& rule);
@@ -39,6 +44,10 @@ class MortarContactTerm final : public ContactTerm {
   bool update_active_set(const time::StepContext& step, const Eigen::VectorXd& z) override;
   void end_step(const time::StepContext& step, const Eigen::VectorXd& z) override;
   double auxiliary_residual_measure(const Eigen::VectorXd& R, const time::MeasureScales& s) const override;
+  /// Checkpoint: the committed active set, λ_n and the frozen gaps g̃⁰_j; the face pairs are found again.
+  time::TermState save_state() const override;
+  void restore_state(const time::TermState& state, const Eigen::VectorXd& x,
+                     const Eigen::VectorXd& v) override;
 
   /// Per slave node: active in the current pass.
   const std::vector<char>& active() const { return active_; }
@@ -55,6 +64,15 @@ class MortarContactTerm final : public ContactTerm {
   };
   mortar::PairGaps gaps(const FacePair& p, const Eigen::VectorXd& x) const;
   void find_face_pairs(const time::StepContext& step);
+  /// Releases the active slave nodes that no master face overlaps at x_n (D_jj = 0): their row (4.83) would
+  /// be zero, the Jacobian singular (a body leaving contact; the seed example failed so at t = 0.93).
+  void release_uncovered();
+  /// Static steps (pair closes_touching): slave nodes whose nodal gap g̃_j / D_jj at x_n is at most 1e-8 ℓ
+  /// start the step active, as the NTS term's (a body held by this contact alone has no other support).
+  void activate_touching();
+  /// One face pair's rows of add (4.81)–(4.83). Throws what the integrals throw on a folded projection.
+  void add_pair(const FacePair& p, const time::StepContext& step, const Eigen::VectorXd& z,
+                Eigen::VectorXd& R, solve::BlockPattern* K) const;
   void add_forces(const FacePair& p, const Eigen::VectorXd& x, const Eigen::Vector4d& lambda, double factor,
                   Eigen::VectorXd& R) const;
 

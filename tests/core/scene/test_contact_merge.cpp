@@ -98,5 +98,51 @@ TEST(ContactMerge, ASettingGivenInOnlyOnePairIsADifference) {
       << issues[0].message;
 }
 
+TEST(ContactMerge, TheDiscretizationIsASettingThatMustAgree) {
+  json second = pair("block/boundary", "box/xmax");
+  second["discretization"] = "mortar";
+  const auto issues = issues_of(edge_scene(json::array({pair("block/boundary", "box/top"), second})));
+  ASSERT_EQ(issues.size(), 1u) << text(issues);
+  EXPECT_EQ(issues[0].pointer, "/contact/1");
+  EXPECT_NE(issues[0].message.find(R"(discretization "mortar" here, "node_to_segment" there)"),
+            std::string::npos)
+      << issues[0].message;
+  json first = pair("block/boundary", "box/top");
+  first["discretization"] = "mortar";
+  const model::Model m = load(edge_scene(json::array({first, second})));
+  ASSERT_EQ(m.contact.size(), 1u) << "mortar pairs that agree merge";
+  EXPECT_EQ(m.contact[0].discretization, model::Discretization::mortar);
+  EXPECT_EQ(m.scene["contact"][0]["master_surface"], "faceted");
+}
+
+TEST(ContactMerge, AnErrorAboutALaterPairPointsAtItAsWritten) {
+  json scene = edge_scene(json::array({pair("block/boundary", "box/top"), pair("block/boundary", "box/xmax"),
+                                       pair("plate/top", "cube/all")}));
+  scene["contact"][2]["master_surface"] = "smooth";  // one hexahedron: every corner extraordinary
+  scene["bodies"].push_back(
+      {{"name", "cube"},
+       {"mesh",
+        {{"nodes", {{5, 0, 0}, {6, 0, 0}, {6, 1, 0}, {5, 1, 0}, {5, 0, 1}, {6, 0, 1}, {6, 1, 1}, {5, 1, 1}}},
+         {"hex8", {{0, 1, 2, 3, 4, 5, 6, 7}}},
+         {"surfaces",
+          {{"all", {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}}}}}},
+       {"material", material}});
+  const auto issues = issues_of(scene);
+  ASSERT_EQ(issues.size(), 1u) << text(issues);
+  EXPECT_EQ(issues[0].pointer, "/contact/2/master_surface") << "the merged list has it at /contact/1";
+  EXPECT_NE(issues[0].message.find("master cube/all cannot carry a smooth surface"), std::string::npos)
+      << issues[0].message;
+}
+
+TEST(ContactMerge, AWarningAboutALaterPairPointsAtItAsWritten) {
+  const model::Model m =
+      load(edge_scene(json::array({pair("block/boundary", "box/top"), pair("block/boundary", "box/xmax"),
+                                   pair("plate/top", "box/top")})));  // the plate lies below the box's top
+  const Summary s = summarize(m);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_EQ(s.warnings[0].code, "contact_behind_master");
+  EXPECT_EQ(s.warnings[0].pointer, "/contact/2/master") << "the merged list has it at /contact/1";
+}
+
 }  // namespace
 }  // namespace stoss::scene

@@ -105,6 +105,25 @@ TEST(MasterSurface, ExplicitSmoothThatCannotBeHadIsRefusedWithItsPointer) {
   EXPECT_NE(why.find("has extraordinary vertices at nodes"), std::string::npos) << why;
 }
 
+TEST(MasterSurface, AMortarPairResolvesToFacetedAndTheChoiceSaysWhy) {
+  json scene = ball_and_plate("plate/top");  // a master that qualifies for the smooth surface
+  scene["contact"][0]["discretization"] = "mortar";
+  const model::Model m = load(scene);
+  EXPECT_EQ(m.contact.at(0).discretization, model::Discretization::mortar);
+  EXPECT_EQ(m.contact.at(0).master_surface, model::MasterSurface::faceted);
+  EXPECT_EQ(m.scene["contact"][0]["master_surface"], "faceted") << "the resolved scene says so";
+  EXPECT_EQ(m.scene["contact"][0]["discretization"], "mortar");
+  const Summary s = summarize(m);
+  ASSERT_GE(s.choices.size(), 1u);
+  EXPECT_EQ(s.choices[0].pointer, "/contact/0/master_surface");
+  EXPECT_EQ(s.choices[0].value, "faceted");
+  EXPECT_NE(s.choices[0].reason.find("discretization \"mortar\" integrates on the faceted surface"),
+            std::string::npos)
+      << s.choices[0].reason;
+  EXPECT_EQ(load(m.scene).contact.at(0).master_surface, model::MasterSurface::faceted)
+      << "the resolved scene loads as it is";
+}
+
 TEST(MasterSurface, UnknownValueIsRefusedWithTheChoices) {
   json scene = ball_and_plate("plate/top");
   scene["contact"][0]["master_surface"] = "nurbs";

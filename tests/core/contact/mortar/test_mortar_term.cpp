@@ -128,5 +128,29 @@ TEST(MortarTerm, GradientStaysBoundedAtNearlyParallelEdges) {
   }
 }
 
+// Checkpoint and resume: a term given the saved state of a converged step (active set, λ_n, frozen gaps)
+// shall assemble the next step exactly as the term that took it. The end-point rule with w_n ≠ 0 uses λ_n.
+TEST(MortarTerm, ARestoredStateAssemblesTheNextStepAsTheOriginal) {
+  const time::ForceRule rule = time::ForceRule::end_point(0.9, 0.1);
+  Fixture original(rule), resumed(rule);
+  original.term->end_step(*original.step, original.z);
+  const time::TermState state = original.term->save_state();
+  const Eigen::VectorXd x_1 = original.z.head(original.nx), v_1 = Eigen::VectorXd::Zero(original.nx);
+  resumed.term->restore_state(state, x_1, v_1);
+  const time::StepContext next{x_1, v_1, 0.01, rule};
+  Eigen::VectorXd R_original = Eigen::VectorXd::Zero(original.z.size()), R_resumed = R_original;
+  solve::BlockPattern patterns[2];
+  original.term->prepare_step(next);
+  resumed.term->prepare_step(next);
+  original.term->register_blocks(patterns[0]);  // as the integrator does on a new structure generation
+  resumed.term->register_blocks(patterns[1]);
+  original.term->add(next, original.z, R_original, nullptr);
+  resumed.term->add(next, original.z, R_resumed, nullptr);
+  EXPECT_EQ(original.term->active(), resumed.term->active());
+  EXPECT_GT(std::count(resumed.term->active().begin(), resumed.term->active().end(), 1), 0);
+  EXPECT_EQ((R_original - R_resumed).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_GT(R_original.head(original.nx).cwiseAbs().maxCoeff(), 0.0) << "λ_n's force is in the rows";
+}
+
 }  // namespace
 }  // namespace stoss::contact
