@@ -5,11 +5,11 @@
 // sphere/cap. At each level from δ/R = 0.5 % to 2 % (every 0.25 %):
 // - the force F = 4 |contact_force_z| and the sphere's support reaction agree within 1e-5 F (the Newton
 //   tolerance is relative to the stiff sphere's forces; measured: at most 2.0e-6 F);
-// - faceted master: F within 5 % of Hertz's (4/3) E* √R δ^(3/2) (measured on this mesh: at most 3.3 %, at
+// - faceted master: F within 5 % of Hertz's (4/3) E* √R δ^(3/2) (measured on this mesh: at most 3.7 %, at
 //   0.75 %, where a spans 1.7 elements; the finer meshes are the benchmark's);
 // - smooth master: F is below Hertz's (the spline lies outside the node net, by ℓ²/(3R) at the pole, ℓ the
-//   cap's face size) and within 4 % of Hertz's at that shortened indentation δ − ℓ²/(3R) (measured: at
-//   most 2.8 %; against δ itself it is 5–25 % low on this mesh, and the offset falls as ℓ² on finer ones);
+//   cap's face size) and within 5 % of Hertz's at that shortened indentation δ − ℓ²/(3R) (measured: at
+//   most 3.3 %; against δ itself it is 6–25 % low on this mesh, and the offset falls as ℓ² on finer ones);
 // - both: the contact radius √(4 contact_area / π) within one element edge ℓ of √(Rδ) (measured: at most
 //   0.59 ℓ).
 #include <gtest/gtest.h>
@@ -114,7 +114,7 @@ TEST(HertzIndentation, SmoothMasterMatchesHertzAtTheIndentationOfItsSurface) {
     const double F_surface = hertz_force(E_star, l.delta - offset);
     EXPECT_NEAR(l.reaction, l.force, 1e-5 * l.force);
     EXPECT_LT(l.force, F) << "δ/R = " << l.delta / R << ": the spline's sphere is smaller by " << offset;
-    EXPECT_NEAR(l.force / F_surface, 1, 0.04) << "δ/R = " << l.delta / R;
+    EXPECT_NEAR(l.force / F_surface, 1, 0.05) << "δ/R = " << l.delta / R;
     EXPECT_NEAR(l.radius, a, size) << "δ/R = " << l.delta / R;
     std::printf(
         "hertz smooth δ/R = %.4f: F %.6e, Hertz %.6e (%+.2f %%), at δ − ℓ²/(3R) %.6e (%+.2f %%), a %.4f, "

@@ -7,11 +7,11 @@
 // y = 0, so that the contact surface has no rim at the contact's centre. Its nodes lie on the sphere.
 // Three levels (docs/measurements.md, "Hertz indentation"); regenerate with Debian's gmsh (4.8.4):
 //     gmsh -3 -format msh41 -setnumber h0 0.05   hertz_indentation.geo -o hertz_coarse.msh
-//     gmsh -3 -format msh41 -setnumber h0 0.025  hertz_indentation.geo -o hertz_medium.msh
-//     gmsh -3 -format msh41 -setnumber h0 0.0125 hertz_indentation.geo -o hertz_fine.msh
+//     gmsh -3 -format msh41 -setnumber h0 0.03   hertz_indentation.geo -o hertz_medium.msh
+//     gmsh -3 -format msh41 -setnumber h0 0.02   hertz_indentation.geo -o hertz_fine.msh
 // Physical volumes "block" and "sphere"; physical surfaces "top", "bottom", "xmin", "ymin" (block) and "cap"
 // (the sphere's spherical face) and "top" (the cap's upper face, where the motion is prescribed).
-DefineConstant[ h0 = 0.05, q = 1.5, L = 20, H = 20, R = 1, fine = 0.16, zfine = 0.1, cap = 0.4, t = 0.1 ];
+DefineConstant[ h0 = 0.05, q = 1.5, L = 20, H = 20, R = 1, fine = 0.25, zfine = 0.25, cap = 0.4, t = 0.1 ];
 
 // Graded layers along [0, len]: n0 cells of h0 up to `fine`, then cells growing by q, scaled so the last one
 // ends at len. Out: ones[] (one element per layer) and fr[] (cumulative fractions of len).
