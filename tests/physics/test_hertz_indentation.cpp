@@ -7,8 +7,8 @@
 //   tolerance is relative to the stiff sphere's forces; measured: at most 2.0e-6 F);
 // - faceted master: F within 5 % of Hertz's (4/3) E* √R δ^(3/2) (measured on this mesh: at most 3.7 %, at
 //   0.75 %, where a spans 1.7 elements; the finer meshes are the benchmark's);
-// - smooth master: F is below Hertz's (the spline lies outside the node net, by ℓ²/(3R) at the pole, ℓ the
-//   cap's face size) and within 5 % of Hertz's at that shortened indentation δ − ℓ²/(3R) (measured: at
+// - smooth master: F is below Hertz's (the spline lies inside the sphere's nodes, ℓ²/(3R) above the pole, ℓ
+//   the cap's face size) and within 5 % of Hertz's at that shortened indentation δ − ℓ²/(3R) (measured: at
 //   most 3.3 %; against δ itself it is 6–25 % low on this mesh, and the offset falls as ℓ² on finer ones);
 // - both: the contact radius √(4 contact_area / π) within one element edge ℓ of √(Rδ) (measured: at most
 //   0.59 ℓ).
@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "../core/recording_observer.hpp"
 #include "core/scene/scene.hpp"
@@ -73,7 +74,7 @@ std::vector<Level> run(const std::string& master_surface, double& face_size, jso
   EXPECT_TRUE(s.completed);
   EXPECT_EQ(s.verdict, "ok");
   const auto fz = r.series("contact_force", 2), area = r.series("contact_area"),
-             reaction = r.series("reaction_force", 2);  // entry 0: sphere/top, the prescribed motion
+             reaction = r.series("reaction_force", 2);  // entry 0: sphere/top, holding the sphere down
   std::vector<Level> out;
   for (size_t n = 1; n < r.rows.size(); ++n)          // the quarter model's force and area, times 4
     if (depth * r.rows[n].time >= 0.005 * R - 1e-12)  // Hertz's range here: δ/R from 0.5 to 2 %
@@ -108,7 +109,7 @@ TEST(HertzIndentation, SmoothMasterMatchesHertzAtTheIndentationOfItsSurface) {
   const std::vector<Level> levels = run("smooth", size, scene);
   const double E_star = effective_modulus(scene);
   ASSERT_EQ(levels.size(), 7u) << "0.5 % to 2 % in steps of 0.25 %";
-  const double offset = size * size / (3 * R);  // (H4): the spline's distance outside the pole's node
+  const double offset = size * size / (3 * R);  // (H4): how far the spline lies above the pole's node
   for (const Level& l : levels) {
     const double F = hertz_force(E_star, l.delta), a = std::sqrt(R * l.delta);
     const double F_surface = hertz_force(E_star, l.delta - offset);
