@@ -10,6 +10,7 @@ materials (H1). Wall time: the result's wall_seconds (the run, without process s
 
     /usr/bin/python3 bench/hertz_indentation.py [--stoss build/stoss] [--meshes coarse,medium,fine]
                                                 [--surfaces smooth,faceted] [--steps 8] [--linear direct]
+                                                [--enforcement lagrange|penalty]
                                                 [--out DIR]
 
 Needs numpy and h5py (Debian's /usr/bin/python3 has both). Wall times are reported, never asserted.
@@ -52,13 +53,15 @@ def run(args, mesh, surface, workdir):
     for body in scene["bodies"]:
         body["mesh"]["file"] = os.path.join(MESHES, f"hertz_{mesh}.msh")
     scene["contact"][0]["master_surface"] = surface
+    scene["contact"][0]["enforcement"] = args.enforcement
     scene["time"]["step"] = 1.0 / args.steps
     # The fine mesh has more than 14,000 elements, where "auto" picks petsc_gamg; on this problem (a 1000 times
     # stiffer sphere, flat graded elements) GMRES needed minutes per step, UMFPACK takes seconds.
     scene["solver"] = {"linear": args.linear}
-    path = os.path.join(workdir, f"{mesh}_{surface}.json")
+    name = f"{mesh}_{surface}" + ("" if args.enforcement == "lagrange" else f"_{args.enforcement}")
+    path = os.path.join(workdir, f"{name}.json")
     json.dump(scene, open(path, "w"), indent=1)
-    out = os.path.join(workdir, f"{mesh}_{surface}")
+    out = os.path.join(workdir, name)
     if not (args.reuse and os.path.exists(os.path.join(out, "result.h5"))):
         done = subprocess.run([args.stoss, "run", path, "-o", out], capture_output=True, text=True)
         if done.returncode != 0:
@@ -78,7 +81,7 @@ def run(args, mesh, surface, workdir):
         rows.append(dict(delta=delta, force=force, reaction=reaction, a=a,
                          hertz=4 / 3 * e_star * math.sqrt(radius) * delta ** 1.5, a_hertz=math.sqrt(radius * delta)))
     iterations = s["newton_iterations"][1:] if "newton_iterations" in s else []
-    return dict(mesh=mesh, surface=surface, elements=len(f["mesh/hex8"]), h0=top_edge(f), rows=rows,
+    return dict(mesh=mesh, surface=surface if args.enforcement == "lagrange" else f"{surface}, {args.enforcement}", elements=len(f["mesh/hex8"]), h0=top_edge(f), rows=rows,
                 wall=wall, iterations=int(np.sum(iterations)), e_star=e_star, verdict=f.attrs["verdict"])
 
 
@@ -89,6 +92,7 @@ def main():
     p.add_argument("--surfaces", default="smooth,faceted")
     p.add_argument("--steps", type=int, default=8, help="load steps to delta/R = 2 %% (a multiple of 4)")
     p.add_argument("--linear", default="direct", help="solver.linear of every run")
+    p.add_argument("--enforcement", default="lagrange", help="the pair's enforcement: lagrange or penalty")
     p.add_argument("--out", help="keep the runs here (default: a temporary directory)")
     p.add_argument("--reuse", action="store_true", help="tabulate the results already in --out, run only missing ones")
     args = p.parse_args()
