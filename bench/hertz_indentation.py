@@ -1,0 +1,128 @@
+#!/usr/bin/python3
+"""Hertz indentation on the three Gmsh meshes, with the smooth and the faceted master surface (issue 23 §6).
+
+Runs api/examples/hertz_indentation.json with its mesh replaced by meshes/hertz_{coarse,medium,fine}.msh and its
+pair's master_surface set to each of smooth and faceted, with the `stoss` binary, one run at a time, and prints
+the table of docs/measurements.md, "Hertz indentation": the force F = 4 |contact_force_z| (quarter model)
+against Hertz's F = (4/3) E* sqrt(R) delta^(3/2) (H2) and the contact radius sqrt(4 contact_area / pi) against
+a = sqrt(R delta) (H3), at each load level (every 0.25 % of R with the default 8 steps; the table shows 0.5 to 2 %), E* from both
+materials (H1). Wall time: the result's wall_seconds (the run, without process start).
+
+    /usr/bin/python3 bench/hertz_indentation.py [--stoss build/stoss] [--meshes coarse,medium,fine]
+                                                [--surfaces smooth,faceted] [--steps 8] [--linear direct]
+                                                [--enforcement lagrange|penalty]
+                                                [--out DIR]
+
+Needs numpy and h5py (Debian's /usr/bin/python3 has both). Wall times are reported, never asserted.
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+import h5py
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+EXAMPLE = os.path.join(ROOT, "api", "examples", "hertz_indentation.json")
+MESHES = os.path.join(ROOT, "api", "examples", "meshes")
+
+
+def effective_modulus(scene):
+    """(H1): 1/E* = (1 - nu^2)/E + (1 - nu_s^2)/E_s over both bodies."""
+    return 1 / sum((1 - b["material"]["poisson_ratio"] ** 2) / b["material"]["youngs_modulus"]
+                   for b in scene["bodies"])
+
+
+def top_edge(f):
+    """The shortest edge of block/top: h0, the element edge at the contact."""
+    x = f["mesh/nodes"][:]
+    for name in f["mesh/surfaces/block"]:
+        ds = f["mesh/surfaces/block"][name]
+        if ds.attrs["name"] == "block/top":
+            q = ds[:]
+            return min(np.linalg.norm(x[q[:, k]] - x[q[:, (k + 1) % 4]], axis=1).min() for k in range(4))
+    raise KeyError("block/top")
+
+
+def run(args, mesh, surface, workdir):
+    scene = json.load(open(EXAMPLE))
+    for body in scene["bodies"]:
+        body["mesh"]["file"] = os.path.join(MESHES, f"hertz_{mesh}.msh")
+    scene["contact"][0]["master_surface"] = surface
+    scene["contact"][0]["enforcement"] = args.enforcement
+    scene["time"]["step"] = 1.0 / args.steps
+    # The fine mesh has more than 14,000 elements, where "auto" picks petsc_gamg; on this problem (a 1000 times
+    # stiffer sphere, flat graded elements) GMRES needed minutes per step, UMFPACK takes seconds.
+    scene["solver"] = {"linear": args.linear}
+    name = f"{mesh}_{surface}" + ("" if args.enforcement == "lagrange" else f"_{args.enforcement}")
+    path = os.path.join(workdir, f"{name}.json")
+    json.dump(scene, open(path, "w"), indent=1)
+    out = os.path.join(workdir, name)
+    if not (args.reuse and os.path.exists(os.path.join(out, "result.h5"))):
+        done = subprocess.run([args.stoss, "run", path, "-o", out], capture_output=True, text=True)
+        if done.returncode != 0:
+            sys.exit(f"{mesh} {surface}: stoss run failed ({done.returncode}):\n{done.stdout}\n{done.stderr}")
+    f = h5py.File(os.path.join(out, "result.h5"), "r")
+    wall = f.attrs["wall_seconds"]
+    s = f["series"]
+    depth = -scene["boundary"][0]["displacement"][2]
+    radius = 1.0  # the sphere's radius R in hertz_indentation.geo
+    e_star = effective_modulus(scene)
+    rows = []
+    for n in range(1, len(s["time"])):
+        delta = depth * s["time"][n]
+        force = -4 * s["contact_force"][n, 0, 2]
+        reaction = 4 * s["reaction_force"][n, 0, 2]
+        a = math.sqrt(4 * s["contact_area"][n, 0] / math.pi)
+        rows.append(dict(delta=delta, force=force, reaction=reaction, a=a,
+                         hertz=4 / 3 * e_star * math.sqrt(radius) * delta ** 1.5, a_hertz=math.sqrt(radius * delta)))
+    iterations = s["newton_iterations"][1:] if "newton_iterations" in s else []
+    return dict(mesh=mesh, surface=surface if args.enforcement == "lagrange" else f"{surface}, {args.enforcement}", elements=len(f["mesh/hex8"]), h0=top_edge(f), rows=rows,
+                wall=wall, iterations=int(np.sum(iterations)), e_star=e_star, verdict=f.attrs["verdict"])
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--stoss", default=os.path.join(ROOT, "build", "stoss"))
+    p.add_argument("--meshes", default="coarse,medium,fine")
+    p.add_argument("--surfaces", default="smooth,faceted")
+    p.add_argument("--steps", type=int, default=8, help="load steps to delta/R = 2 %% (a multiple of 4)")
+    p.add_argument("--linear", default="direct", help="solver.linear of every run")
+    p.add_argument("--enforcement", default="lagrange", help="the pair's enforcement: lagrange or penalty")
+    p.add_argument("--out", help="keep the runs here (default: a temporary directory)")
+    p.add_argument("--reuse", action="store_true", help="tabulate the results already in --out, run only missing ones")
+    args = p.parse_args()
+    workdir = args.out or tempfile.mkdtemp(prefix="hertz_")
+    os.makedirs(workdir, exist_ok=True)
+    results = []
+    for mesh in args.meshes.split(","):
+        for surface in args.surfaces.split(","):
+            r = run(args, mesh, surface, workdir)
+            results.append(r)
+            print(f"{mesh} {surface}: {r['elements']} elements, {r['wall']:.1f} s, verdict {r['verdict']}",
+                  file=sys.stderr)
+            for row in r["rows"]:
+                print(f"  delta/R {100 * row['delta']:.2f} %: F {row['force']:.6e} (reaction {row['reaction']:.6e}),"
+                      f" Hertz {row['hertz']:.6e}: {100 * (row['force'] / row['hertz'] - 1):+.2f} %;"
+                      f" a {row['a']:.4f} vs {row['a_hertz']:.4f}: {(row['a'] - row['a_hertz']) / r['h0']:+.2f} h0",
+                      file=sys.stderr)
+    print(f"E* = {results[0]['e_star']:.6f}; F error at delta/R = 0.5 / 1 / 1.5 / 2 %; a error = max |a - sqrt(R delta)| "
+          f"over the levels from 0.5 to 2 %, in element edges h0")
+    print("| master | mesh | elements | h0 | edges across a (0.5 / 2 %) | F error 0.5 % | 1 % | 1.5 % | 2 % "
+          "| a error (h0) | Newton its | wall s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for r in results:
+        by = {round(100 * row["delta"], 2): row for row in r["rows"]}
+        err = lambda d: (f"{100 * (by[d]['force'] / by[d]['hertz'] - 1):+.1f} %" if d in by else "—")
+        a_err = max(abs(row["a"] - row["a_hertz"]) for row in r["rows"] if 0.005 - 1e-12 <= row["delta"]) / r["h0"]
+        print(f"| {r['surface']} | {r['mesh']} | {r['elements']} | {r['h0']:.4f} | "
+              f"{math.sqrt(0.005) / r['h0']:.1f} / {math.sqrt(0.02) / r['h0']:.1f} | {err(0.5)} | {err(1.0)} | "
+              f"{err(1.5)} | {err(2.0)} | {a_err:.2f} | {r['iterations']} | {r['wall']:.0f} |")
+
+
+if __name__ == "__main__":
+    main()
