@@ -7,8 +7,8 @@
 // y = 0, so that the contact surface has no rim at the contact's centre. Its nodes lie on the sphere.
 // Three levels (docs/measurements.md, "Hertz indentation"); regenerate with Debian's gmsh (4.8.4):
 //     gmsh -3 -format msh41 -setnumber h0 0.05   hertz_indentation.geo -o hertz_coarse.msh
-//     gmsh -3 -format msh41 -setnumber h0 0.03   hertz_indentation.geo -o hertz_medium.msh
-//     gmsh -3 -format msh41 -setnumber h0 0.02   hertz_indentation.geo -o hertz_fine.msh
+//     gmsh -3 -format msh41 -setnumber h0 0.03   hertz_indentation.geo -o hertz_medium.msh   (made by bench/hertz_indentation.py)
+//     gmsh -3 -format msh41 -setnumber h0 0.02   hertz_indentation.geo -o hertz_fine.msh     (made by bench/hertz_indentation.py)
 // Physical volumes "block" and "sphere"; physical surfaces "top", "bottom", "xmin", "ymin" (block) and "cap"
 // (the sphere's spherical face) and "top" (the cap's upper face, where the motion is prescribed).
 DefineConstant[ h0 = 0.05, q = 1.5, L = 20, H = 20, R = 1, fine = 0.25, zfine = 0.25, cap = 0.4, t = 0.1 ];
