@@ -125,5 +125,26 @@ TEST(HertzIndentation, SmoothMasterMatchesHertzAtTheIndentationOfItsSurface) {
   }
 }
 
+// One static load step to δ/R = 2 %: the undeformed block lets the sphere reach nodes outside the true
+// contact in the first pass, and the step must be able to release them again (docs/theory.md §3.5). Refused
+// their release, 2 nodes stayed attached in tension and F was 7.2 % below Hertz; now +0.94 %, with the
+// 8 steps' +0.1 % (the bound 3 % is the goal).
+TEST(HertzIndentation, OneLargeStaticStepReleasesTheNodesItsFirstPassReached) {
+  json scene = json::parse(std::ifstream(examples / "hertz_indentation.json"));
+  scene["time"]["step"] = 1.0;
+  testing::RecordingObserver r;
+  r.allow_suspect();  // one step this large takes 25 Newton iterations, more than (V6) expects of a step
+  ASSERT_TRUE(simulate(scene::load(scene, examples), r).completed);
+  for (const model::Check& c : r.summary.checks)
+    EXPECT_TRUE(c.passed || c.name == "newton_iterations_per_step");
+  for (const std::string& line : r.logs)
+    EXPECT_EQ(line.find("kept active with tensile"), std::string::npos) << line;
+  const double F = -4 * r.series("contact_force", 2).back(),
+               hertz = hertz_force(effective_modulus(scene), depth);
+  EXPECT_NEAR(F / hertz, 1, 0.03);
+  std::printf("hertz faceted, one step to δ/R = %.3f: F %.6e, Hertz %.6e (%+.2f %%)\n", depth / R, F, hertz,
+              100 * (F / hertz - 1));
+}
+
 }  // namespace
 }  // namespace stoss

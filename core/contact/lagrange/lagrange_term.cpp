@@ -178,8 +178,10 @@ bool LagrangeContactTerm::release_tensile(const time::StepContext& step, const E
     } else if (release.fraction >= least_cut && release.fraction < 1) {
       kept.push_back(e);  // §4.6.2: the step ends where λ_1 crosses zero; the release follows then
       events_.push_back(release);
-    } else if (toggles_[e.slave] > 0) {
-      kept.push_back(e);  // anti-cycling (§3.5): a second change in this step is refused
+    } else if (toggles_[e.slave] >= (step.inertia ? 1 : 2)) {
+      // anti-cycling (§3.5): a second change in this step is refused; a static step may take back an
+      // activation of its own once
+      kept.push_back(e);
       log(step, "slave node " + std::to_string(slave_node(e)) + " kept active with tensile λ_1 = " +
                     scientific(e.lambda[0]) + " (it already changed state in this step)");
     } else {
