@@ -174,8 +174,11 @@ std::vector<Warning> warnings(const model::Model& m, const Estimates& e) {
   const std::vector<int> written = detail::written_contact_indices(m);
   for (size_t i = 0; i < m.contact.size(); ++i) check_orientation(m, i, written[i], out);
   check_units(m, e, out);
-  check_contact_step(m, e, out);
-  check_mode_step(m, e, out);
+  if (m.time.scheme !=
+      model::Scheme::equilibrium) {  // a static step is a load increment: no modes to resolve
+    check_contact_step(m, e, out);
+    check_mode_step(m, e, out);
+  }
   return out;
 }
 

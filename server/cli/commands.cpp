@@ -84,9 +84,16 @@ void print_verdict(const model::Summary& s) {
 
 /// The scales, the choices loading made and the warnings of `stoss validate` (docs/command_line.md).
 void print_before_run(const scene::Summary& s) {
+  // A static step is a load increment: it resolves no wave and no mode, so neither scale applies to it.
+  const bool statics = std::find(s.effects.begin(), s.effects.end(), "static") != s.effects.end();
   for (const scene::BodyScale& b : s.estimates.bodies)
-    std::printf("body %s: wave speed %.3g, smallest element %.3g, Courant number %.3g, lowest period ~%.3g\n",
-                b.name.c_str(), b.dilatational_speed, b.smallest_element, b.courant, b.lowest_period);
+    if (statics)
+      std::printf("body %s: wave speed %.3g, smallest element %.3g (static load steps: no Courant number)\n",
+                  b.name.c_str(), b.dilatational_speed, b.smallest_element);
+    else
+      std::printf(
+          "body %s: wave speed %.3g, smallest element %.3g, Courant number %.3g, lowest period ~%.3g\n",
+          b.name.c_str(), b.dilatational_speed, b.smallest_element, b.courant, b.lowest_period);
   for (const scene::PairScale& p : s.estimates.pairs)
     std::printf("contact %s on %s: approach speed %.3g, contact lasts ~%.3g (Hertz %.3g, wave %.3g)\n",
                 p.slave.c_str(), p.master.c_str(), p.approach_speed, p.duration, p.hertz_duration,

@@ -95,6 +95,22 @@ TEST(Warnings, SteelWithDensityInGramsPerCubicCentimetreIsAUnitSlip) {
       << modes[0].message;
 }
 
+// A static step is a load increment (docs/theory.md §5b.6): steel pressed by a punch in 10 load steps of
+// 0.1 spans thousands of its periods, which resolves nothing and needs nothing resolved. Only the
+// unit check stays (E and ρ in SI here: no warning at all).
+TEST(Warnings, StaticLoadStepsGetNoStepWarnings) {
+  json scene = json::parse(std::ifstream(examples + "punch.json"));
+  for (json& body : scene["bodies"]) body["material"].update({{"youngs_modulus", 2e11}, {"density", 7800}});
+  const Summary dynamic_summary = [&] {
+    json dynamic = scene;
+    dynamic["time"]["scheme"] = "energy_momentum";
+    return summary_of(dynamic);
+  }();
+  ASSERT_EQ(with_code(dynamic_summary, warning::step_longer_than_modes).size(), 1u)
+      << "the same scene, dynamic";
+  EXPECT_EQ(summary_of(scene).warnings.size(), 0u);
+}
+
 TEST(Warnings, AStepFarBelowTheWaveTimeIsReported) {
   json scene = seed();
   scene["time"].update({{"step", 1e-7}, {"end", 1e-3}});  // 10,000 steps, Courant number 1.46e-4
