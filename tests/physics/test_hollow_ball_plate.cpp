@@ -220,8 +220,8 @@ TEST(HollowBallPlate, SmoothWholeBoundaryMasterTakesTheBallOnItsEdgeExactly) {
   ASSERT_EQ(m.contact.at(0).master_surface, MasterSurface::smooth);
   RecordingObserver r;
   // (V9) finds 2 ball nodes inside the plate's edge elements at the end: the smooth surface is a limit
-  // surface, inside the node net by about κℓ²/6 (docs/smooth_master_surface.md), so across a 90° edge of
-  // one 0.25 × 0.1 element it rounds the edge inside the hexahedra (measured: a node 8 % of the element
+  // surface, inside the node net by about (κ₁ + κ₂)ℓ²/6 (docs/smooth_master_surface.md), so across a 90° edge
+  // of one 0.25 × 0.1 element it rounds the edge inside the hexahedra (measured: a node 8 % of the element
   // height below the top). The contact holds the node on that surface, as it should.
   r.allow_suspect();
   ASSERT_TRUE(simulate(m, r).completed);
