@@ -64,21 +64,29 @@ struct Level {
   double delta, force, reaction, radius;
 };
 
-std::vector<Level> run(const std::string& master_surface, double& face_size, json& scene) {
-  scene = json::parse(std::ifstream(examples / "hertz_indentation.json"));
+/// The example's run on the coarse mesh with `master_surface`: the levels from δ/R = 0.5 %, the pole's face
+/// size ℓ and E* (H1).
+struct HertzRun {
+  std::vector<Level> levels;
+  double face_size = 0, E_star = 0;
+};
+
+HertzRun run(const std::string& master_surface) {
+  json scene = json::parse(std::ifstream(examples / "hertz_indentation.json"));
   scene["contact"][0]["master_surface"] = master_surface;
   const model::Model m = scene::load(scene, examples);
-  face_size = pole_face_size(m);
+  HertzRun out{{}, pole_face_size(m), effective_modulus(scene)};
   testing::RecordingObserver r;
   const model::Summary s = simulate(m, r);
   EXPECT_TRUE(s.completed);
   EXPECT_EQ(s.verdict, "ok");
   const auto fz = r.series("contact_force", 2), area = r.series("contact_area"),
              reaction = r.series("reaction_force", 2);  // entry 0: sphere/top, holding the sphere down
-  std::vector<Level> out;
-  for (size_t n = 1; n < r.rows.size(); ++n)          // the quarter model's force and area, times 4
-    if (depth * r.rows[n].time >= 0.005 * R - 1e-12)  // Hertz's range here: δ/R from 0.5 to 2 %
-      out.push_back({depth * r.rows[n].time, -4 * fz[n], -4 * reaction[n], std::sqrt(4 * area[n] / M_PI)});
+  for (size_t n = 1; n < r.rows.size(); ++n)            // the quarter model's force and area, times 4
+    if (depth * r.rows[n].time >= 0.005 * R - 1e-12)    // Hertz's range here: δ/R from 0.5 to 2 %
+      out.levels.push_back(
+          {depth * r.rows[n].time, -4 * fz[n], -4 * reaction[n], std::sqrt(4 * area[n] / M_PI)});
+  EXPECT_EQ(out.levels.size(), 7u) << "0.5 % to 2 % in steps of 0.25 %";
   return out;
 }
 
@@ -87,13 +95,10 @@ double hertz_force(double E_star, double delta) {  // (H2)
 }
 
 TEST(HertzIndentation, FacetedMasterMatchesHertzForceAndContactRadius) {
-  double size = 0;
-  json scene;
-  const std::vector<Level> levels = run("faceted", size, scene);
-  const double E_star = effective_modulus(scene);
-  ASSERT_EQ(levels.size(), 7u) << "0.5 % to 2 % in steps of 0.25 %";
+  const HertzRun hertz = run("faceted");
+  const double size = hertz.face_size, E_star = hertz.E_star;
   EXPECT_NEAR(size, 0.05, 1e-3) << "the coarse mesh's h0 (hertz_indentation.geo)";
-  for (const Level& l : levels) {
+  for (const Level& l : hertz.levels) {
     const double F = hertz_force(E_star, l.delta), a = std::sqrt(R * l.delta);  // (H2), (H3)
     EXPECT_NEAR(l.reaction, l.force, 1e-5 * l.force) << "the sphere's support carries the contact force";
     EXPECT_NEAR(l.force / F, 1, 0.05) << "δ/R = " << l.delta / R;
@@ -104,13 +109,10 @@ TEST(HertzIndentation, FacetedMasterMatchesHertzForceAndContactRadius) {
 }
 
 TEST(HertzIndentation, SmoothMasterMatchesHertzAtTheIndentationOfItsSurface) {
-  double size = 0;
-  json scene;
-  const std::vector<Level> levels = run("smooth", size, scene);
-  const double E_star = effective_modulus(scene);
-  ASSERT_EQ(levels.size(), 7u) << "0.5 % to 2 % in steps of 0.25 %";
+  const HertzRun hertz = run("smooth");
+  const double size = hertz.face_size, E_star = hertz.E_star;
   const double offset = size * size / (3 * R);  // (H4): how far the spline lies above the pole's node
-  for (const Level& l : levels) {
+  for (const Level& l : hertz.levels) {
     const double F = hertz_force(E_star, l.delta), a = std::sqrt(R * l.delta);
     const double F_surface = hertz_force(E_star, l.delta - offset);
     EXPECT_NEAR(l.reaction, l.force, 1e-5 * l.force);
