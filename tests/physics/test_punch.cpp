@@ -4,7 +4,7 @@
 //   reaction_force on the punch equals the contact force the punch exerts on the block, and the block's
 //   bottom carries it, within 1e-8 of the final force: the steps are solved to the tolerance 1e-10 of the
 //   force scale (5b.7a), which the stiff punch makes ≈ 5 (docs/theory.md (5b.10), (5b.12); measured
-//   ≤ 6.1e-9).
+//   ≤ 1.5e-9 of it).
 // - Between equilibria the supports' work is the trapezoid rule (5b.7b): W − ΔV is O(Δδ³) per step, so
 //   |H − W| / H at the end falls by 4 per halving of the load step (the test asks 3.6–4.4), and on 10 steps
 //   stays below 1e-3 (measured 3.5e-4). The end-point rule it replaced was first order: 9.6 % on 10 steps.
