@@ -220,10 +220,11 @@ std::vector<ResolvedChoice> resolved_choices(const model::Model& m) {
     out.push_back({pair_pointer(i, "master_surface"), smooth ? "smooth" : "faceted", surface_reason});
     const bool keep = p.switch_gap == model::SwitchGap::keep;
     const bool as_default = keep == smooth;
-    out.push_back({pair_pointer(i, "switch_gap"), keep ? "keep" : "clamp",
-                   as_default
-                       ? std::string("the default on a ") + (smooth ? "smooth" : "faceted") + " surface"
-                       : "the scene asks for it"});
+    const std::string gap_reason =
+        mortar       ? "unused: a node-to-segment setting, and a mortar pair has no face switches"
+        : as_default ? std::string("the default on a ") + (smooth ? "smooth" : "faceted") + " surface"
+                     : "the scene asks for it";
+    out.push_back({pair_pointer(i, "switch_gap"), keep ? "keep" : "clamp", gap_reason});
   }
   return out;
 }

@@ -122,6 +122,9 @@ TEST(MasterSurface, AMortarPairResolvesToFacetedAndTheChoiceSaysWhy) {
       << s.choices[0].reason;
   EXPECT_EQ(load(m.scene).contact.at(0).master_surface, model::MasterSurface::faceted)
       << "the resolved scene loads as it is";
+  ASSERT_GE(s.choices.size(), 2u);
+  EXPECT_EQ(s.choices[1].pointer, "/contact/0/switch_gap");
+  EXPECT_EQ(s.choices[1].reason, "unused: a node-to-segment setting, and a mortar pair has no face switches");
 }
 
 TEST(MasterSurface, UnknownValueIsRefusedWithTheChoices) {
