@@ -214,5 +214,29 @@ TEST(MortarIntegralsInput, NonConvexSlaveProjectionIsAnError) {
   }
 }
 
+// (4.76): a master face is paired only when it faces the slave face at less than 75.5° (n_s · n̂_m below
+// −0.25). A master square under a slave square, tilted about x by θ (its projection still covers the slave's
+// middle): at 0°, 60° and 75° it is integrated (overlap > 0), at 76° and 85° it is not, however large its
+// projected overlap.
+TEST(MortarIntegralsInput, AMasterFaceSeenAtMoreThan75DegreesIsNotPaired) {
+  const SegmentNodes slave = rectangle(-0.5, -0.5, 0.5, 0.5, 0.0, true);  // outward normal −z
+  const auto tilted_master = [](double degrees) {
+    const double t = degrees * M_PI / 180, c = std::cos(t), s = std::sin(t);
+    SegmentNodes m = rectangle(-1, -1, 1, 1, 0.0, false);  // outward normal +z, then turned about x
+    for (int k = 0; k < 4; ++k) {
+      const double y = m(k, 1), z = m(k, 2);
+      m(k, 1) = c * y - s * z, m(k, 2) = s * y + c * z - 0.01;
+    }
+    return m;
+  };
+  for (double degrees : {0.0, 60.0, 75.0, 76.0, 85.0}) {
+    const FacePairIntegrals<double> f = face_pair_integrals(slave, tilted_master(degrees), Multipliers::dual);
+    if (degrees <= 75)
+      EXPECT_GT(f.area, 0.05) << degrees << "°: faces the slave, paired";
+    else
+      EXPECT_EQ(f.area, 0) << degrees << "°: nearly edge-on, not paired";
+  }
+}
+
 }  // namespace
 }  // namespace stoss::contact::mortar
