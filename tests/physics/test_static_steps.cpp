@@ -46,12 +46,12 @@ json pressed_blocks(const json& upper_boundary, const json& pair) {
       {"solver", {{"tolerance", 1e-12}}}};
 }
 
-/// z-component of the vector area of `surface` at positions x (flat bilinear faces: exact).
-double area_z(const model::Model& m, const std::string& surface, const Eigen::VectorXd& x) {
-  double a = 0;
+/// The vector area of `surface` at positions x, Σ ½ d₁ × d₂ over its quads (exact for flat bilinear faces).
+Eigen::Vector3d vector_area(const model::Model& m, const std::string& surface, const Eigen::VectorXd& x) {
+  Eigen::Vector3d a = Eigen::Vector3d::Zero();
   for (const mesh::Quad& q : m.mesh.surface(surface)) {
     const auto p = [&](int k) { return Eigen::Vector3d(x.segment<3>(3 * q[k])); };
-    a += 0.5 * (p(2) - p(0)).cross(p(3) - p(1)).z();
+    a += 0.5 * (p(2) - p(0)).cross(p(3) - p(1));
   }
   return a;
 }
@@ -68,7 +68,7 @@ TEST(StaticSteps, ABlockPressedOntoAHeldBlockCarriesThePressureThroughTheContact
   ASSERT_TRUE(s.completed);
   EXPECT_EQ(s.verdict, "ok");
   const double fz = r.series("contact_force", 2).back(), bottom = r.series("reaction_force", 2).back();
-  const double resultant = pressure * area_z(m, "upper/top", r.frames.back().position);
+  const double resultant = pressure * vector_area(m, "upper/top", r.frames.back().position).z();
   EXPECT_GT(resultant, pressure) << "the top widened under the load";
   EXPECT_LT(resultant, pressure * 1.01);
   EXPECT_NEAR(fz, resultant, 1e-10 * pressure) << "the pair carries the pressure's resultant";
@@ -107,16 +107,6 @@ TEST(StaticSteps, ABlockOnRollersPulledByADeadTractionIsHeldByItsBottomAtEveryLo
               bottom.back(), sigma, rise, sigma / E);
 }
 
-/// The x component of the vector area of `surface` at positions x.
-double area_x(const model::Model& m, const std::string& surface, const Eigen::VectorXd& x) {
-  double a = 0;
-  for (const mesh::Quad& q : m.mesh.surface(surface)) {
-    const auto p = [&](int k) { return Eigen::Vector3d(x.segment<3>(3 * q[k])); };
-    a += 0.5 * (p(2) - p(0)).cross(p(3) - p(1)).x();
-  }
-  return a;
-}
-
 TEST(StaticSteps, ABlockShearedOverAHeldBlockWithFrictionSlidesWithinTheCoulombLimit) {
   const double mu = 0.3, shift = 0.02;  // far past the stick limit μ p A / (G A / H) ≈ 2e-3
   const json sheared = json::array({{{"surface", "upper/top"},
@@ -141,7 +131,7 @@ TEST(StaticSteps, ABlockShearedOverAHeldBlockWithFrictionSlidesWithinTheCoulombL
   EXPECT_EQ(r.series("slipping_contacts")[ramp_end], 9) << "every slave node slides";
   EXPECT_GT(-fx[ramp_end], 0.95 * mu * fz[ramp_end]) << "sliding: friction near μ f_n, against the motion";
   // The upper block's x balance at the end: friction, the top's support and the pressure on the tilted top.
-  const double pressure_x = -pressure * area_x(m, "upper/top", r.frames.back().position);
+  const double pressure_x = -pressure * vector_area(m, "upper/top", r.frames.back().position).x();
   EXPECT_NEAR(fx.back() + r.series("reaction_force", 3 + 0).back() + pressure_x, 0, 1e-9 * pressure);
   std::printf(
       "static sheared block: |f_t| / f_n = %.6f at the ramp's end (μ = %.2f), %.6f at rest; x balance %.1e\n",
