@@ -128,6 +128,23 @@ TEST(MortarTerm, GradientStaysBoundedAtNearlyParallelEdges) {
   }
 }
 
+// A Newton iterate that folds a slave face (its projection no longer convex, (4.70)) is no configuration to
+// integrate on: the term gives a residual that is not finite, so that Newton backtracks or the step shrinks,
+// instead of throwing out of the run. Here one corner of a cube face is pulled inside the triangle of the
+// other three.
+TEST(MortarTerm, AFoldedSlaveFaceGivesANonFiniteResidualNotAnException) {
+  const Fixture f(time::ForceRule::midpoint());
+  ASSERT_TRUE(f.tangent().allFinite());  // registers the pairs' dofs, as a run's first assembly does
+  ASSERT_TRUE(f.residual(f.z).allFinite());
+  const mesh::Quad q = f.mesh.surface("cube/bottom").front();
+  Eigen::VectorXd folded = f.z;
+  folded.segment<3>(3 * q[2]) =
+      f.z.segment<3>(3 * q[0]) + 0.2 * (f.z.segment<3>(3 * q[2]) - f.z.segment<3>(3 * q[0]));
+  Eigen::VectorXd R;
+  ASSERT_NO_THROW(R = f.residual(folded));
+  EXPECT_FALSE(R.allFinite());
+}
+
 // Checkpoint and resume: a term given the saved state of a converged step (active set, λ_n, frozen gaps)
 // shall assemble the next step exactly as the term that took it. The end-point rule with w_n ≠ 0 uses λ_n.
 TEST(MortarTerm, ARestoredStateAssemblesTheNextStepAsTheOriginal) {
