@@ -222,6 +222,8 @@ struct Model {
   std::vector<MergedPairs> merged_contact;
 
   bool has_effect(const std::string& e) const;
+  /// Loads or prescribed motion: work enters from outside, series/external_work (docs/theory.md §5b.5).
+  bool has_external_work() const { return !loads.empty() || has_effect(effect::prescribed_motion); }
   int dof_count() const { return 3 * mesh.node_count(); }
 };
 

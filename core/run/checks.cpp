@@ -217,7 +217,7 @@ bool is_free(const model::Model& m) {
 bool balances_no_work(const model::Model& m) {
   const bool dissipative =
       m.time.scheme == model::Scheme::hht || m.time.scheme == model::Scheme::generalized_alpha;
-  return dissipative && (!m.loads.empty() || m.has_effect(model::effect::prescribed_motion));
+  return dissipative && m.has_external_work();
 }
 
 std::vector<model::Check> run_checks(const model::Model& m, const model::Summary& s) {

@@ -127,7 +127,7 @@ bool is_present(Presence presence, const model::Model& m) {
     case Presence::smooth_master:
       return any_smooth_master(m);
     case Presence::loads:
-      return !m.loads.empty() || m.has_effect(model::effect::prescribed_motion);
+      return m.has_external_work();
     case Presence::boundary:
       return !m.boundary.empty();
   }

@@ -36,7 +36,7 @@ std::string join(const std::vector<std::string>& items) {
 void print_summary(const model::Model& m, const model::Summary& s) {
   std::printf("steps %d, t = %.6g\n", s.steps, s.end_time);
   // Loads or prescribed motion, the scenes with series/external_work (core/run/series_table.cpp): H − W_ext
-  const bool external = !m.loads.empty() || m.has_effect(model::effect::prescribed_motion);
+  const bool external = m.has_external_work();
   if (external) std::printf("external work %.6e (W_ext, series/external_work at the end)\n", s.external_work);
   if (m.time.scheme == model::Scheme::equilibrium)  // equilibria at load levels keep no energy between them
     std::printf("energy drift: not reported (static load steps)\n");
