@@ -33,7 +33,8 @@ SurfaceLoad::Evaluation SurfaceLoad::evaluation(const time::StepContext& step) c
 }
 
 void SurfaceLoad::begin_step(const time::StepContext& step, Eigen::VectorXd&) {
-  if (evaluation(step).previous_weight == 0) return;
+  // a(t_n) f(x_n): for the rules that weigh it, and for static steps' trapezoid work (5b.7b)
+  if (evaluation(step).previous_weight == 0 && step.inertia) return;
   force_n_.resize(faces_.size());
   const double factor_n = amplitude_(t_);
   for (size_t k = 0; k < faces_.size(); ++k) {
@@ -76,22 +77,18 @@ Eigen::VectorXd SurfaceLoad::step_force(const time::StepContext& step, const Eig
   return out;
 }
 
-Eigen::VectorXd SurfaceLoad::force_at(double t, const Eigen::VectorXd& x) const {
-  Eigen::VectorXd out = Eigen::VectorXd::Zero(x.size());
-  FaceVector f;
-  for (size_t k = 0; k < faces_.size(); ++k) {
-    face_force(k, face_positions(faces_[k], x), f, nullptr);
-    for (int I = 0; I < 4; ++I) out.segment<3>(3 * faces_[k][I]) += amplitude_(t) * f.segment<3>(3 * I);
-  }
-  return out;
-}
-
 void SurfaceLoad::end_step(const time::StepContext& step, const Eigen::VectorXd& z) {
   const Eigen::Index n = step.x_n.size();
   const Eigen::VectorXd f = step_force(step, z.head(n));
-  // W_step = f_alg·Δx (5b.5); between two equilibria the trapezoid rule (5b.7b)
-  const Eigen::VectorXd f_work = step.inertia ? f : Eigen::VectorXd(0.5 * (force_at(t_, step.x_n) + f));
-  work_ += f_work.dot(z.head(n) - step.x_n);
+  const Eigen::VectorXd dx = z.head(n) - step.x_n;
+  double work = f.dot(dx);  // W_step = f_alg·Δx (5b.5)
+  if (!step.inertia) {      // between two equilibria, the trapezoid rule (5b.7b)
+    double start = 0;
+    for (size_t k = 0; k < faces_.size(); ++k)
+      start += force_n_[k].dot(face_positions(faces_[k], dx).reshaped());
+    work = 0.5 * (start + work);
+  }
+  work_ += work;
   impulse_ += step.force_factor * f.reshaped(3, n / 3).rowwise().sum();
   t_ += step.h;
 }

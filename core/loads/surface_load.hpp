@@ -44,8 +44,6 @@ class SurfaceLoad : public time::Term {
   void set_time(double t) { t_ = t; }
   /// f_alg of the step at x_1, stacked like the positions (3 per node, 0 off the surface).
   Eigen::VectorXd step_force(const time::StepContext& step, const Eigen::VectorXd& x_1) const;
-  /// a(t) f(x), stacked like the positions: the load at time t on positions x.
-  Eigen::VectorXd force_at(double t, const Eigen::VectorXd& x) const;
   const std::vector<mesh::Quad>& faces() const { return faces_; }
   const Amplitude& amplitude() const { return amplitude_; }
 
@@ -72,7 +70,7 @@ class SurfaceLoad : public time::Term {
   double work_ = 0;
   Eigen::Vector3d impulse_ = Eigen::Vector3d::Zero();
   std::vector<int> block_;
-  std::vector<FaceVector> force_n_;  ///< a(t_n) f(x_n) per face, for the rules that weigh it
+  std::vector<FaceVector> force_n_;  ///< a(t_n) f(x_n) per face, for the rules that weigh it and static steps
 };
 
 }  // namespace stoss::loads
