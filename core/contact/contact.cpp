@@ -55,7 +55,8 @@ std::unique_ptr<ContactTerm> make_pair_term(const model::Model& m, const model::
   if (pair.discretization == model::Discretization::mortar && pair.enforcement == model::Enforcement::penalty)
     throw std::invalid_argument(pair_label(pair) + "discretization \"mortar\" has Lagrange multipliers only");
   if (pair.enforcement != model::Enforcement::penalty) return make_lagrange_term(m.mesh, pair, m.time.scheme);
-  return std::make_unique<PenaltyContactTerm>(m.mesh, pair, master_youngs_modulus(m, pair));
+  return std::make_unique<PenaltyContactTerm>(m.mesh, pair, master_youngs_modulus(m, pair),
+                                              m.time.scheme == model::Scheme::equilibrium);  // §5b.6
 }
 
 }  // namespace stoss::contact

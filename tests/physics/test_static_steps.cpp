@@ -133,10 +133,48 @@ TEST(StaticSteps, ABlockShearedOverAHeldBlockWithFrictionSlidesWithinTheCoulombL
   // The upper block's x balance at the end: friction, the top's support and the pressure on the tilted top.
   const double pressure_x = -pressure * vector_area(m, "upper/top", r.frames.back().position).x();
   EXPECT_NEAR(fx.back() + r.series("reaction_force", 3 + 0).back() + pressure_x, 0, 1e-9 * pressure);
+  // Held after the ramp, the sliding block stays on the cone it reached: each step is its load level's
+  // equilibrium (§5b.6), so the hold changes nothing (the x_m form of §5.2 relaxed it from 0.2922 to 0.2895).
+  for (size_t n = ramp_end + 1; n < fx.size(); ++n)
+    EXPECT_NEAR(fx[n] / fz[n], fx[ramp_end] / fz[ramp_end], 1e-9) << "row " << n;
   std::printf(
       "static sheared block: |f_t| / f_n = %.6f at the ramp's end (μ = %.2f), %.6f at rest; x balance %.1e\n",
       -fx[ramp_end] / fz[ramp_end], mu, -fx.back() / fz.back(),
       fx.back() + r.series("reaction_force", 3).back() + pressure_x);
+}
+
+// On a held, flat master and with ν = 0 (no lateral bulge, so every node slides nearly along x), a block
+// sheared past sticking carries μ times its normal force: −f_x within [1 − 1e-4, 1 + 1e-9] of μ f_z in the
+// shear's two steps, where every node slides (the nodes' tractions, each exactly μ p_i, point within a few
+// 1e-3 rad of −x), and the hold after it keeps that force within 1e-9. (On the elastic lower block above, the
+// master's top tilts under the shear, and the global x/z ratio of the pair's force is not each node's
+// Coulomb ratio.)
+TEST(StaticSteps, ABlockShearedOverARigidFlatMasterCarriesExactlyMuTimesItsNormalForce) {
+  const double mu = 0.3;
+  const json sheared = json::array({{{"surface", "upper/top"},
+                                     {"fix", "xy"},
+                                     {"displacement", {0.02, 0, 0}},
+                                     {"amplitude", {{0, 0}, {1, 0}, {1.5, 1}}}},
+                                    {{"surface", "lower/top"}}});
+  json scene =
+      pressed_blocks(sheared, {{"slave", "upper/bottom"}, {"master", "lower/top"}, {"friction", mu}});
+  scene["time"]["end"] = 2.0;
+  for (json& body : scene["bodies"]) body["material"]["poisson_ratio"] = 0;
+  const model::Model m = scene::load(scene);
+  testing::RecordingObserver r;
+  ASSERT_TRUE(simulate(m, r).completed);
+  const auto fx = r.series("contact_force", 0), fy = r.series("contact_force", 1),
+             fz = r.series("contact_force", 2), slipping = r.series("slipping_contacts");
+  const size_t ramp_end = 6;                // t = 1.5
+  for (size_t n = 5; n <= ramp_end; ++n) {  // the shear's steps
+    EXPECT_EQ(slipping[n], 9) << "row " << n;
+    EXPECT_LE(std::hypot(fx[n], fy[n]), mu * fz[n] * (1 + 1e-9)) << "row " << n;
+    EXPECT_GT(-fx[n], mu * fz[n] * (1 - 1e-4)) << "row " << n;
+  }
+  for (size_t n = ramp_end + 1; n < fz.size(); ++n) EXPECT_NEAR(fx[n], fx[ramp_end], 1e-9 * mu * fz[n]);
+  std::printf(
+      "static shear on a rigid master: -f_x / f_z = %.12f, %.12f in the shear, %.12f at rest (μ = %.2f)\n",
+      -fx[5] / fz[5], -fx[ramp_end] / fz[ramp_end], -fx.back() / fz.back(), mu);
 }
 
 }  // namespace

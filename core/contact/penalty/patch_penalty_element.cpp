@@ -63,10 +63,10 @@ PatchPenaltyResult patch_penalty_element(const TensorPatch& local, const Eigen::
                                          const PenaltyParameters& p, const Eigen::Vector2d& xi_start,
                                          double face_size) {
   PatchPenaltyResult out(x_1.size());
-  const Eigen::VectorXd x_m = 0.5 * (x_n + x_1);
-  out.at_n = project(local, x_n, xi_start);  // §5.2 item 1
-  out.at_m = project(local, x_m, xi_start);
+  const Eigen::VectorXd x_m = p.at_end ? x_1 : Eigen::VectorXd(0.5 * (x_n + x_1));  // §5b.6: x_{n+1} static
+  out.at_n = project(local, x_n, xi_start);                                         // §5.2 item 1
   out.at_1 = project(local, x_1, xi_start);
+  out.at_m = p.at_end ? out.at_1 : project(local, x_m, xi_start);
   if (!(out.at_n.converged && out.at_m.converged && out.at_1.converged)) return open_result(out, p);
 
   const PatchPoint mid_point = patch_point(local, x_m, out.at_m.xi),
@@ -78,7 +78,8 @@ PatchPenaltyResult patch_penalty_element(const TensorPatch& local, const Eigen::
   if (!(normal.value < 0)) return open_result(out, p);  // open: reset t_T (§5.2 item 7)
 
   const std::array<PatchRows3, 2> dtau = patch_tangent_gradients(mid_point, mid.D);  // (3.8)
-  const HalfGradients<dynamic> half = half_gradients<dynamic>(out.at_m.frame, dtau);
+  const double theta = evaluation_weight(p);
+  const PointGradients<dynamic> half = point_gradients<dynamic>(out.at_m.frame, dtau, theta);
   const PatchRows2 D_1 = patch_xi_gradient(end_point, out.at_1.gap);  // (3.7) at x_{n+1}
   const TangentialKinematics<dynamic> kinematics{out.at_m.frame, half, D_1, out.at_1.xi - out.at_n.xi};
   const TangentialTraction<dynamic> tangential =
@@ -89,9 +90,12 @@ PatchPenaltyResult patch_penalty_element(const TensorPatch& local, const Eigen::
           : patch_contracted_xi_hessian(local, x_m, mid_point, out.at_m.gap, mid, dtau,
                                         tangential.value);  // smooth_master_surface §3.8
   const PatchRows2 D_m = mid.D;
-  const DiscreteGradients bar = discrete_gradients({out.at_n, out.at_1, mid, D_m, Ns_1, D_1, xi_hessian}, x_n,
-                                                   x_1, normal.value, tangential.value);
-  fill_closed_step<dynamic>(out, {bar.Ns, mid.dNs, bar.D}, xi_hessian, normal, tangential,
+  // Static steps take the gradients at x_{n+1} as they are: no step to be exact over (§5b.6).
+  const DiscreteGradients bar =
+      p.at_end ? DiscreteGradients{mid.Ns, D_m, Eigen::MatrixXd::Zero(x_1.size(), x_1.size())}
+               : discrete_gradients({out.at_n, out.at_1, mid, D_m, Ns_1, D_1, xi_hessian}, x_n, x_1,
+                                    normal.value, tangential.value);
+  fill_closed_step<dynamic>(out, {bar.Ns, mid.dNs, bar.D, theta}, xi_hessian, normal, tangential,
                             p);  // (5.2) with (3.9)
   out.tangent += bar.correction_tangent;
   return out;

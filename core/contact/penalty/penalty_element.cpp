@@ -79,8 +79,8 @@ PenaltyResult penalty_element(const Vector15& x_n, const Vector15& x_1, const Fr
                               const PenaltyParameters& p, const Eigen::Vector2d& xi_start) {
   PenaltyResult out;
   out.at_n = project(x_n, xi_start);  // §5.2 item 1
-  out.at_m = project(0.5 * (x_n + x_1), xi_start);
   out.at_1 = project(x_1, xi_start);
+  out.at_m = p.at_end ? out.at_1 : project(0.5 * (x_n + x_1), xi_start);  // §5b.6: x_{n+1} in static steps
   if (!(out.at_n.converged && out.at_m.converged && out.at_1.converged)) return open_result(out, p);
 
   const GapVariations mid = gap_variations(out.at_m.frame, out.at_m.gap);  // (3.6)–(3.9) at x_m
@@ -89,12 +89,13 @@ PenaltyResult penalty_element(const Vector15& x_n, const Vector15& x_1, const Fr
       normal_traction<15>(p, out.at_n, out.at_m, out.at_1, mid.Ns, Ns_1, face_size(x_n));
   if (!(normal.value < 0)) return open_result(out, p);  // open: reset t_T (§5.2 item 7)
 
-  const HalfGradients<15> half = half_gradients<15>(out.at_m.frame, mid.dtau);
+  const double theta = evaluation_weight(p);
+  const PointGradients<15> half = point_gradients<15>(out.at_m.frame, mid.dtau, theta);
   const Matrix2x15 D_1 = xi_gradient(out.at_1.frame, out.at_1.gap);  // (3.7) at x_{n+1}
   const TangentialKinematics<15> kinematics{out.at_m.frame, half, D_1, out.at_1.xi - out.at_n.xi};
   const TangentialTraction<15> tangential = return_map(kinematics, history.traction, normal, p);  // (5.3)
   const Matrix15 xi_hessian = contracted_xi_hessian(out.at_m.frame, out.at_m.gap, mid, tangential.value);
-  fill_closed_step<15>(out, {mid.Ns, mid.dNs, mid.D}, xi_hessian, normal, tangential, p);
+  fill_closed_step<15>(out, {mid.Ns, mid.dNs, mid.D, theta}, xi_hessian, normal, tangential, p);
   return out;
 }
 

@@ -60,7 +60,15 @@ struct PenaltyParameters {
   /// Constant c with W_N = W_N(g_N − c) and t_N from g_N − c: the gap kept at a face switch
   /// (switch_gap "keep", §3.4). Geometry (N_s, D_α, the reported gaps) uses the true g_N.
   double gap_offset = 0;
+  /// Static steps (docs/theory.md (5b.7c)): the CPP, t_N = ε_N min(g_{n+1}, 0) and the geometry of (5.2) at
+  /// x_{n+1} instead of x_m, so that a converged step is the equilibrium of its load level.
+  bool at_end = false;
 };
+
+/// ∂x_θ/∂x_{n+1} of the point the element's geometry is evaluated at: x_m (½) or, in static steps, x_{n+1}.
+inline double evaluation_weight(const PenaltyParameters& p) {
+  return p.at_end ? 1.0 : 0.5;
+}
 
 /// One element over one step, for an element vector of N entries [x_s; master nodes].
 /// @note When the contact is open (or one of the three CPPs did not converge), `force`, `tangent`,
@@ -81,7 +89,7 @@ struct PenaltyResultT {
   double tangential_energy = 0;  ///< W_T(t_{n+1}) = ‖t_{n+1}‖²/(2ε_T), metric at x_m (5.1)
   double slip_work = 0;  ///< t_{n+1}·Δξ_p = μ p ‖Δξ_p‖ ≥ 0; exactly 0 in stick (§5.2 item 7)
   FrictionHistory history_after;  ///< t_{T,n+1} = t_{n+1,α} m^{αβ} τ_β(x_m); commit after convergence
-  Projection at_n, at_m, at_1;    ///< the CPPs of x_n, x_m = (x_n + x_{n+1})/2 and x_{n+1}
+  Projection at_n, at_m, at_1;    ///< CPPs of x_n, x_m = (x_n + x_{n+1})/2 (x_{n+1} if at_end), x_{n+1}
 
   explicit PenaltyResultT(Eigen::Index n = N == Eigen::Dynamic ? 0 : N)
       : force(element_zero<ElementVector<N>>(n)), tangent(element_zero<ElementMatrix<N>>(n)) {}
@@ -132,11 +140,19 @@ NormalTraction<N> discrete_derivative_normal_traction(double eps, double g_n, do
   return {t, dt_dg1 * Ns_1.transpose()};                      // ∂g_1 = N_s(x_1)
 }
 
+/// Static steps: t_N = ε_N min(g_{n+1}, 0) at x_{n+1} (5b.7c).
+template <int N>
+NormalTraction<N> end_normal_traction(double eps, double g_1, const ElementVector<N>& Ns_1) {
+  if (!(g_1 < 0)) return {0, element_zero<ElementRow<N>>(Ns_1.size())};
+  return {eps * g_1, eps * Ns_1.transpose()};  // (5.1)
+}
+
 /// t_N of the pair's normal rule for the CPPs at x_n, x_m, x_{n+1} (gaps shifted by the kept offset).
 template <int N>
 NormalTraction<N> normal_traction(const PenaltyParameters& p, const Projection& at_n, const Projection& at_m,
                                   const Projection& at_1, const ElementVector<N>& Ns_m,
                                   const ElementVector<N>& Ns_1, double size) {
+  if (p.at_end) return end_normal_traction<N>(p.normal_stiffness, at_1.gap - p.gap_offset, Ns_1);
   if (p.normal_rule == NormalRule::midpoint)
     return midpoint_normal_traction<N>(p.normal_stiffness, at_m.gap - p.gap_offset, Ns_m);
   return discrete_derivative_normal_traction<N>(p.normal_stiffness, at_n.gap - p.gap_offset,
@@ -163,27 +179,28 @@ struct TangentialTraction {
   ElementRows2<N> gradient;
 };
 
-/// Midpoint gradients w.r.t. x_{n+1}: x_m = (x_n + x_{n+1})/2 gives the factor ½.
+/// Gradients w.r.t. x_{n+1} at the evaluation point x_θ: θ ∂/∂x_θ, θ = evaluation_weight (½ at x_m).
 template <int N>
-struct HalfGradients {
-  std::array<ElementRows3<N>, 2> dtau;  ///< ½ ∂τ_α/∂x_m (3.8)
-  MetricGradient<N> dm;                 ///< ½ ∂m_αβ/∂x_m
+struct PointGradients {
+  std::array<ElementRows3<N>, 2> dtau;  ///< θ ∂τ_α/∂x_θ (3.8)
+  MetricGradient<N> dm;                 ///< θ ∂m_αβ/∂x_θ
 };
 
 template <int N>
-HalfGradients<N> half_gradients(const SegmentFrame& mid, const std::array<ElementRows3<N>, 2>& dtau) {
-  HalfGradients<N> h{{0.5 * dtau[0], 0.5 * dtau[1]}, metric_gradient<N>(mid, dtau)};
-  for (auto& row : h.dm)
-    for (ElementRow<N>& entry : row) entry *= 0.5;
-  return h;
+PointGradients<N> point_gradients(const SegmentFrame& frame, const std::array<ElementRows3<N>, 2>& dtau,
+                                  double theta) {
+  PointGradients<N> g{{theta * dtau[0], theta * dtau[1]}, metric_gradient<N>(frame, dtau)};
+  for (auto& row : g.dm)
+    for (ElementRow<N>& entry : row) entry *= theta;
+  return g;
 }
 
-/// Inputs of the return map: the midpoint frame with its gradients (w.r.t. x_{n+1}, i.e. ½ ∂/∂x_m),
-/// D(x_{n+1}) and Δξ.
+/// Inputs of the return map: the frame at the evaluation point (x_m, or x_{n+1} in static steps) with its
+/// gradients w.r.t. x_{n+1}, D(x_{n+1}) and Δξ.
 template <int N>
 struct TangentialKinematics {
   const SegmentFrame& mid;
-  const HalfGradients<N>& half;
+  const PointGradients<N>& half;
   const ElementRows2<N>& D_1;  ///< ∂ξ_{n+1}/∂x_{n+1}
   Eigen::Vector2d dxi;         ///< Δξ = ξ_{n+1} − ξ_n
 };
@@ -227,16 +244,17 @@ TangentialTraction<N> return_map(const TangentialKinematics<N>& k, const Eigen::
   return out;
 }
 
-/// The variations of §3.3 a closed step needs at x_m, whatever the surface.
+/// The variations of §3.3 a closed step needs at its evaluation point x_θ, whatever the surface.
 template <int N>
 struct MidpointVariations {
   const ElementVector<N>& Ns;   ///< (3.6)
   const ElementMatrix<N>& dNs;  ///< (3.9)
   const ElementRows2<N>& D;     ///< (3.7)
+  double weight = 0.5;          ///< θ = ∂x_θ/∂x_{n+1} (evaluation_weight)
 };
 
-/// Fills a closed step: tractions, force (5.2) at x_m, its tangent w.r.t. x_{n+1} given
-/// xi_hessian = Σ_α t_α ∂D_α/∂x_m at t = t_{n+1}, the new history and the energies (§5.2 items 5–7).
+/// Fills a closed step: tractions, force (5.2) at x_θ, its tangent w.r.t. x_{n+1} given
+/// xi_hessian = Σ_α t_α ∂D_α/∂x_θ at t = t_{n+1}, the new history and the energies (§5.2 items 5–7).
 template <int N>
 void fill_closed_step(PenaltyResultT<N>& out, const MidpointVariations<N>& mid,
                       const ElementMatrix<N>& xi_hessian, const NormalTraction<N>& normal,
@@ -248,10 +266,10 @@ void fill_closed_step(PenaltyResultT<N>& out, const MidpointVariations<N>& mid,
   out.traction = tangential.value;  // t_alg = t_{n+1} (§5.2 item 5)
   out.transported_traction = tangential.transported;
   out.slip_increment = tangential.slip_increment;
-  out.force = normal.value * mid.Ns + mid.D.transpose() * tangential.value;  // (5.2)
-  out.tangent = mid.Ns * normal.gradient + 0.5 * normal.value * mid.dNs      // ∂(t_N N_s), (3.9)
-                + mid.D.transpose() * tangential.gradient                    // ∂t_α D_α
-                + 0.5 * xi_hessian;                                          // t_α ∂D_α
+  out.force = normal.value * mid.Ns + mid.D.transpose() * tangential.value;     // (5.2)
+  out.tangent = mid.Ns * normal.gradient + mid.weight * normal.value * mid.dNs  // ∂(t_N N_s), (3.9)
+                + mid.D.transpose() * tangential.gradient                       // ∂t_α D_α
+                + mid.weight * xi_hessian;                                      // t_α ∂D_α
   const Eigen::Vector2d contravariant = f.metric_inv * tangential.value;
   out.history_after.traction = contravariant[0] * f.tau1 + contravariant[1] * f.tau2;          // §5.2 item 7
   out.normal_energy = normal_penalty_energy(p.normal_stiffness, out.at_1.gap - p.gap_offset);  // (5.1)

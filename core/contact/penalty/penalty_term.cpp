@@ -32,9 +32,10 @@ bool same_structure(const std::vector<PenaltyContact>& a, const std::vector<Pena
 }  // namespace
 
 PenaltyContactTerm::PenaltyContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair,
-                                       double master_youngs_modulus)
+                                       double master_youngs_modulus, bool static_steps)
     : ContactTerm(mesh, pair) {
   params_ = parameters_of(pair, penalty_default_stiffness(master_youngs_modulus, surfaces_.mean_face_size));
+  params_.at_end = static_steps;
   committed_.assign(surfaces_.slave_nodes.size(), PenaltyNodeState{});
   for (const TensorPatch& patch : surfaces_.patches) local_patches_.push_back(local_patch(patch));
 }

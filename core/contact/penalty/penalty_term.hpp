@@ -52,8 +52,10 @@ struct PenaltyNodeState {
 ///       energy inside the total H of (5.4) when x is the last converged state.
 class PenaltyContactTerm : public ContactTerm {
  public:
-  /// `master_youngs_modulus` sets the default stiffnesses 10 E ℓ (§5.1) of the unset ones.
-  PenaltyContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair, double master_youngs_modulus);
+  /// `master_youngs_modulus` sets the default stiffnesses 10 E ℓ (§5.1) of the unset ones; `static_steps`
+  /// evaluates the elements at x_{n+1} (PenaltyParameters::at_end, docs/theory.md §5b.6).
+  PenaltyContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair, double master_youngs_modulus,
+                     bool static_steps = false);
   double energy(const Eigen::VectorXd& x) const override;
   void register_blocks(solve::BlockPattern& pattern) override;
   void prepare_step(const time::StepContext& step) override;

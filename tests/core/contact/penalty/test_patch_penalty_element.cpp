@@ -28,11 +28,18 @@ struct Friction {
   double ratio;
 };
 
+/// How the step's traction and geometry are evaluated: a normal rule at x_m, or static steps' x_{n+1}.
+struct Evaluation {
+  const char* name;
+  NormalRule rule;
+  bool at_end;  ///< static steps (docs/theory.md §5b.6)
+};
+
 class PatchPenaltyElement
-    : public ::testing::TestWithParam<std::tuple<test::PatchCase, Friction, NormalRule, double>> {
+    : public ::testing::TestWithParam<std::tuple<test::PatchCase, Friction, Evaluation, double>> {
  protected:
   void SetUp() override {
-    const auto& [c, friction, rule, g_n] = GetParam();
+    const auto& [c, friction, evaluation, g_n] = GetParam();
     const test::PickedPatch picked = test::pick(c);
     const TensorPatch& patch = picked.patch;
     const PatchFrame on = patch_frame(patch, picked.grid.x, picked.xi);
@@ -49,7 +56,8 @@ class PatchPenaltyElement
     history.traction = 4.0 * on.tau1.normalized() - 2.5 * on.tau2.normalized();
     xi_start = picked.xi;
     size = picked.grid.spacing;
-    p = {stiffness, friction.ratio > 0 ? stiffness : 0.0, 1e12, rule};
+    p = {stiffness, friction.ratio > 0 ? stiffness : 0.0, 1e12, evaluation.rule};
+    p.at_end = evaluation.at_end;
     if (friction.ratio > 0) {
       const PatchPenaltyResult stick = at(x_1);
       const double norm = std::sqrt(stick.traction.dot(stick.at_m.frame.metric_inv * stick.traction));
@@ -88,19 +96,35 @@ TEST_P(PatchPenaltyElement, TangentMatchesCentralDifferences) {
 }
 
 // The force is a discrete gradient (docs/smooth_master_surface.md (3.9)): its work over the step is
-// t_N Δg_N + t_α Δξ^α exactly (1e-12), so the "dd" rule's W_N and the Coulomb law keep H + D.
+// t_N Δg_N + t_α Δξ^α exactly (1e-12), so the "dd" rule's W_N and the Coulomb law keep H + D. Static steps'
+// element does that work on a virtual displacement at x_{n+1} (docs/theory.md §5b.6): F = t_N ∂g_N + t_α ∂ξ^α
+// there, against central differences of the CPP at x_{n+1}, 1e-6 relative.
 TEST_P(PatchPenaltyElement, WorkIsTractionTimesTheChangeOfGapAndCoordinates) {
   ASSERT_TRUE(r.closed);
+  if (p.at_end) {
+    const double eps = 1e-6;
+    Eigen::VectorXd virtual_work(x_1.size());
+    for (Eigen::Index j = 0; j < x_1.size(); ++j) {
+      Eigen::VectorXd up = x_1, down = x_1;
+      up[j] += eps, down[j] -= eps;
+      const PatchPenaltyResult u = at(up), d = at(down);
+      virtual_work[j] =
+          (r.normal_traction * (u.at_1.gap - d.at_1.gap) + r.traction.dot(u.at_1.xi - d.at_1.xi)) / (2 * eps);
+    }
+    EXPECT_LT((r.force - virtual_work).norm(), 1e-6 * r.force.norm());
+    return;
+  }
   const double work = r.force.dot(x_1 - x_n);
   const double expected =
       r.normal_traction * (r.at_1.gap - r.at_n.gap) + r.traction.dot(r.at_1.xi - r.at_n.xi);
   EXPECT_NEAR(work, expected, 1e-12 * r.force.norm() * (x_1 - x_n).norm());
 }
 
-// Σ_nodes F = 0 and Σ x_m × F = 0 (the penalty law conserves L and J, §5.1), 1e-12 relative.
+// Σ_nodes F = 0 and Σ x_m × F = 0 (the penalty law conserves L and J, §5.1), 1e-12 relative; about
+// x_{n+1} for static steps' element.
 TEST_P(PatchPenaltyElement, ForceHasNoNetForceOrTorqueAtTheMidpoint) {
   ASSERT_TRUE(r.closed);
-  const Eigen::VectorXd x_m = 0.5 * (x_n + x_1);
+  const Eigen::VectorXd x_m = p.at_end ? x_1 : Eigen::VectorXd(0.5 * (x_n + x_1));
   Eigen::Vector3d sum = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
   for (Eigen::Index i = 0; i < x_m.size(); i += 3) {
     sum += r.force.segment<3>(i);
@@ -111,8 +135,8 @@ TEST_P(PatchPenaltyElement, ForceHasNoNetForceOrTorqueAtTheMidpoint) {
 }
 
 std::string case_name(const ::testing::TestParamInfo<PatchPenaltyElement::ParamType>& info) {
-  const auto& [c, friction, rule, g_n] = info.param;
-  return std::string(c.name) + "_" + friction.name + (rule == NormalRule::midpoint ? "_mid" : "_dd") +
+  const auto& [c, friction, evaluation, g_n] = info.param;
+  return std::string(c.name) + "_" + friction.name + "_" + evaluation.name +
          (g_n > 0 ? "_touchdown" : "_pressed");
 }
 
@@ -126,7 +150,9 @@ INSTANTIATE_TEST_SUITE_P(
                                          test::PatchCase{"extraordinary", -1, -1, {0.1, 0.06}, false, true}),
                        ::testing::Values(Friction{"stick", 2.0}, Friction{"slip", 0.5},
                                          Friction{"frictionless", 0}),
-                       ::testing::Values(NormalRule::discrete_derivative, NormalRule::midpoint),
+                       ::testing::Values(Evaluation{"dd", NormalRule::discrete_derivative, false},
+                                         Evaluation{"mid", NormalRule::midpoint, false},
+                                         Evaluation{"end", NormalRule::discrete_derivative, true}),
                        ::testing::Values(0.01, -0.005)),
     case_name);
 

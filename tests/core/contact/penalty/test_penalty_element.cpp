@@ -19,8 +19,11 @@ using test::relative_error;
 constexpr double stiffness = 1e3;  // ε_N = ε_T; gaps ~0.02 and Δξ ~0.03 give t_N ~ t_T ~ 20
 constexpr double no_slip = 1e12;   // a friction coefficient that always sticks
 
-PenaltyParameters parameters(NormalRule rule, double friction) {
-  return {stiffness, stiffness, friction, rule};
+/// `at_end`: the static steps' element, evaluated at x_{n+1} (docs/theory.md §5b.6).
+PenaltyParameters parameters(NormalRule rule, double friction, bool at_end = false) {
+  PenaltyParameters p{stiffness, stiffness, friction, rule};
+  p.at_end = at_end;
+  return p;
 }
 
 /// ‖t‖_m = sqrt(t_α m^{αβ} t_β) at the midpoint metric.
@@ -55,19 +58,22 @@ Step random_step(unsigned seed, double g_n, double g_1) {
 }
 
 /// μ with μ p = ratio ‖t^tr‖: ratio > 1 sticks, < 1 slips, with Φ^tr = (1 − ratio)‖t^tr‖ (5.3).
-double friction_for(const Step& s, NormalRule rule, double ratio) {
-  const PenaltyResult stick = penalty_element(s.x_n, s.x_1, s.history, parameters(rule, no_slip), s.xi_start);
+double friction_for(const Step& s, NormalRule rule, double ratio, bool at_end) {
+  const PenaltyResult stick =
+      penalty_element(s.x_n, s.x_1, s.history, parameters(rule, no_slip, at_end), s.xi_start);
   return ratio * metric_norm(stick.traction, stick.at_m.frame.metric_inv) / -stick.normal_traction;
 }
 
 // ------------------------------------------------------------------------------------------------
 // Closed contact in stick and in slip, away from the switch (|Φ^tr| = ½‖t^tr‖ or ‖t^tr‖), for both
-// normal rules; "touchdown" (g_n > 0 > g_1) and "release" (g_n < 0 < g_1) exercise the quotient of "dd".
+// normal rules and for static steps' element at x_{n+1} ("end"); "touchdown" (g_n > 0 > g_1) and "release"
+// (g_n < 0 < g_1) exercise the quotient of "dd".
 struct Case {
   std::string name;
   NormalRule rule;
   double g_n, g_1;
-  double ratio;  ///< μ p / ‖t^tr‖
+  double ratio;         ///< μ p / ‖t^tr‖
+  bool at_end = false;  ///< static steps (§5b.6)
 };
 
 const Case cases[] = {
@@ -78,6 +84,9 @@ const Case cases[] = {
     {"dd_release_slip", NormalRule::discrete_derivative, -0.02, 0.01, 0.5},
     {"mid_stick", NormalRule::midpoint, -0.02, -0.03, 2.0},
     {"mid_slip", NormalRule::midpoint, -0.02, -0.03, 0.5},
+    {"end_stick", NormalRule::discrete_derivative, -0.02, -0.03, 2.0, true},
+    {"end_slip", NormalRule::discrete_derivative, -0.02, -0.03, 0.5, true},
+    {"end_touchdown_slip", NormalRule::discrete_derivative, 0.01, -0.02, 0.5, true},
 };
 
 class ClosedPenaltyElement : public ::testing::TestWithParam<std::tuple<Case, unsigned>> {
@@ -85,7 +94,7 @@ class ClosedPenaltyElement : public ::testing::TestWithParam<std::tuple<Case, un
   void SetUp() override {
     const auto& [c, seed] = GetParam();
     step = random_step(seed, c.g_n, c.g_1);
-    p = parameters(c.rule, friction_for(step, c.rule, c.ratio));
+    p = parameters(c.rule, friction_for(step, c.rule, c.ratio, c.at_end), c.at_end);
     r = at(step.x_1);
     ASSERT_TRUE(r.closed);
     ASSERT_EQ(r.slip, c.ratio < 1);
@@ -106,9 +115,10 @@ TEST_P(ClosedPenaltyElement, TangentMatchesCentralDifferences) {
   EXPECT_LT(relative_error(r.tangent, fd_jacobian(force, step.x_1, fd_step)), 1e-6);
 }
 
-// Σ_nodes F = 0 and Σ x_m × F = 0 (§5.1: penalty friction conserves L and J), 1e-12 relative.
+// Σ_nodes F = 0 and Σ x_m × F = 0 (§5.1: penalty friction conserves L and J), 1e-12 relative; about x_{n+1}
+// for the static steps' element.
 TEST_P(ClosedPenaltyElement, ForceHasNoNetForceOrTorqueAtTheMidpoint) {
-  const Vector15 x_m = 0.5 * (step.x_n + step.x_1);
+  const Vector15 x_m = p.at_end ? step.x_1 : Vector15(0.5 * (step.x_n + step.x_1));
   Eigen::Vector3d sum = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
   for (int node = 0; node < 5; ++node) {
     sum += r.force.segment<3>(3 * node);
@@ -294,6 +304,27 @@ TEST(PenaltyElement, MidpointNormalWorkMissesThePenaltyEnergyAtTouchdown) {
   const double dW_N = normal_penalty_energy(stiffness, -0.03);
   ASSERT_TRUE(r.closed);
   EXPECT_GT(std::abs(r.force.dot(s.x_1 - s.x_n) - dW_N), 0.1 * dW_N);
+}
+
+// Static steps (§5b.6): without friction the element's force is ∂W_N/∂x at x_{n+1}, whatever x_n, so a
+// converged load step is the equilibrium of its level; central differences of W_N(g_{n+1}), 1e-7 relative
+// (the differences' own error at fd_step). With touchdown in the step too (g_n > 0), which "dd" averages.
+TEST(PenaltyElement, StaticStepsForceIsThePenaltyEnergysGradientAtTheEnd) {
+  for (const auto& [g_n, g_1] : {std::pair{-0.02, -0.03}, std::pair{0.01, -0.02}}) {
+    const Step s = random_step(6, g_n, g_1);
+    const PenaltyParameters p = parameters(NormalRule::discrete_derivative, 0.0, true);
+    const auto at = [&](const Vector15& x) { return penalty_element(s.x_n, x, {}, p, s.xi_start); };
+    Vector15 gradient;
+    for (int j = 0; j < 15; ++j) {
+      Vector15 up = s.x_1, down = s.x_1;
+      up[j] += fd_step, down[j] -= fd_step;
+      gradient[j] = (at(up).normal_energy - at(down).normal_energy) / (2 * fd_step);
+    }
+    const PenaltyResult r = at(s.x_1);
+    ASSERT_TRUE(r.closed);
+    EXPECT_LT((r.force - gradient).norm(), 1e-7 * gradient.norm()) << "g_n " << g_n;
+    EXPECT_EQ(r.normal_traction, stiffness * r.at_1.gap) << "t_N = ε_N g_{n+1}";
+  }
 }
 
 // ------------------------------------------------------------------------------------------------
