@@ -39,7 +39,7 @@ struct ContactReport {
   double max_new_gap_target =
       0;  ///< largest gap target f_3 of the elements activated or switched in the step
   double contact_area =
-      0;  ///< Σ of the tributary areas A_I of the slave nodes in contact (series/contact_area)
+      0;  ///< Σ of the tributary areas A_I of the slave nodes in contact with a force (series/contact_area)
 };
 
 /// A contact pair as a time::Term, with what the run reports of it: the pair, its surfaces and broad
@@ -65,10 +65,11 @@ class ContactTerm : public time::Term {
   /// Sends "<name>: <line>" to the run's solver log, if any.
   void log(const time::StepContext& step, const std::string& line) const;
   /// Records the normal contact force (≥ 0) of slave `slave` (index into surfaces_.slave_nodes) as a
-  /// pressure for contact_pressure().
+  /// pressure for contact_pressure(); its area counts in contact_area when it carries a force (an active
+  /// node with a tensile multiplier, kept by §3.5's anti-cycling, reports pressure 0 and no area).
   void add_pressure(int slave, double force) {
     pressure_.emplace_back(surfaces_.slave_nodes[slave], force / surfaces_.tributary_area[slave]);
-    report_.contact_area += surfaces_.tributary_area[slave];
+    if (force > 0) report_.contact_area += surfaces_.tributary_area[slave];
   }
   /// Forgets the last step's pressures and contact area (before add_pressure of the next).
   void clear_pressure() {
