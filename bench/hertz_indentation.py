@@ -11,8 +11,12 @@ materials (H1). Wall time: the result's wall_seconds (the run, without process s
 
     /usr/bin/python3 bench/hertz_indentation.py [--stoss build/stoss] [--meshes coarse,medium,fine]
                                                 [--surfaces smooth,faceted] [--steps 8] [--linear direct]
-                                                [--enforcement lagrange|penalty]
+                                                [--enforcement lagrange|penalty] [--radius R]
                                                 [--out DIR]
+
+--radius R (default 1) makes the meshes with a sphere of radius R (`-setnumber R`) and drives it to
+delta = 0.02 / R: the same contact radii a = sqrt(R delta) on the same elements, with strains a/R that are R times
+smaller. Against Hertz's small-strain solution that leaves the discretisation error alone (docs/measurements.md).
 
 Needs numpy and h5py (Debian's /usr/bin/python3 has both). Wall times are reported, never asserted.
 """
@@ -53,15 +57,15 @@ def top_edge(f):
 ELEMENT_EDGE = {"coarse": 0.05, "medium": 0.03, "fine": 0.02}
 
 
-def mesh_file(mesh, workdir):
-    """meshes/hertz_coarse.msh, or the mesh Gmsh makes from hertz_indentation.geo with h0 of `mesh`."""
+def mesh_file(mesh, workdir, radius=1.0):
+    """meshes/hertz_coarse.msh, or the mesh Gmsh makes from hertz_indentation.geo with h0 of `mesh` and R."""
     shipped = os.path.join(MESHES, f"hertz_{mesh}.msh")
-    if os.path.exists(shipped):
+    if os.path.exists(shipped) and radius == 1.0:
         return shipped
-    made = os.path.join(workdir, f"hertz_{mesh}.msh")
+    made = os.path.join(workdir, f"hertz_{mesh}" + ("" if radius == 1.0 else f"_R{radius:g}") + ".msh")
     if not os.path.exists(made):
         subprocess.run(["gmsh", "-3", "-format", "msh41", "-setnumber", "h0", str(ELEMENT_EDGE[mesh]),
-                        os.path.join(MESHES, "hertz_indentation.geo"), "-o", made],
+                        "-setnumber", "R", str(radius), os.path.join(MESHES, "hertz_indentation.geo"), "-o", made],
                        check=True, capture_output=True)
     return made
 
@@ -69,14 +73,16 @@ def mesh_file(mesh, workdir):
 def run(args, mesh, surface, workdir):
     scene = json.load(open(EXAMPLE))
     for body in scene["bodies"]:
-        body["mesh"]["file"] = mesh_file(mesh, workdir)
+        body["mesh"]["file"] = mesh_file(mesh, workdir, args.radius)
+    scene["boundary"][0]["displacement"][2] /= args.radius  # delta = 0.02 / R: a = sqrt(R delta) kept
     scene["contact"][0]["master_surface"] = surface
     scene["contact"][0]["enforcement"] = args.enforcement
     scene["time"]["step"] = 1.0 / args.steps
     # The fine mesh has more than 14,000 elements, where "auto" picks petsc_gamg; on this problem (a 1000 times
     # stiffer sphere, flat graded elements) GMRES needed minutes per step, UMFPACK takes seconds.
     scene["solver"] = {"linear": args.linear}
-    name = f"{mesh}_{surface}" + ("" if args.enforcement == "lagrange" else f"_{args.enforcement}")
+    name = f"{mesh}_{surface}" + ("" if args.enforcement == "lagrange" else f"_{args.enforcement}") + (
+        "" if args.radius == 1.0 else f"_R{args.radius:g}")
     path = os.path.join(workdir, f"{name}.json")
     json.dump(scene, open(path, "w"), indent=1)
     out = os.path.join(workdir, name)
@@ -88,7 +94,7 @@ def run(args, mesh, surface, workdir):
     wall = f.attrs["wall_seconds"]
     s = f["series"]
     depth = -scene["boundary"][0]["displacement"][2]
-    radius = 1.0  # the sphere's radius R in hertz_indentation.geo
+    radius = args.radius  # the sphere's radius R in hertz_indentation.geo
     e_star = effective_modulus(scene)
     rows = []
     for n in range(1, len(s["time"])):
@@ -96,7 +102,8 @@ def run(args, mesh, surface, workdir):
         force = -4 * s["contact_force"][n, 0, 2]
         reaction = 4 * s["reaction_force"][n, 0, 2]
         a = math.sqrt(4 * s["contact_area"][n, 0] / math.pi)
-        rows.append(dict(delta=delta, force=force, reaction=reaction, a=a,
+        # level: delta/R at R = 1; R delta = a^2 in general, so a level names the same contact radius for every R
+        rows.append(dict(delta=delta, level=delta * radius, force=force, reaction=reaction, a=a,
                          hertz=4 / 3 * e_star * math.sqrt(radius) * delta ** 1.5, a_hertz=math.sqrt(radius * delta)))
     iterations = s["newton_iterations"][1:] if "newton_iterations" in s else []
     return dict(mesh=mesh, surface=surface if args.enforcement == "lagrange" else f"{surface}, {args.enforcement}", elements=len(f["mesh/hex8"]), h0=top_edge(f), rows=rows,
@@ -111,6 +118,7 @@ def main():
     p.add_argument("--steps", type=int, default=8, help="load steps to delta/R = 2 %% (a multiple of 4)")
     p.add_argument("--linear", default="direct", help="solver.linear of every run")
     p.add_argument("--enforcement", default="lagrange", help="the pair's enforcement: lagrange or penalty")
+    p.add_argument("--radius", type=float, default=1.0, help="the sphere's radius R; delta = 0.02 / R")
     p.add_argument("--out", help="keep the runs here (default: a temporary directory)")
     p.add_argument("--reuse", action="store_true", help="tabulate the results already in --out, run only missing ones")
     args = p.parse_args()
@@ -124,19 +132,19 @@ def main():
             print(f"{mesh} {surface}: {r['elements']} elements, {r['wall']:.1f} s, verdict {r['verdict']}",
                   file=sys.stderr)
             for row in r["rows"]:
-                print(f"  delta/R {100 * row['delta']:.2f} %: F {row['force']:.6e} (reaction {row['reaction']:.6e}),"
+                print(f"  level {100 * row['level']:.2f} %: F {row['force']:.6e} (reaction {row['reaction']:.6e}),"
                       f" Hertz {row['hertz']:.6e}: {100 * (row['force'] / row['hertz'] - 1):+.2f} %;"
                       f" a {row['a']:.4f} vs {row['a_hertz']:.4f}: {(row['a'] - row['a_hertz']) / r['h0']:+.2f} h0",
                       file=sys.stderr)
-    print(f"E* = {results[0]['e_star']:.6f}; F error at delta/R = 0.5 / 1 / 1.5 / 2 %; a error = max |a - sqrt(R delta)| "
+    print(f"R = {args.radius:g}, E* = {results[0]['e_star']:.6f}; F error at R delta = 0.5 / 1 / 1.5 / 2 % (delta/R at R = 1); a error = max |a - sqrt(R delta)| "
           f"over the levels from 0.5 to 2 %, in element edges h0")
     print("| master | mesh | elements | h0 | edges across a (0.5 / 2 %) | F error 0.5 % | 1 % | 1.5 % | 2 % "
           "| a error (h0) | Newton its | wall s |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in results:
-        by = {round(100 * row["delta"], 2): row for row in r["rows"]}
+        by = {round(100 * row["level"], 2): row for row in r["rows"]}
         err = lambda d: (f"{100 * (by[d]['force'] / by[d]['hertz'] - 1):+.1f} %" if d in by else "—")
-        a_err = max(abs(row["a"] - row["a_hertz"]) for row in r["rows"] if 0.005 - 1e-12 <= row["delta"]) / r["h0"]
+        a_err = max(abs(row["a"] - row["a_hertz"]) for row in r["rows"] if 0.005 - 1e-12 <= row["level"]) / r["h0"]
         print(f"| {r['surface']} | {r['mesh']} | {r['elements']} | {r['h0']:.4f} | "
               f"{math.sqrt(0.005) / r['h0']:.1f} / {math.sqrt(0.02) / r['h0']:.1f} | {err(0.5)} | {err(1.0)} | "
               f"{err(1.5)} | {err(2.0)} | {a_err:.2f} | {r['iterations']} | {r['wall']:.0f} |")
