@@ -6,6 +6,7 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/UmfPackSupport>
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <mutex>
 
@@ -16,7 +17,15 @@ namespace {
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
+std::atomic<long> factorizations_in_process{0}, solves_in_process{0};
 }  // namespace
+
+long LinearSolver::process_factorizations() {
+  return factorizations_in_process.load();
+}
+long LinearSolver::process_solves() {
+  return solves_in_process.load();
+}
 
 /// UMFPACK allocates its numeric factors (tens of MB) anew at every factorisation; glibc would map and
 /// unmap them each time, and the page faults cost ~10 % of a contact run. Keep such blocks in the heap.
@@ -117,6 +126,7 @@ bool LinearSolver::factorize(const BlockPattern& A) {
     krylov_->bicgstab.compute(krylov_->A);
     factorization_seconds_ += seconds_since(t0);
     ++factorizations_;
+    ++factorizations_in_process;
     const bool ok = krylov_->bicgstab.info() == Eigen::Success;
     factorized_generation_ = ok ? A.generation() : -1;
     return ok;
@@ -132,12 +142,14 @@ bool LinearSolver::factorize(const BlockPattern& A) {
   }
   factorization_seconds_ += seconds_since(t0);
   ++factorizations_;
+  ++factorizations_in_process;
   const bool ok = impl_->lu.info() == Eigen::Success;
   factorized_generation_ = ok ? A.generation() : -1;
   return ok;
 }
 
 Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) const {
+  ++solves_in_process;
   if (method_ == LinearMethod::petsc_gamg) return solve_amg(b);
   const auto t0 = std::chrono::steady_clock::now();
   if (method_ == LinearMethod::iterative) {
@@ -167,6 +179,7 @@ bool LinearSolver::factorize_amg(const BlockPattern& A) {
   const bool ok = amg_->solver->factorize(A.matrix(), A.generation(), coordinates_);
   factorization_seconds_ += seconds_since(t0);
   ++factorizations_;
+  ++factorizations_in_process;
   factorized_generation_ = ok ? A.generation() : -1;
   return ok;
 }

@@ -41,6 +41,10 @@ class LinearSolver {
   void set_coordinates(const Eigen::VectorXd& positions) { coordinates_ = positions; }
   /// Number of numeric factorisations so far.
   int factorizations() const { return factorizations_; }
+  /// Numeric factorisations and solves of every LinearSolver of this process so far (bench/seed_counts.cpp
+  /// reports them for a whole run).
+  static long process_factorizations();
+  static long process_solves();
   /// Solves A x = b with the last factorisation.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   /// Seconds since construction in analysis and factorisations (petsc_gamg: copying the matrix in and
