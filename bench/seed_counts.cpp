@@ -1,6 +1,6 @@
-// The machine-independent counts of one run (issue 26): Newton iterations per step, numeric
-// factorisations and linear solves of the whole process, with the summary's time split and the process's
-// CPU seconds. Runs like `stoss run` (a checkpoint store in a scratch directory, so the checkpoint
+// The machine-independent counts of one run (issue 26): Newton iterations per step, symbolic analyses,
+// numeric factorisations and linear solves of the whole process, with the summary's time split and the
+// process's CPU seconds. Runs like `stoss run` (a checkpoint store in a scratch directory, so the checkpoint
 // schedule's refactorisations happen as they do there).
 // Run: ./build/bench_seed_counts [scene.json] [--steps] [--no-checkpoints]
 #include <sys/resource.h>
@@ -60,7 +60,8 @@ int main(int argc, char** argv) {
   const stoss::model::Summary s = stoss::simulate(
       m, log, nullptr, checkpoints ? stoss::Checkpoints{scratch, false} : stoss::Checkpoints{});
   std::filesystem::remove_all(scratch);
-  std::printf("steps %d iterations %d factorizations %ld solves %ld\n", s.steps, s.newton_iterations,
+  std::printf("steps %d iterations %d analyses %ld factorizations %ld solves %ld\n", s.steps,
+              s.newton_iterations, stoss::solve::LinearSolver::process_analyses(),
               stoss::solve::LinearSolver::process_factorizations(),
               stoss::solve::LinearSolver::process_solves());
   std::printf(

@@ -45,6 +45,8 @@ class LinearSolver {
   /// reports them for a whole run).
   static long process_factorizations();
   static long process_solves();
+  /// Symbolic analyses (orderings) of every LinearSolver of this process so far.
+  static long process_analyses();
   /// Solves A x = b with the last factorisation.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   /// Seconds since construction in analysis and factorisations (petsc_gamg: copying the matrix in and
