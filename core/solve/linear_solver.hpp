@@ -34,6 +34,8 @@ class LinearSolver {
   /// Factorises A (iterative: keeps a copy of A and builds the preconditioner); returns false if the
   /// matrix is numerically singular.
   bool factorize(const BlockPattern& A);
+  /// The next ready_for() is false: Newton factorises anew, the symbolic analysis stays.
+  void forget_factorization() { factorized_generation_ = -1; }
   /// Whether a factorisation exists for a matrix of this pattern generation.
   bool ready_for(const BlockPattern& A) const { return factorized_generation_ == A.generation(); }
   /// Positions of the nodes (3 per node) whose dofs come first in every matrix; the AMG path builds
