@@ -20,31 +20,70 @@ int threads_from_environment() {
   return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 }
 
-/// Runs body(e) for e in [begin, end) on `threads` threads, each a contiguous range (this thread runs one).
+/// Runs body(e) for e in [begin, end) on `threads` threads of `pool`, each a contiguous range (this thread
+/// runs the first).
 template <class Body>
-void for_each_element(int begin, int end, int threads, const Body& body) {
+void for_each_element(int begin, int end, int threads, ElementThreads& pool, const Body& body) {
   const int n = end - begin;
   threads = std::clamp(threads, 1, std::max(1, n / 16));  // no thread for fewer than 16 elements
   if (threads == 1) {
     for (int e = begin; e < end; ++e) body(e);
     return;
   }
-  std::vector<std::thread> pool;
-  pool.reserve(threads - 1);
-  for (int t = 1; t < threads; ++t)
-    pool.emplace_back([&, t] {
-      for (int e = begin + n * t / threads; e < begin + n * (t + 1) / threads; ++e) body(e);
-    });
-  for (int e = begin; e < begin + n / threads; ++e) body(e);
-  for (std::thread& thread : pool) thread.join();
+  pool.run(begin, end, threads, body);
 }
 
 /// Elements per chunk of ElasticityTerm::add: its forces and tangents are held until summed (a chunk of
-/// 512 tangents is 2.4 MB), and each chunk starts its threads anew (~50 µs), so residual-only chunks are
-/// larger.
+/// 512 tangents is 2.4 MB); residual-only chunks are larger.
 constexpr int tangent_chunk = 512, force_chunk = 4096;
 
 }  // namespace
+
+ElementThreads::~ElementThreads() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  start_.notify_all();
+  for (std::thread& worker : workers_) worker.join();
+}
+
+void ElementThreads::run(int begin, int end, int parts, const std::function<void(int)>& body) {
+  std::unique_lock lock(mutex_);
+  while (static_cast<int>(workers_.size()) < parts - 1) {
+    const int part = static_cast<int>(workers_.size()) + 1;
+    workers_.emplace_back([this, part] { work(part); });
+  }
+  body_ = &body;
+  begin_ = begin;
+  end_ = end;
+  parts_ = parts;
+  pending_ = parts - 1;
+  ++round_;
+  lock.unlock();
+  start_.notify_all();
+  const int n = end - begin;
+  for (int e = begin; e < begin + n / parts; ++e) body(e);
+  lock.lock();
+  done_.wait(lock, [this] { return pending_ == 0; });
+}
+
+void ElementThreads::work(int part) {
+  long seen = 0;
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    start_.wait(lock, [&] { return stop_ || round_ != seen; });
+    if (stop_) return;
+    seen = round_;
+    if (part >= parts_) continue;
+    const int begin = begin_, n = end_ - begin_, parts = parts_;
+    const std::function<void(int)>& body = *body_;
+    lock.unlock();
+    for (int e = begin + n * part / parts; e < begin + n * (part + 1) / parts; ++e) body(e);
+    lock.lock();
+    if (--pending_ == 0) done_.notify_one();
+  }
+}
 
 int element_threads() {
   static const int from_environment = threads_from_environment();
@@ -159,9 +198,10 @@ void ElasticityTerm::add(const time::StepContext& step, const Eigen::VectorXd& z
   if (K) chunk_tangent_.resize(std::min(n, chunk));
   for (int first = 0; first < n; first += chunk) {
     const int last = std::min(n, first + chunk);
-    for_each_element(first, last, threads, [&](int e) {
+    const std::function<void(int)> body = [&](int e) {
       element_step(step, e, z, chunk_force_[e - first], K ? &chunk_tangent_[e - first] : nullptr);
-    });
+    };
+    for_each_element(first, last, threads, *threads_, body);
     for (int e = first; e < last; ++e) {
       const Vector24& f = chunk_force_[e - first];
       for (int I = 0; I < 8; ++I) R.segment<3>(3 * hex8_[e][I]) += step.force_factor * f.segment<3>(3 * I);

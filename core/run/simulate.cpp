@@ -272,7 +272,7 @@ class Run {
           checkpoint_of(m_, s_, terms_, sum_, recorder_, controller_ ? &controller_->state() : nullptr));
       schedule_.written();
     }
-    integrator_.forget_factorization();  // the next step as a run resumed from here computes it
+    integrator_.refresh_factorization();  // the next step as a run resumed from here computes it
   }
 
   const model::Model& m_;

@@ -34,6 +34,8 @@ class LinearSolver {
   /// Factorises A (iterative: keeps a copy of A and builds the preconditioner); returns false if the
   /// matrix is numerically singular.
   bool factorize(const BlockPattern& A);
+  /// The next ready_for() is false: Newton factorises anew, the symbolic analysis stays.
+  void forget_factorization() { factorized_generation_ = -1; }
   /// Whether a factorisation exists for a matrix of this pattern generation.
   bool ready_for(const BlockPattern& A) const { return factorized_generation_ == A.generation(); }
   /// Positions of the nodes (3 per node) whose dofs come first in every matrix; the AMG path builds
@@ -41,6 +43,12 @@ class LinearSolver {
   void set_coordinates(const Eigen::VectorXd& positions) { coordinates_ = positions; }
   /// Number of numeric factorisations so far.
   int factorizations() const { return factorizations_; }
+  /// Numeric factorisations and solves of every LinearSolver of this process so far (bench/seed_counts.cpp
+  /// reports them for a whole run).
+  static long process_factorizations();
+  static long process_solves();
+  /// Symbolic analyses (orderings) of every LinearSolver of this process so far.
+  static long process_analyses();
   /// Solves A x = b with the last factorisation.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   /// Seconds since construction in analysis and factorisations (petsc_gamg: copying the matrix in and

@@ -49,6 +49,11 @@ class Integrator {
   /// The next step starts with a fresh Jacobian pattern and factorisation, as a new integrator would: after a
   /// checkpoint, the run that goes on and a run resumed from it solve the next step alike.
   void forget_factorization() { auxiliary_layout_ = -1; }
+  /// The next step starts with a fresh factorisation on the pattern it has. After a checkpoint, where the
+  /// terms' structure stays as it is, that is what forget_factorization gives without rebuilding the
+  /// pattern: a rebuild for the same terms has the same sparsity and slots, and the linear solver keeps the
+  /// analysis of a sparsity, so the numbers are the same bits.
+  void refresh_factorization() { solver_.forget_factorization(); }
 
   /// Σ of the terms' potential energies at x.
   double potential_energy(const Eigen::VectorXd& x) const;

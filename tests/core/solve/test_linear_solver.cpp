@@ -90,5 +90,21 @@ TEST(LinearSolver, SwitchingTheMethodAsksForANewFactorisation) {
   EXPECT_LT((A.matrix() * solver.solve(b) - b).norm(), 1e-9 * b.norm());
 }
 
+TEST(LinearSolver, APatternRebuiltToTheSameSparsityKeepsItsAnalysisAndGivesTheSameBits) {
+  const Eigen::VectorXd b = rhs(300);
+  BlockPattern A = step_like_matrix(100, 1.0);
+  LinearSolver kept;
+  ASSERT_TRUE(kept.factorize(A));
+  const long analyses = LinearSolver::process_analyses();
+  A = step_like_matrix(100, 1.0);  // a new generation of the same sparsity (as after a checkpoint)
+  ASSERT_TRUE(kept.factorize(A));
+  EXPECT_EQ(LinearSolver::process_analyses(), analyses) << "the ordering of an unchanged sparsity is kept";
+  LinearSolver fresh;  // as a run resumed from a checkpoint: analysis and factors anew
+  ASSERT_TRUE(fresh.factorize(A));
+  EXPECT_EQ(LinearSolver::process_analyses(), analyses + 1);
+  const Eigen::VectorXd x_kept = kept.solve(b), x_fresh = fresh.solve(b);
+  for (Eigen::Index i = 0; i < b.size(); ++i) ASSERT_EQ(x_kept[i], x_fresh[i]) << "entry " << i;
+}
+
 }  // namespace
 }  // namespace stoss::solve
