@@ -39,11 +39,11 @@ FacePairIntegrals<T> integrals(const SegmentNodes& slave, const SegmentNodes& ma
                                PairGaps& out) {
   QuadNodes<T> s, m;
   seed(slave, master, s, m);
-  const FacePairIntegrals<T> r = face_pair_integrals<T>(s, m, kind);
+  const FacePairIntegrals<T> r = face_pair_integrals<T>(s, m, kind, Integrals::gaps);
   out.area = value_of(r.area);
   for (int j = 0; j < 4; ++j) {
     out.gap[j] = value_of(r.gap[j]);
-    out.weight[j] = value_of(r.D(j, j));
+    out.weight[j] = r.weight[j];
     out.gradient.row(j) = gradient_of(r.gap[j]);  // (4.80)
   }
   return r;
