@@ -59,7 +59,8 @@ Point2<T> centroid(const Polygon<T>& p, double min_area) {
   return c / (T(6.0) * area);
 }
 
-/// |a − b| of the values (from the values: no dual-number difference; no hypot, a tenth of a mortar run).
+/// |a − b| of the values, from the values (no dual-number difference) and without glibc's hypot (8 % of the
+/// seed example with mortar).
 template <class T>
 double distance_value(const Point2<T>& a, const Point2<T>& b) {
   const double dx = value_of(a[0]) - value_of(b[0]), dy = value_of(a[1]) - value_of(b[1]);

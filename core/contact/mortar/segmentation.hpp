@@ -81,7 +81,7 @@ Point2<double> point_value(const Point2<T>& x) {
 template <class T>
 Point2<T> inverse_bilinear(const Polygon<T>& q, const Point2<T>& p) {
   int iteration = 0, extra = 0;
-  const auto small = [](const auto& step) {  // |Δξ| < 1e-14; glibc's hypot was an eighth of a mortar run
+  const auto small = [](const auto& step) {  // |Δξ| < 1e-14, without hypot (8 % of a mortar run)
     return value_of(step[0]) * value_of(step[0]) + value_of(step[1]) * value_of(step[1]) < 1e-28;
   };
   Point2<T> xi(T(0.0), T(0.0));
