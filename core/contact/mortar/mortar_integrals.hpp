@@ -21,8 +21,13 @@ struct FacePairIntegrals {
   Eigen::Matrix<T, 4, 4> M = Eigen::Matrix<T, 4, 4>::Zero();    ///< M_jl = ∫ Φ_j N^m_l (4.78)
   Eigen::Matrix<T, 4, 1> gap = Eigen::Matrix<T, 4, 1>::Zero();  ///< g̃_j (4.79)
   T area = T(0.0);                                              ///< the clip polygon's area
+  Eigen::Vector4d weight = Eigen::Vector4d::Zero();             ///< the values of D_jj
   int triangles = 0;
 };
+
+/// What face_pair_integrals computes: D, M and the gaps, or the gaps and D_jj's values only (the derivatives
+/// (4.80), (4.81) need no more: D and M in dual numbers were a third of their cost).
+enum class Integrals { all, gaps };
 
 /// Dual coefficients a = D_e M_e^{-1} (4.77) over the whole slave face in the plane's measure; 2 × 2
 /// Gauss points are exact (N_j N_k det ∂p/∂ξ has degree 3 in each ξ^α).
@@ -53,7 +58,8 @@ inline constexpr double facing_cosine = 0.25;
 /// when the faces do not face each other (4.76) or do not overlap in the slave's plane.
 /// The gap is g = (x_m − x_s)·n_s = (x_s − x_m)·n with n = −n_s from the master to the slave (§0).
 template <class T>
-FacePairIntegrals<T> face_pair_integrals(const QuadNodes<T>& s, const QuadNodes<T>& m, Multipliers kind) {
+FacePairIntegrals<T> face_pair_integrals(const QuadNodes<T>& s, const QuadNodes<T>& m, Multipliers kind,
+                                         Integrals what = Integrals::all) {
   FacePairIntegrals<T> out;
   const MortarPlane<T> plane = mortar_plane(s);
   const Vec3<T> master_normal = (m[2] - m[0]).cross(m[3] - m[1]);
@@ -87,11 +93,18 @@ FacePairIntegrals<T> face_pair_integrals(const QuadNodes<T>& s, const QuadNodes<
       Vec3<T> xs = Vec3<T>::Zero(), xm = Vec3<T>::Zero();
       for (int K = 0; K < 4; ++K) xs += s[K] * Ns[K], xm += m[K] * Nm[K];
       const T w = area * T(q.weight);
-      out.D += Phi * Ns.transpose() * w;                 // (4.78)
-      out.M += Phi * Nm.transpose() * w;                 // (4.78)
+      if (what == Integrals::all) {
+        out.D += Phi * Ns.transpose() * w;  // (4.78)
+        out.M += Phi * Nm.transpose() * w;  // (4.78)
+      } else {
+        for (int j = 0; j < 4; ++j)
+          out.weight[j] += value_of(Phi[j]) * value_of(Ns[j]) * value_of(w);  // (4.78)
+      }
       out.gap += Phi * (T((xm - xs).dot(plane.n)) * w);  // (4.79)
     }
   }
+  if (what == Integrals::all)
+    for (int j = 0; j < 4; ++j) out.weight[j] = value_of(out.D(j, j));
   return out;
 }
 

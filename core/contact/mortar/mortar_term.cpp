@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <exception>
 #include <limits>
+#include <optional>
 
 namespace stoss::contact {
 namespace {
@@ -104,7 +105,7 @@ void MortarContactTerm::nodal_gaps(const Eigen::VectorXd& x, Eigen::VectorXd& ga
                                    Eigen::VectorXd& weight) const {
   gap = weight = Eigen::VectorXd::Zero(auxiliary_count());
   for (const FacePair& p : pairs_) {
-    const mortar::PairGaps g = gaps(p, x);
+    const mortar::PairGaps g = gap_values(p, x);
     for (int K = 0; K < 4; ++K) gap[p.slave_index[K]] += g.gap[K], weight[p.slave_index[K]] += g.weight[K];
   }
 }
@@ -117,6 +118,7 @@ void MortarContactTerm::prepare_step(const time::StepContext& step) {
   broad_.update(surfaces_, step.x_n, step.x_n + step.h * step.v_n);
   report_ = ContactReport{};
   find_face_pairs(step);
+  for (FacePair& p : pairs_) p.force_n = previous_force(p, step.x_n);
   nodal_gaps(step.x_n, gap_n_, weight_n_);
   release_uncovered();
   if (pair_.closes_touching) activate_touching();
@@ -142,31 +144,46 @@ void MortarContactTerm::initialize_auxiliaries(const time::StepContext&, Eigen::
   for (int j = 0; j < auxiliary_count(); ++j) z[offset_ + j] = active_[j] ? lambda_[j] : 0.0;
 }
 
-void MortarContactTerm::add_forces(const FacePair& p, const Eigen::VectorXd& x, const Eigen::Vector4d& lambda,
-                                   double factor, Eigen::VectorXd& R) const {
-  if (lambda.isZero(0)) return;
-  const Eigen::Matrix<double, 1, 24> f = lambda.transpose() * gaps(p, x).gradient;
-  for (int a = 0; a < 24; ++a) R[p.dofs[a]] += factor * f[a];  // (4.82)
+std::optional<Eigen::Matrix<double, 1, 24>> MortarContactTerm::previous_force(
+    const FacePair& p, const Eigen::VectorXd& x_n) const {
+  Eigen::Vector4d lambda_n;
+  for (int k = 0; k < 4; ++k) lambda_n[k] = lambda_n_[p.slave_index[k]];
+  if (rule_.previous_weight == 0 || lambda_n.isZero(0)) return std::nullopt;
+  return Eigen::Matrix<double, 1, 24>(lambda_n.transpose() * gaps(p, x_n).gradient);  // (4.82)
+}
+
+mortar::PairGaps MortarContactTerm::gap_values(const FacePair& p, const Eigen::VectorXd& x) const {
+  const mortar::FacePairIntegrals<double> r = mortar::face_pair_integrals<double>(
+      mortar::quad_nodes(face_positions(slave_faces_[p.slave_face], x)),
+      mortar::quad_nodes(face_positions(surfaces_.faces[p.master_face], x)), mortar::Multipliers::dual,
+      mortar::Integrals::gaps);
+  mortar::PairGaps g;
+  g.gap = r.gap, g.weight = r.weight, g.area = r.area;
+  return g;
 }
 
 void MortarContactTerm::add_pair(const FacePair& p, const time::StepContext& step, const Eigen::VectorXd& z,
+                                 const Eigen::VectorXd& x_1, const Eigen::VectorXd& x_theta,
                                  Eigen::VectorXd& R, solve::BlockPattern* K) const {
-  const Eigen::VectorXd x_1 = z.head(step.x_n.size());
-  const Eigen::VectorXd x_theta = rule_.evaluation_point(step.x_n, x_1);
   const double w = step.force_factor * rule_.weight, w_n = step.force_factor * rule_.previous_weight;
-  Eigen::Vector4d lambda, lambda_n;
-  for (int k = 0; k < 4; ++k)
-    lambda[k] = z[offset_ + p.slave_index[k]], lambda_n[k] = lambda_n_[p.slave_index[k]];
-  if (w_n != 0) add_forces(p, step.x_n, lambda_n, w_n, R);  // h w_n λ_n ∂g̃/∂x(x_n) (4.82)
+  Eigen::Vector4d lambda;
+  for (int k = 0; k < 4; ++k) lambda[k] = z[offset_ + p.slave_index[k]];
+  if (w_n != 0 && p.force_n)
+    for (int a = 0; a < 24; ++a) R[p.dofs[a]] += w_n * (*p.force_n)[a];  // h w_n λ_n ∂g̃/∂x(x_n) (4.82)
+  // What this call needs: Σ λ_j ∂²g̃_j/∂x² for a tangent with λ ≠ 0, ∂g̃/∂x for any tangent or λ ≠ 0, else
+  // the gaps' values.
+  const bool loaded = !lambda.isZero(0), curved = K && loaded, sloped = K || loaded;
   mortar::Matrix24 H = mortar::Matrix24::Zero();
-  const bool curved = K && !lambda.isZero(0);
   const SegmentNodes s = face_positions(slave_faces_[p.slave_face], x_theta);
   const SegmentNodes m = face_positions(surfaces_.faces[p.master_face], x_theta);
-  const mortar::PairGaps g = curved ? mortar::pair_gaps(s, m, mortar::Multipliers::dual, lambda, H)
-                                    : mortar::pair_gaps(s, m, mortar::Multipliers::dual);
-  const mortar::PairGaps g_1 = rule_.theta == 1 ? g : gaps(p, x_1);
-  const Eigen::Matrix<double, 1, 24> f = lambda.transpose() * g.gradient;
-  for (int a = 0; a < 24; ++a) R[p.dofs[a]] += w * f[a];  // h w λ ∂g̃/∂x(x_θ) (4.82)
+  const mortar::PairGaps g = curved   ? mortar::pair_gaps(s, m, mortar::Multipliers::dual, lambda, H)
+                             : sloped ? mortar::pair_gaps(s, m, mortar::Multipliers::dual)
+                                      : gap_values(p, x_theta);
+  const mortar::PairGaps g_1 = rule_.theta == 1 ? g : K ? gaps(p, x_1) : gap_values(p, x_1);
+  if (loaded) {
+    const Eigen::Matrix<double, 1, 24> f = lambda.transpose() * g.gradient;
+    for (int a = 0; a < 24; ++a) R[p.dofs[a]] += w * f[a];  // h w λ ∂g̃/∂x(x_θ) (4.82)
+  }
   for (int k = 0; k < 4; ++k)
     if (active_[p.slave_index[k]]) R[p.dofs[24 + k]] += g_1.gap[k];  // (4.83)
   if (!K) return;
@@ -180,9 +197,11 @@ void MortarContactTerm::add_pair(const FacePair& p, const time::StepContext& ste
 
 void MortarContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
                             solve::BlockPattern* K) const {
+  const Eigen::VectorXd x_1 = z.head(step.x_n.size());
+  const Eigen::VectorXd x_theta = rule_.evaluation_point(step.x_n, x_1);
   for (const FacePair& p : pairs_) {
     try {
-      add_pair(p, step, z, R, K);
+      add_pair(p, step, z, x_1, x_theta, R, K);
     } catch (const std::exception&) {
       // A Newton iterate that folds a face's projection (4.75) or makes a slave face's non-convex (4.70) is
       // no configuration to integrate on: a residual that is not finite makes Newton backtrack, or the step

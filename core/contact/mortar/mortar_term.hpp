@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "core/contact/contact_term.hpp"
@@ -61,8 +62,16 @@ class MortarContactTerm final : public ContactTerm {
     std::array<int, 4> slave_index;  ///< into surfaces_.slave_nodes
     std::vector<int> dofs;           ///< 24 position dofs then the 4 multiplier rows
     int block = -1;
+    std::optional<Eigen::Matrix<double, 1, 24>> force_n;  ///< λ_n · ∂g̃/∂x(x_n) if the rule weighs it, λ_n ≠ 0
   };
+  /// The gaps and their gradient at x.
   mortar::PairGaps gaps(const FacePair& p, const Eigen::VectorXd& x) const;
+  /// The gaps and D_jj at x, values only (no gradient).
+  mortar::PairGaps gap_values(const FacePair& p, const Eigen::VectorXd& x) const;
+  /// λ_n · ∂g̃/∂x(x_n) of (4.82), constant through the step: once in prepare_step, not at every Newton
+  /// iteration.
+  std::optional<Eigen::Matrix<double, 1, 24>> previous_force(const FacePair& p,
+                                                             const Eigen::VectorXd& x_n) const;
   void find_face_pairs(const time::StepContext& step);
   /// Releases the active slave nodes that no master face overlaps at x_n (D_jj = 0): their row (4.83) would
   /// be zero, the Jacobian singular (a body leaving contact; the seed example failed so at t = 0.93).
@@ -71,10 +80,10 @@ class MortarContactTerm final : public ContactTerm {
   /// start the step active, as the NTS term's (a body held by this contact alone has no other support).
   void activate_touching();
   /// One face pair's rows of add (4.81)–(4.83). Throws what the integrals throw on a folded projection.
+  /// x_1 = z's positions, x_θ the rule's evaluation point: formed once per add, not per pair.
   void add_pair(const FacePair& p, const time::StepContext& step, const Eigen::VectorXd& z,
-                Eigen::VectorXd& R, solve::BlockPattern* K) const;
-  void add_forces(const FacePair& p, const Eigen::VectorXd& x, const Eigen::Vector4d& lambda, double factor,
-                  Eigen::VectorXd& R) const;
+                const Eigen::VectorXd& x_1, const Eigen::VectorXd& x_theta, Eigen::VectorXd& R,
+                solve::BlockPattern* K) const;
 
   time::ForceRule rule_;
   std::vector<mesh::Quad> slave_faces_;

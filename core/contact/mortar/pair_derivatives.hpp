@@ -23,7 +23,7 @@ struct PairGaps {
 /// The gaps and their gradient, by forward dual numbers (4.80).
 PairGaps pair_gaps(const SegmentNodes& slave, const SegmentNodes& master, Multipliers kind);
 
-/// The gaps, their gradient and Σ_j λ_j ∂²g̃_j/∂x² (4.81), by forward-over-forward dual numbers.
+/// The gaps, their gradient and Σ_j λ_j ∂²g̃_j/∂x² (4.81), by second-order forward numbers (second_order.hpp).
 PairGaps pair_gaps(const SegmentNodes& slave, const SegmentNodes& master, Multipliers kind,
                    const Eigen::Vector4d& lambda, Matrix24& weighted_hessian);
 

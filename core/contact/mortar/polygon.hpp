@@ -59,10 +59,12 @@ Point2<T> centroid(const Polygon<T>& p, double min_area) {
   return c / (T(6.0) * area);
 }
 
-/// |a − b| of the values.
+/// |a − b| of the values, from the values (no dual-number difference) and without glibc's hypot (8 % of the
+/// seed example with mortar).
 template <class T>
 double distance_value(const Point2<T>& a, const Point2<T>& b) {
-  return std::hypot(value_of(T(a[0] - b[0])), value_of(T(a[1] - b[1])));
+  const double dx = value_of(a[0]) - value_of(b[0]), dy = value_of(a[1]) - value_of(b[1]);
+  return std::sqrt(dx * dx + dy * dy);
 }
 
 /// Removes consecutive vertices closer than `tol` (and a last one equal to the first).
