@@ -94,10 +94,10 @@ class Run {
     const auto t_out = Clock::now();
     const Balance b = balance(problem_, s_);
     update_summary(sum_, b0_, b, step.contact);
-    const std::vector<Eigen::Vector3d> reactions = reactions_.step_forces();
+    const std::vector<Eigen::Vector3d> reactions = reported_forces(reactions_);
     update_impulse_balance(sum_, before_, b, step_impulse(step.h, reactions));
     before_ = b;
-    const std::vector<Eigen::Vector3d> contact_forces = contact_forces_.step_forces();
+    const std::vector<Eigen::Vector3d> contact_forces = reported_forces(contact_forces_);
     const std::vector<double> contact_areas = pair_areas();
     recorder_.step(series_.row(s_.step, s_.t,
                                {b, step.contact, &step.newton, seconds_since(t0), step.h, step.rejections,
@@ -221,6 +221,10 @@ class Run {
     return out;
   }
 
+  /// A step's series row of forces: the substeps' impulse over h, or a static step's end equilibrium (§5b.9).
+  std::vector<Eigen::Vector3d> reported_forces(const StepForces& forces) const {
+    return m_.time.scheme == model::Scheme::equilibrium ? forces.end_forces() : forces.step_forces();
+  }
   void clear_step_forces() {
     reactions_.clear();
     contact_forces_.clear();

@@ -14,6 +14,9 @@ class StepForces {
   void clear() { *this = StepForces(); }
   void add(double h, const std::vector<Eigen::Vector3d>& forces);
   std::vector<Eigen::Vector3d> step_forces() const;
+  /// The last substep's forces: what a static step reports, the equilibrium at its load level, however many
+  /// substeps reached it (docs/theory.md §5b.9).
+  const std::vector<Eigen::Vector3d>& end_forces() const { return last_; }
 
  private:
   std::vector<Eigen::Vector3d> impulse_, last_;

@@ -81,6 +81,38 @@ TEST(StaticSteps, ABlockPressedOntoAHeldBlockCarriesThePressureThroughTheContact
               bottom, resultant);
 }
 
+// A static step that Newton reaches only in substeps reports the equilibrium at its load level, not the
+// substeps' mean (docs/theory.md §5b.9): a neo-Hookean block squeezed to half its height in one step (its
+// predictor inverts the top elements, so the step is halved) ends with the reaction of the same squeeze in 16
+// steps, within 1e-8.
+TEST(StaticSteps, AStepSolvedInSubstepsReportsTheEquilibriumAtItsLoadLevel) {
+  const auto squeezed = [](double step) {
+    return scene::load(json::parse(R"({
+      "format": "stoss-scene/1",
+      "bodies": [ { "name": "block",
+                    "mesh": { "box": { "min": [0, 0, 0], "max": [1, 1, 1], "divisions": [2, 2, 2] } },
+                    "material": { "model": "neo_hookean", "youngs_modulus": 1000, "poisson_ratio": 0.3,
+                                  "density": 1 } } ],
+      "boundary": [ { "surface": "block/bottom" },
+                    { "surface": "block/top", "displacement": [0, 0, -0.5], "amplitude": [[0, 0], [1, 1]] } ],
+      "time": { "scheme": "static", "step": )" +
+                                   std::to_string(step) + R"(, "end": 1 },
+      "solver": { "tolerance": 1e-12 } })"));
+  };
+  testing::RecordingObserver one, many;
+  one.allow_suspect();  // the reduced step is what (V7) reports
+  const model::Summary s = simulate(squeezed(1.0), one);
+  ASSERT_TRUE(s.completed);
+  ASSERT_GE(s.reduced_steps, 1) << "the step needs substeps";
+  ASSERT_TRUE(simulate(squeezed(1.0 / 16), many).completed);
+  const double top = one.series("reaction_force", 3 + 2).back(),
+               top16 = many.series("reaction_force", 3 + 2).back();
+  EXPECT_LT(top, 0) << "the top pushes the block down";
+  EXPECT_NEAR(top, top16, 1e-8 * std::abs(top16));
+  EXPECT_NEAR(one.series("reaction_force", 2).back(), -top, 1e-8 * std::abs(top)) << "the bottom holds it";
+  std::printf("static squeeze in substeps: top reaction %.12f, in 16 steps %.12f\n", top, top16);
+}
+
 TEST(StaticSteps, ABlockOnRollersPulledByADeadTractionIsHeldByItsBottomAtEveryLoadLevel) {
   const double sigma = 20, E = 1000;  // σ / E = 2 %
   const model::Model m = scene::load(json::parse(R"({

@@ -226,7 +226,7 @@ bool MortarContactTerm::update_active_set(const time::StepContext& step, const E
   for (int j = 0; j < auxiliary_count(); ++j) {
     lambda_[j] = z[offset_ + j];
     if (active_[j] && lambda_[j] > 0) {
-      if (toggles_[j] > 0) {  // anti-cycling (§3.5)
+      if (toggles_[j] >= (step.inertia ? 1 : 2)) {  // anti-cycling (§3.5); static: may take back its own once
         log(step, "slave node " + std::to_string(surfaces_.slave_nodes[j]) +
                       " kept active with tensile λ = " + scientific(lambda_[j]) +
                       " (it already changed state in this step)");
@@ -263,7 +263,8 @@ void MortarContactTerm::end_step(const time::StepContext& step, const Eigen::Vec
         std::max(report_.max_own_face_penetration, -(gap[j] - target_[j]) / weight[j]);
     // (4.84): λ_j is conjugate to g̃_j, so slave node j's force is λ_j D_jj n and its pressure −λ_j.
     if (weight[j] > 0) pressure_.emplace_back(surfaces_.slave_nodes[j], std::max(-lambda_[j], 0.0));
-    report_.contact_area += weight[j];  // Σ D_jj of the active nodes (4.84)
+    if (lambda_[j] < 0)
+      report_.contact_area += weight[j];  // Σ D_jj of the active nodes in compression (4.84)
   }
   lambda_n_ = lambda_;
   committed_active_ = active_;

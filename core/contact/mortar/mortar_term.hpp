@@ -18,8 +18,9 @@ namespace stoss::contact {
 /// - momentum rows  h [w Σ_j λ_j ∂g̃_j/∂x (x_θ) + w_n Σ_j λ_j,n ∂g̃_j/∂x (x_n)]   (4.82)
 /// - active j:      g̃_j(x_{n+1}) − g̃⁰_j = 0;  inactive j:  λ_j = 0                    (4.83)
 /// - active set on the weighted gaps: j activates when g̃_j / D_jj < −1e-10 ℓ, releases when λ_j > 0 (once a
-///   step, as §3.5); contact_pressure p_j = −λ_j: λ_j is conjugate to g̃_j, the node's force is λ_j D_jj n, so
-///   −λ_j is that force over D_jj (λ ≤ 0 in compression, §0)                              (4.84)
+///   step, as §3.5; a static step may take back its own activation once)                         (4.84)
+/// - contact_pressure p_j = −λ_j: λ_j is conjugate to g̃_j, the node's force is λ_j D_jj n, so −λ_j is that
+///   force over D_jj (λ ≤ 0 in compression, §0)                                                 (4.84)
 /// Why dual: the assembled D is diagonal, so g̃_j and λ_j are nodal quantities: the active set is
 /// decided node by node, −λ_j is the nodal pressure, and the multipliers could be condensed node by
 /// node (they are kept as unknowns here, like the NTS multipliers).
@@ -27,8 +28,8 @@ namespace stoss::contact {
 ///       located (the frozen gap of §4.5), else 0. Located events are not cut (the step runs to its end), and
 ///       velocity_correction restores no energy (no impact impulse yet): both act as their frozen-gap or
 ///       closed-gap counterparts.
-/// @note series: contact_area is Σ D_jj over the active nodes (their mortar weights, the current area the
-///       multipliers act on); contact_force is measured from the rows as for every pair
+/// @note series: contact_area is Σ D_jj over the active nodes with λ_j < 0 (their mortar weights, the
+///       current area the multipliers act on); contact_force is measured from the rows as for every pair
 ///       (measured_contact.hpp).
 class MortarContactTerm final : public ContactTerm {
  public:
