@@ -166,10 +166,13 @@ struct SolverSpec {
   double tolerance = 1e-10;  ///< relative residual and increment tolerance of Newton
   int max_iterations = 25;
   LinearSolver linear = LinearSolver::automatic;  ///< solver.linear
-  /// auto picks petsc_gamg from this many elements on. Estimated from loaded-machine tables; measured
-  /// quietly the contact-free sphere's crossover is nearer 3,500 elements, with contact not yet measured
-  /// there (docs/measurements.md, "Growth with size").
+  /// auto picks petsc_gamg from this many elements on in a scene without contact. Estimated from
+  /// loaded-machine tables; measured quietly the contact-free sphere's crossover is nearer 3,500 elements
+  /// (docs/measurements.md, "Growth with size").
   static constexpr int auto_iterative_elements = 14000;
+  /// The same with contact: UMFPACK was 2.2–3.1× faster than GMRES + GAMG at every size from 944 to 25,488
+  /// hex8 of the refined seed example (docs/measurements.md, "Linear solvers with contact").
+  static constexpr int auto_iterative_elements_with_contact = 30000;
 };
 
 struct OutputSpec {

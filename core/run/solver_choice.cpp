@@ -16,9 +16,13 @@ solve::LinearMethod linear_method(const model::Model& m) {
     case model::LinearSolver::automatic:
       break;
   }
-  return m.mesh.element_count() >= model::SolverSpec::auto_iterative_elements
-             ? solve::LinearMethod::petsc_gamg
-             : solve::LinearMethod::direct;
+  return m.mesh.element_count() >= auto_iterative_elements(m) ? solve::LinearMethod::petsc_gamg
+                                                              : solve::LinearMethod::direct;
+}
+
+int auto_iterative_elements(const model::Model& m) {
+  return m.contact.empty() ? model::SolverSpec::auto_iterative_elements
+                           : model::SolverSpec::auto_iterative_elements_with_contact;
 }
 
 std::string linear_solver_line(const model::Model& m) {
@@ -29,7 +33,8 @@ std::string linear_solver_line(const model::Model& m) {
                                                  : "direct (UMFPACK LU)";
   if (m.solver.linear != model::LinearSolver::automatic) return "linear solver: " + name;
   return "linear solver: auto → " + name + ": " + std::to_string(m.mesh.element_count()) +
-         " elements, petsc_gamg from " + std::to_string(model::SolverSpec::auto_iterative_elements);
+         " elements, petsc_gamg from " + std::to_string(auto_iterative_elements(m)) +
+         (m.contact.empty() ? "" : " with contact");
 }
 
 std::string krylov_line(const solve::LinearSolver& linear) {

@@ -11,10 +11,12 @@
 
 namespace stoss::run {
 
-/// The linear solver named by solver.linear; auto picks petsc_gamg from
-/// model::SolverSpec::auto_iterative_elements elements on, where it overtakes the LU
-/// (docs/measurements.md, "Linear solvers"), direct below.
+/// The linear solver named by solver.linear; auto picks petsc_gamg from auto_iterative_elements(m) elements
+/// on, where it overtakes the LU (docs/measurements.md, "Linear solvers"), direct below.
 solve::LinearMethod linear_method(const model::Model& m);
+
+/// Where auto switches to petsc_gamg: model::SolverSpec's threshold for scenes with or without contact.
+int auto_iterative_elements(const model::Model& m);
 
 /// The log line naming the linear solver of the run (and why, for auto).
 std::string linear_solver_line(const model::Model& m);

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "core/mesh/generators.hpp"
+#include "core/run/solver_choice.hpp"
 #include "core/simulate.hpp"
 #include "tests/core/recording_observer.hpp"
 
@@ -332,7 +333,8 @@ bool logged(const RecordingObserver& r, const std::string& text) {
 }
 
 // solver.linear "auto" (the default) picks the LU below 14,000 elements and PETSc from there on, and
-// the log says which and why. The large model translates rigidly, so the predictor solves its step.
+// the log says which and why; with contact the LU up to 30,000 (docs/measurements.md, "Linear solvers with
+// contact"). The large model translates rigidly, so the predictor solves its step.
 TEST(Simulate, AutoLinearSolverPicksByElementCountAndSaysSo) {
   RecordingObserver small;
   ASSERT_TRUE(simulate(tumbling_bar(model::Scheme::energy_momentum, 0.01, 1), small).completed);
@@ -350,6 +352,13 @@ TEST(Simulate, AutoLinearSolverPicksByElementCountAndSaysSo) {
   ASSERT_TRUE(simulate(large, r).completed);
   EXPECT_TRUE(
       logged(r, "linear solver: auto → petsc_gamg (PETSc GMRES + GAMG, rigid-body modes): 14112 elements"));
+  model::ContactPair pair;  // what auto asks of contact is only that there is some
+  pair.slave = "block/bottom";
+  pair.master = "block/top";
+  large.contact.push_back(pair);
+  EXPECT_EQ(run::linear_method(large), solve::LinearMethod::direct);
+  EXPECT_EQ(run::linear_solver_line(large),
+            "linear solver: auto → direct (UMFPACK LU): 14112 elements, petsc_gamg from 30000 with contact");
 }
 
 // The system shall give the direct solver's answer, to the Newton tolerance, with either Krylov path.
