@@ -166,10 +166,10 @@ struct SolverSpec {
   double tolerance = 1e-10;  ///< relative residual and increment tolerance of Newton
   int max_iterations = 25;
   LinearSolver linear = LinearSolver::automatic;  ///< solver.linear
-  /// auto picks petsc_gamg from this many elements on in a scene without contact. Estimated from
-  /// loaded-machine tables; measured quietly the contact-free sphere's crossover is nearer 3,500 elements
-  /// (docs/measurements.md, "Growth with size").
-  static constexpr int auto_iterative_elements = 14000;
+  /// auto picks petsc_gamg from this many elements on in a scene without contact: the tumbling sphere's
+  /// crossover, measured on a quiet machine between 3,456 (UMFPACK 1.3× faster) and 5,880 elements (GAMG
+  /// 1.3× faster) (docs/measurements.md, "Growth with size").
+  static constexpr int auto_iterative_elements = 5000;
   /// The same with contact: UMFPACK was 2.2–3.1× faster than GMRES + GAMG at every size from 944 to 25,488
   /// hex8 of the refined seed example (docs/measurements.md, "Linear solvers with contact").
   static constexpr int auto_iterative_elements_with_contact = 30000;

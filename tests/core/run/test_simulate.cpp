@@ -332,13 +332,13 @@ bool logged(const RecordingObserver& r, const std::string& text) {
                      [&](const std::string& line) { return line.find(text) != std::string::npos; });
 }
 
-// solver.linear "auto" (the default) picks the LU below 14,000 elements and PETSc from there on, and
+// solver.linear "auto" (the default) picks the LU below 5,000 elements and PETSc from there on, and
 // the log says which and why; with contact the LU up to 30,000 (docs/measurements.md, "Linear solvers with
 // contact"). The large model translates rigidly, so the predictor solves its step.
 TEST(Simulate, AutoLinearSolverPicksByElementCountAndSaysSo) {
   RecordingObserver small;
   ASSERT_TRUE(simulate(tumbling_bar(model::Scheme::energy_momentum, 0.01, 1), small).completed);
-  EXPECT_TRUE(logged(small, "linear solver: auto → direct (UMFPACK LU): 16 elements, petsc_gamg from 14000"));
+  EXPECT_TRUE(logged(small, "linear solver: auto → direct (UMFPACK LU): 16 elements, petsc_gamg from 5000"));
   model::Model large;
   large.mesh.add_body("block", mesh::box({0, 0, 0}, {28, 21, 24}, {28, 21, 24}));  // 14,112 elements
   model::BodySpec b;
