@@ -79,9 +79,9 @@ PatchPenaltyResult patch_penalty_element(const TensorPatch& local, const Eigen::
 
   const std::array<PatchRows3, 2> dtau = patch_tangent_gradients(mid_point, mid.D);  // (3.8)
   const double theta = evaluation_weight(p);
-  const PointGradients<dynamic> half = point_gradients<dynamic>(out.at_m.frame, dtau, theta);
+  const PointGradients<dynamic> at_point = point_gradients<dynamic>(out.at_m.frame, dtau, theta);
   const PatchRows2 D_1 = patch_xi_gradient(end_point, out.at_1.gap);  // (3.7) at x_{n+1}
-  const TangentialKinematics<dynamic> kinematics{out.at_m.frame, half, D_1, out.at_1.xi - out.at_n.xi};
+  const TangentialKinematics<dynamic> kinematics{out.at_m.frame, at_point, D_1, out.at_1.xi - out.at_n.xi};
   const TangentialTraction<dynamic> tangential =
       return_map(kinematics, history.traction, normal, p);  // (5.3)
   const Eigen::MatrixXd xi_hessian =

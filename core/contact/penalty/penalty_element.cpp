@@ -90,9 +90,9 @@ PenaltyResult penalty_element(const Vector15& x_n, const Vector15& x_1, const Fr
   if (!(normal.value < 0)) return open_result(out, p);  // open: reset t_T (§5.2 item 7)
 
   const double theta = evaluation_weight(p);
-  const PointGradients<15> half = point_gradients<15>(out.at_m.frame, mid.dtau, theta);
+  const PointGradients<15> at_point = point_gradients<15>(out.at_m.frame, mid.dtau, theta);
   const Matrix2x15 D_1 = xi_gradient(out.at_1.frame, out.at_1.gap);  // (3.7) at x_{n+1}
-  const TangentialKinematics<15> kinematics{out.at_m.frame, half, D_1, out.at_1.xi - out.at_n.xi};
+  const TangentialKinematics<15> kinematics{out.at_m.frame, at_point, D_1, out.at_1.xi - out.at_n.xi};
   const TangentialTraction<15> tangential = return_map(kinematics, history.traction, normal, p);  // (5.3)
   const Matrix15 xi_hessian = contracted_xi_hessian(out.at_m.frame, out.at_m.gap, mid, tangential.value);
   fill_closed_step<15>(out, {mid.Ns, mid.dNs, mid.D, theta}, xi_hessian, normal, tangential, p);

@@ -200,9 +200,9 @@ PointGradients<N> point_gradients(const SegmentFrame& frame, const std::array<El
 template <int N>
 struct TangentialKinematics {
   const SegmentFrame& mid;
-  const PointGradients<N>& half;
-  const ElementRows2<N>& D_1;  ///< ∂ξ_{n+1}/∂x_{n+1}
-  Eigen::Vector2d dxi;         ///< Δξ = ξ_{n+1} − ξ_n
+  const PointGradients<N>& at_point;  ///< point_gradients at the frame's configuration
+  const ElementRows2<N>& D_1;         ///< ∂ξ_{n+1}/∂x_{n+1}
+  Eigen::Vector2d dxi;                ///< Δξ = ξ_{n+1} − ξ_n
 };
 
 template <int N>
@@ -213,8 +213,8 @@ TangentialTraction<N> return_map(const TangentialKinematics<N>& k, const Eigen::
   const double eps = p.tangential_stiffness;
   if (!(eps > 0)) return out;
   const Eigen::Matrix2d& m = k.mid.metric;
-  const auto& dtau = k.half.dtau;
-  const auto& dm = k.half.dm;
+  const auto& dtau = k.at_point.dtau;
+  const auto& dm = k.at_point.dm;
   ElementRows2<N> dtr = element_zero<ElementRows2<N>>(k.D_1.cols());
   for (int a = 0; a < 2; ++a) {
     out.transported[a] = history.dot(k.mid.tau(a));  // t̃_{n,α} = t_{T,n}·τ_α (§5.2 item 3)
@@ -246,7 +246,7 @@ TangentialTraction<N> return_map(const TangentialKinematics<N>& k, const Eigen::
 
 /// The variations of §3.3 a closed step needs at its evaluation point x_θ, whatever the surface.
 template <int N>
-struct MidpointVariations {
+struct PointVariations {
   const ElementVector<N>& Ns;   ///< (3.6)
   const ElementMatrix<N>& dNs;  ///< (3.9)
   const ElementRows2<N>& D;     ///< (3.7)
@@ -256,7 +256,7 @@ struct MidpointVariations {
 /// Fills a closed step: tractions, force (5.2) at x_θ, its tangent w.r.t. x_{n+1} given
 /// xi_hessian = Σ_α t_α ∂D_α/∂x_θ at t = t_{n+1}, the new history and the energies (§5.2 items 5–7).
 template <int N>
-void fill_closed_step(PenaltyResultT<N>& out, const MidpointVariations<N>& mid,
+void fill_closed_step(PenaltyResultT<N>& out, const PointVariations<N>& mid,
                       const ElementMatrix<N>& xi_hessian, const NormalTraction<N>& normal,
                       const TangentialTraction<N>& tangential, const PenaltyParameters& p) {
   const SegmentFrame& f = out.at_m.frame;
