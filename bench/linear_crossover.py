@@ -9,7 +9,11 @@ whole process, from getrusage of the child: on a shared machine CPU time is stea
 Newton iterations of the run.
 
     /usr/bin/python3 bench/linear_crossover.py [--stoss build/stoss] [--factors 1,1.5,2,2.5] [--steps 8]
-                                               [--rounds 3]
+                                               [--rounds 3] [--contact-free 8x3,10x3,12x4,14x5,16x5]
+
+--contact-free DxL,... measures the scene without contact instead: api/examples/tumbling_sphere.json with the
+hollow sphere's `divisions` D and `layers` L (6 D^2 L hex8), and reports wall as well as CPU seconds per step
+(on a quiet machine wall time is what a user waits; docs/measurements.md, "Growth with size").
 
 Needs h5py (Debian's /usr/bin/python3 has it). Times are reported, never asserted.
 """
@@ -21,12 +25,14 @@ import statistics
 import subprocess
 import sys
 import tempfile
+import time
 
 import h5py
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXAMPLE = os.path.join(ROOT, "api", "examples", "hollow_ball_plate.json")
+TUMBLING = os.path.join(ROOT, "api", "examples", "tumbling_sphere.json")
 
 
 def refined_scene(factor, steps, linear):
@@ -44,6 +50,17 @@ def refined_scene(factor, steps, linear):
     return scene
 
 
+def tumbling_scene(divisions, layers, steps, linear):
+    """The tumbling sphere (no contact) with `divisions` and `layers`, `steps` steps."""
+    scene = json.load(open(TUMBLING))
+    sphere = scene["bodies"][0]["mesh"]["hollow_sphere"]
+    sphere["divisions"], sphere["layers"] = divisions, layers
+    scene["time"]["end"] = steps * scene["time"]["step"]
+    scene["solver"] = dict(scene.get("solver", {}), linear=linear)
+    scene["output"] = {"every": steps}
+    return scene
+
+
 def cpu_seconds():
     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
     return usage.ru_utime + usage.ru_stime
@@ -53,16 +70,16 @@ def run_once(stoss, scene, workdir, name):
     path = os.path.join(workdir, f"{name}.json")
     json.dump(scene, open(path, "w"))
     out = os.path.join(workdir, name)
-    before = cpu_seconds()
+    before, start = cpu_seconds(), time.monotonic()
     done = subprocess.run([stoss, "run", path, "-o", out], capture_output=True, text=True)
-    cpu = cpu_seconds() - before
+    cpu, wall = cpu_seconds() - before, time.monotonic() - start
     if done.returncode != 0:
         sys.exit(f"{name}: stoss run failed ({done.returncode}):\n{done.stdout[-2000:]}\n{done.stderr[-2000:]}")
     with h5py.File(os.path.join(out, "result.h5"), "r") as f:
         elements = len(f["mesh/hex8"])
         iterations = int(np.sum(f["series/newton_iterations"][1:]))
         active = int(np.max(f["series/active_contacts"][:])) if "active_contacts" in f["series"] else -1
-    return dict(cpu=cpu, elements=elements, iterations=iterations, active=active)
+    return dict(cpu=cpu, wall=wall, elements=elements, iterations=iterations, active=active)
 
 
 def main():
@@ -71,8 +88,11 @@ def main():
     p.add_argument("--factors", default="1,1.5,2,2.5")
     p.add_argument("--steps", type=int, default=8)
     p.add_argument("--rounds", type=int, default=3)
+    p.add_argument("--contact-free", help="DxL,...: the tumbling sphere at these divisions x layers instead")
     args = p.parse_args()
     workdir = tempfile.mkdtemp(prefix="crossover_")
+    if args.contact_free:
+        return contact_free(args, workdir)
     print(f"{args.steps} steps per run, median of {args.rounds} rounds, CPU seconds per step (user + sys)")
     print("| refinement | hex8 | contacts | direct (UMFPACK) s/step | Newton its | petsc_gamg s/step | Newton its "
           "| ratio gamg/direct |")
@@ -87,6 +107,23 @@ def main():
         per_step = lambda rs: statistics.median(x["cpu"] for x in rs) / args.steps
         print(f"| {factor:g} | {d[0]['elements']} | {d[0]['active']} | {per_step(d):.3f} | {d[0]['iterations']} | {per_step(g):.3f} | "
               f"{g[0]['iterations']} | {per_step(g) / per_step(d):.2f} |", flush=True)
+
+
+def contact_free(args, workdir):
+    print(f"tumbling sphere, {args.steps} steps per run, median of {args.rounds} rounds, seconds per step")
+    print("| hex8 | direct wall | direct CPU | petsc_gamg wall | petsc_gamg CPU | ratio gamg/direct (wall) |")
+    print("|---|---|---|---|---|---|")
+    for size in args.contact_free.split(","):
+        divisions, layers = (int(v) for v in size.split("x"))
+        runs = {"direct": [], "petsc_gamg": []}
+        for r in range(args.rounds):
+            for linear in runs:
+                scene = tumbling_scene(divisions, layers, args.steps, linear)
+                runs[linear].append(run_once(args.stoss, scene, workdir, f"t{size}_{linear}_{r}"))
+        per_step = lambda rs, key: statistics.median(x[key] for x in rs) / args.steps
+        d, g = runs["direct"], runs["petsc_gamg"]
+        print(f"| {d[0]['elements']} | {per_step(d, 'wall'):.3f} | {per_step(d, 'cpu'):.3f} | {per_step(g, 'wall'):.3f} "
+              f"| {per_step(g, 'cpu'):.3f} | {per_step(g, 'wall') / per_step(d, 'wall'):.2f} |", flush=True)
 
 
 if __name__ == "__main__":
