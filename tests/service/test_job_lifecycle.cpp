@@ -276,19 +276,21 @@ std::vector<pid_t> threads_not_blocking_sigterm(pid_t pid) {
 void expect_sigterm_stops_cleanly(const std::function<pid_t(const LiveServer&)>& pick_thread) {
   TempDir dir;
   const auto data = dir.path() / "data";
-  std::string id;
+  std::string id, output;
   {
     LiveServer server(data, {"--workers", "1"});
     auto c = server.client();
     id = id_of(submit(c, box_scene(4, 100'000, {1, 0, 0}, 2.0)));
     ASSERT_TRUE(eventually([&] { return job(c, id)["status"] == "running"; }, 60s));
     EXPECT_EQ(server.terminate(pick_thread(server)), 0) << server.output();
-    EXPECT_NE(server.output().find("SIGTERM, stopping"), std::string::npos) << server.output();
+    output = server.output();
+    EXPECT_NE(output.find("SIGTERM, stopping"), std::string::npos) << output;
   }
   LiveServer again(data, {"--workers", "0"});
   auto c = again.client();
   const auto j = job(c, id);
-  EXPECT_EQ(j["status"], "queued");
+  const auto log = c.Get("/v1/jobs/" + id + "/log");
+  EXPECT_EQ(j["status"], "queued") << j.dump() << "\n" << (log ? log->body : "no log") << "\n" << output;
   EXPECT_EQ(j["attempt"], 0);
 }
 

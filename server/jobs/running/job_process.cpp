@@ -11,6 +11,7 @@
 #include <fstream>
 #include <new>
 
+#include "server/common/stop_signals.hpp"
 #include "server/jobs/job_files.hpp"
 #include "server/jobs/running/inprocess_executor.hpp"
 #include "server/jobs/running/job_protocol.hpp"
@@ -21,11 +22,6 @@ namespace {
 
 /// The child's cancel flag, set by SIGTERM.
 std::atomic<bool> child_cancel{false};
-static_assert(std::atomic<bool>::is_always_lock_free);
-
-extern "C" void on_terminate(int) {
-  child_cancel.store(true);
-}
 
 /// Writes all of `text` to `fd` (EINTR retried); false when the reader is gone.
 bool write_all(int fd, const std::string& text) {
@@ -49,19 +45,10 @@ std::string memory_limit_reason(std::size_t memory) {
 }
 
 /// The process's own set-up: it dies with the server (a job whose server is gone is rerun by another one
-/// after its lease expires), SIGTERM cancels, the memory limit, a lower priority. False when the parent is
-/// already gone.
+/// after its lease expires), the memory limit, a lower priority. False when the parent is already gone.
 bool enter_job_process(const JobProcessOptions& options) {
   prctl(PR_SET_PDEATHSIG, SIGKILL);
   if (options.parent > 0 && getppid() != options.parent) return false;
-  struct sigaction action {};
-  action.sa_handler = on_terminate;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGTERM, &action, nullptr);
-  sigset_t term;
-  sigemptyset(&term);
-  sigaddset(&term, SIGTERM);
-  sigprocmask(SIG_UNBLOCK, &term, nullptr);  // blocked since the spawn (a SIGTERM meanwhile arrives now)
   if (options.memory > 0) {
     const rlimit limit{options.memory, options.memory};
     setrlimit(RLIMIT_AS, &limit);
@@ -69,7 +56,6 @@ bool enter_job_process(const JobProcessOptions& options) {
   // Batch work yields to the API: on a busy machine status polls keep their latency, and a job loses
   // nothing when the CPU is idle otherwise.
   if (nice(5) == -1 && errno != 0) errno = 0;
-  signal(SIGPIPE, SIG_IGN);
   return true;
 }
 
@@ -101,6 +87,12 @@ Outcome run_attempt(const JobProcessOptions& options, const JobFiles& files, con
 }  // namespace
 
 int run_job_process(const JobProcessOptions& options) {
+  // SIGTERM cancels. It stays blocked in every thread (since the spawn: one sent while the process starts is
+  // kept) and one thread waits for it. A handler missed it while a library had its own in place: METIS,
+  // which UMFPACK's ordering calls, installs a SIGTERM handler around each call, and a cancel landing there
+  // was lost (the job ran on and was killed 30 s later, "did not stop within 30 s of the cancel").
+  server::StopSignals signals;
+  signals.on_stop([](int) { child_cancel.store(true); });
   if (!enter_job_process(options)) return 3;
   const JobFiles files{options.data};
   const AttemptFiles attempt = files.attempt(options.id, options.attempt);

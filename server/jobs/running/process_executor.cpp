@@ -58,8 +58,9 @@ std::pair<int, int> progress_pipe() {
 }
 
 /// The child's signals: it starts with only SIGTERM blocked (the server blocks SIGTERM and SIGINT in every
-/// thread) and unblocks it once its handler is in place, so a cancel sent while it starts is a cancel, not
-/// a kill; it has a process group of its own, so Ctrl-C reaches the server, which stops its jobs itself.
+/// thread) and keeps it blocked, waiting for it in a thread of its own (job_process.cpp), so a cancel sent
+/// while it starts is a cancel, not a kill; it has a process group of its own, so Ctrl-C reaches the server,
+/// which stops its jobs itself.
 void set_child_signals(posix_spawnattr_t& attributes) {
   sigset_t only_term, defaults;
   sigemptyset(&only_term);
