@@ -7,6 +7,8 @@
 #include <limits>
 #include <optional>
 
+#include "core/contact/mortar/frame_indifferent_gradient.hpp"
+
 namespace stoss::contact {
 namespace {
 
@@ -16,9 +18,18 @@ constexpr double activation_gap = 1e-10;
 /// as the NTS term's.
 constexpr double touching_gap = 1e-8;
 
-/// The discrete-gradient rule has no mortar form yet: its steps evaluate the midpoint form (4.82).
+/// The discrete-gradient rule evaluates the gaps where the midpoint form does, x_m and x_{n+1}, and corrects
+/// the midpoint gradient along the step's deformation (4.87).
 time::ForceRule configuration_rule(const time::ForceRule& rule) {
   return rule.kind == time::ForceRule::Kind::discrete_gradient ? time::ForceRule::midpoint() : rule;
+}
+
+/// A face pair's 24 coordinates, slave nodes then master nodes (PairGaps' order).
+mortar::Vector24 pair_coordinates(const SegmentNodes& slave, const SegmentNodes& master) {
+  mortar::Vector24 x;
+  for (int K = 0; K < 4; ++K)
+    x.segment<3>(3 * K) = slave.row(K).transpose(), x.segment<3>(12 + 3 * K) = master.row(K).transpose();
+  return x;
 }
 
 /// Corner box of a face at positions x and x + dx.
@@ -37,7 +48,10 @@ double box_size(const Eigen::AlignedBox3d& b) {
 
 MortarContactTerm::MortarContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair,
                                      const time::ForceRule& rule)
-    : ContactTerm(mesh, pair), rule_(configuration_rule(rule)), slave_faces_(mesh.surface(pair.slave)) {
+    : ContactTerm(mesh, pair),
+      rule_(configuration_rule(rule)),
+      exact_energy_(rule.kind == time::ForceRule::Kind::discrete_gradient),
+      slave_faces_(mesh.surface(pair.slave)) {
   if (surfaces_.smooth())
     throw std::invalid_argument("contact pair " + pair.slave + " / " + pair.master +
                                 ": mortar integrates on the faceted master surface only");
@@ -118,8 +132,14 @@ void MortarContactTerm::prepare_step(const time::StepContext& step) {
   broad_.update(surfaces_, step.x_n, step.x_n + step.h * step.v_n);
   report_ = ContactReport{};
   find_face_pairs(step);
-  for (FacePair& p : pairs_) p.force_n = previous_force(p, step.x_n);
-  nodal_gaps(step.x_n, gap_n_, weight_n_);
+  gap_n_ = weight_n_ = Eigen::VectorXd::Zero(auxiliary_count());
+  for (FacePair& p : pairs_) {
+    p.force_n = previous_force(p, step.x_n);
+    const mortar::PairGaps g = gap_values(p, step.x_n);
+    p.gap_n = g.gap;
+    for (int K = 0; K < 4; ++K)
+      gap_n_[p.slave_index[K]] += g.gap[K], weight_n_[p.slave_index[K]] += g.weight[K];
+  }
   release_uncovered();
   if (pair_.closes_touching) activate_touching();
   start_active_ = active_;
@@ -180,16 +200,25 @@ void MortarContactTerm::add_pair(const FacePair& p, const time::StepContext& ste
                              : sloped ? mortar::pair_gaps(s, m, mortar::Multipliers::dual)
                                       : gap_values(p, x_theta);
   const mortar::PairGaps g_1 = rule_.theta == 1 ? g : K ? gaps(p, x_1) : gap_values(p, x_1);
+  // The force's gradients and ∂(Σ λ_j ∂g̃_j)/∂x_{n+1}: the discrete gradient (4.87), (4.88) or ∂g̃/∂x(x_θ).
+  mortar::PairDiscreteGradient force{g.gradient, rule_.theta * H};
+  if (exact_energy_ && sloped) {
+    const mesh::Quad &slave = slave_faces_[p.slave_face], &master = surfaces_.faces[p.master_face];
+    const mortar::Vector24 y_n =
+        pair_coordinates(face_positions(slave, step.x_n), face_positions(master, step.x_n));
+    const mortar::Vector24 y_1 = pair_coordinates(face_positions(slave, x_1), face_positions(master, x_1));
+    force = mortar::discrete_gradient({y_n, y_1, p.gap_n, g_1, g, curved ? &H : nullptr, length_}, lambda);
+  }
   if (loaded) {
-    const Eigen::Matrix<double, 1, 24> f = lambda.transpose() * g.gradient;
-    for (int a = 0; a < 24; ++a) R[p.dofs[a]] += w * f[a];  // h w λ ∂g̃/∂x(x_θ) (4.82)
+    const Eigen::Matrix<double, 1, 24> f = lambda.transpose() * force.gradient;
+    for (int a = 0; a < 24; ++a) R[p.dofs[a]] += w * f[a];  // h w λ ∂g̃/∂x(x_θ) (4.82), or λ G (4.87)
   }
   for (int k = 0; k < 4; ++k)
     if (active_[p.slave_index[k]]) R[p.dofs[24 + k]] += g_1.gap[k];  // (4.83)
   if (!K) return;
   Eigen::Matrix<double, 28, 28> block = Eigen::Matrix<double, 28, 28>::Zero();
-  block.topLeftCorner<24, 24>() = w * rule_.theta * H;         // (4.81), (4.82)
-  block.topRightCorner<24, 4>() = w * g.gradient.transpose();  // (4.82)
+  block.topLeftCorner<24, 24>() = w * force.tangent;               // (4.81), (4.82), (4.88)
+  block.topRightCorner<24, 4>() = w * force.gradient.transpose();  // (4.82), (4.87)
   for (int k = 0; k < 4; ++k)
     if (active_[p.slave_index[k]]) block.block<1, 24>(24 + k, 0) = g_1.gradient.row(k);  // (4.83)
   K->scatter(p.block, block);
@@ -236,7 +265,7 @@ bool MortarContactTerm::update_active_set(const time::StepContext& step, const E
     } else if (!active_[j] && weight[j] > 0 && gap[j] < -activation_gap * length_ * weight[j] &&
                toggles_[j] == 0) {
       const bool frozen = impact() == model::ImpactMode::persist || impact() == model::ImpactMode::located;
-      target_[j] = frozen ? std::max(gap_n_[j], 0.0) : 0.0;  // g̃⁰_j (§4.5)
+      target_[j] = frozen ? gap_n_[j] : 0.0;  // g̃⁰_j (§4.5, (4.83))
       active_[j] = 1, lambda_[j] = 0, ++toggles_[j], ++report_.activations, changed = true;
     }
   }

@@ -1,7 +1,7 @@
 #pragma once
 /// @file Frictionless mortar contact of one pair with dual Lagrange multipliers on the slave nodes
 /// (docs/theory.md §4.7, (4.81)–(4.84)), on the faceted master surface, for the configuration force rules
-/// (midpoint, HHT-α, generalized-α); the discrete-gradient rule gets the midpoint form for now.
+/// (midpoint, HHT-α, generalized-α) and the discrete-gradient rule of energy_momentum (§4.7.2, (4.87)).
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -16,6 +16,7 @@ namespace stoss::contact {
 
 /// One multiplier λ_j per slave node, after x_{n+1} in z (all slave nodes: the layout never changes).
 /// - momentum rows  h [w Σ_j λ_j ∂g̃_j/∂x (x_θ) + w_n Σ_j λ_j,n ∂g̃_j/∂x (x_n)]   (4.82)
+///                  energy_momentum: h Σ_j λ_j G_j, G_j the discrete gradient of g̃_j per face pair (4.87)
 /// - active j:      g̃_j(x_{n+1}) − g̃⁰_j = 0;  inactive j:  λ_j = 0                    (4.83)
 /// - active set on the weighted gaps: j activates when g̃_j / D_jj < −1e-10 ℓ, releases when λ_j > 0 (once a
 ///   step, as §3.5; a static step may take back its own activation once)                         (4.84)
@@ -64,6 +65,7 @@ class MortarContactTerm final : public ContactTerm {
     std::vector<int> dofs;           ///< 24 position dofs then the 4 multiplier rows
     int block = -1;
     std::optional<Eigen::Matrix<double, 1, 24>> force_n;  ///< λ_n · ∂g̃/∂x(x_n) if the rule weighs it, λ_n ≠ 0
+    Eigen::Vector4d gap_n = Eigen::Vector4d::Zero();  ///< this pair's g̃_j at x_n (4.87)
   };
   /// The gaps and their gradient at x.
   mortar::PairGaps gaps(const FacePair& p, const Eigen::VectorXd& x) const;
@@ -87,6 +89,7 @@ class MortarContactTerm final : public ContactTerm {
                 solve::BlockPattern* K) const;
 
   time::ForceRule rule_;
+  bool exact_energy_ = false;  ///< energy_momentum: the discrete gradient (4.87) instead of ∂g̃/∂x(x_m)
   std::vector<mesh::Quad> slave_faces_;
   std::vector<FacePair> pairs_;
   std::vector<int> diagonal_blocks_;  ///< per slave node: its multiplier row's 1 × 1 block
