@@ -116,11 +116,15 @@ PairScale pair_scale(const model::Model& m, size_t i, const std::vector<BodyScal
   return s;
 }
 
-/// S_f of (W7): slave nodes of every pair, a frictional pair's counted twice.
+/// S_f of (W7): slave nodes of every pair, a frictional pair's counted twice, a mortar pair's 4.6 times.
 double weighted_slave_nodes(const model::Model& m) {
   double nodes = 0;
-  for (const model::ContactPair& p : m.contact)
-    nodes += (p.friction > 0 ? 2.0 : 1.0) * static_cast<double>(m.mesh.surface_nodes(p.slave).size());
+  for (const model::ContactPair& p : m.contact) {
+    const double weight = p.discretization == model::Discretization::mortar ? estimate_mortar_weight
+                          : p.friction > 0                                  ? 2.0
+                                                                            : 1.0;
+    nodes += weight * static_cast<double>(m.mesh.surface_nodes(p.slave).size());
+  }
   return nodes;
 }
 

@@ -1,6 +1,6 @@
 // The run-time estimate (W7) of docs/scene.md, by its form only (never against a wall clock): it is
 // t₀ plus steps times a per-step cost that grows as E^k with the elements, with the Courant number, and
-// with the slave nodes, a frictional pair's twice.
+// with the slave nodes, a frictional pair's twice, a mortar pair's 4.6 times.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -58,6 +58,14 @@ TEST(RunTimeEstimate, AFrictionalPairCountsItsSlaveNodesTwice) {
   json frictionless = friction;
   frictionless["contact"][0]["friction"] = 0.0;
   EXPECT_NEAR(per_step(friction) - per_step(frictionless), estimate_slave_node_seconds * 218, 1e-12);
+}
+
+TEST(RunTimeEstimate, AMortarPairCountsItsSlaveNodesAsMeasured) {
+  json mortar = seed();
+  mortar["contact"][0]["discretization"] = "mortar";
+  mortar["contact"][0].erase("switch_hysteresis");
+  EXPECT_NEAR(per_step(mortar) - per_step(seed()),
+              (estimate_mortar_weight - 1) * estimate_slave_node_seconds * 218, 1e-12);
 }
 
 }  // namespace
