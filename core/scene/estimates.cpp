@@ -116,7 +116,7 @@ PairScale pair_scale(const model::Model& m, size_t i, const std::vector<BodyScal
   return s;
 }
 
-/// S_f of (W7): slave nodes of every pair, a frictional pair's counted twice, a mortar pair's 4.6 times.
+/// S_f of (W7): slave nodes of every pair, a frictional pair's counted twice, a mortar pair's 1.9 times.
 double weighted_slave_nodes(const model::Model& m) {
   double nodes = 0;
   for (const model::ContactPair& p : m.contact) {

@@ -61,10 +61,10 @@ inline constexpr double estimate_element_seconds = 1e-5;       ///< a
 inline constexpr double estimate_element_exponent = 1.1;       ///< k
 inline constexpr double estimate_courant_factor = 2;           ///< c
 inline constexpr double estimate_slave_node_seconds = 1.7e-4;  ///< b
-/// How many times S_f counts a mortar pair's slave nodes: the seed example with mortar took 16.7 s of CPU
-/// against 3.4 s with node-to-segment, 13.3 s more over 100 steps and 218 slave nodes, 3.6 b per slave node
-/// and step (docs/results.md, "The run-time estimate").
-inline constexpr double estimate_mortar_weight = 4.6;
+/// How many times S_f counts a mortar pair's slave nodes: the seed example with mortar took 6.6 s of CPU
+/// against 3.2 s with node-to-segment (medians of 5, alternating), 3.4 s more over 100 steps and 218 slave
+/// nodes, 0.9 b per slave node and step (docs/results.md, "The run-time estimate").
+inline constexpr double estimate_mortar_weight = 1.9;
 
 /// (W7) from its inputs: steps, elements E, the largest Courant number C and the weighted slave nodes S_f.
 double run_seconds(double steps, double elements, double courant, double weighted_slave_nodes);

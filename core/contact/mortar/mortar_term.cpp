@@ -6,6 +6,7 @@
 #include <exception>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "core/contact/mortar/frame_indifferent_gradient.hpp"
 
@@ -88,23 +89,46 @@ void MortarContactTerm::find_face_pairs(const time::StepContext& step) {
       pairs.push_back(p);
     }
   }
-  const auto same = [](const FacePair& a, const FacePair& b) {
-    return a.slave_face == b.slave_face && a.master_face == b.master_face;
+  // A pair found again keeps its dofs and block (the pattern is rebuilt only on a new generation); a new one
+  // has none until a slave node of it is active (refresh_structure). Both lists are ordered by (slave,
+  // master).
+  const auto before = [](const FacePair& a, const FacePair& b) {
+    return std::pair(a.slave_face, a.master_face) < std::pair(b.slave_face, b.master_face);
   };
-  // The same pairs keep their registered dofs and blocks (register_blocks runs only on a new generation).
-  if (pairs.size() == pairs_.size() && std::equal(pairs.begin(), pairs.end(), pairs_.begin(), same)) return;
-  ++generation_;
+  auto old = pairs_.begin();
+  for (FacePair& p : pairs) {
+    while (old != pairs_.end() && before(*old, p)) ++old;
+    if (old != pairs_.end() && !before(p, *old)) {
+      p.dofs = old->dofs, p.block = old->block;
+    } else {
+      set_dofs(p);
+    }
+  }
   pairs_ = std::move(pairs);
+}
+
+void MortarContactTerm::set_dofs(FacePair& p) const {
+  p.dofs.clear();
+  for (const mesh::Quad* q : {&slave_faces_[p.slave_face], &surfaces_.faces[p.master_face]})
+    for (int node : *q)
+      for (int i = 0; i < 3; ++i) p.dofs.push_back(3 * node + i);
+  for (int j : p.slave_index) p.dofs.push_back(offset_ + j);
+}
+
+bool MortarContactTerm::has_active_node(const FacePair& p) const {
+  return std::any_of(p.slave_index.begin(), p.slave_index.end(), [&](int j) { return active_[j] != 0; });
+}
+
+void MortarContactTerm::refresh_structure() {
+  if (std::any_of(pairs_.begin(), pairs_.end(),
+                  [&](const FacePair& p) { return has_active_node(p) != (p.block >= 0); }))
+    ++generation_;
 }
 
 void MortarContactTerm::register_blocks(solve::BlockPattern& pattern) {
   for (FacePair& p : pairs_) {
-    p.dofs.clear();
-    for (const mesh::Quad* q : {&slave_faces_[p.slave_face], &surfaces_.faces[p.master_face]})
-      for (int node : *q)
-        for (int i = 0; i < 3; ++i) p.dofs.push_back(3 * node + i);
-    for (int j : p.slave_index) p.dofs.push_back(offset_ + j);
-    p.block = pattern.add_block(p.dofs);
+    set_dofs(p);
+    p.block = has_active_node(p) ? pattern.add_block(p.dofs) : -1;  // only these have a tangent (add_pair)
   }
   diagonal_blocks_.clear();
   for (int j = 0; j < auxiliary_count(); ++j) diagonal_blocks_.push_back(pattern.add_block({offset_ + j}));
@@ -143,6 +167,7 @@ void MortarContactTerm::prepare_step(const time::StepContext& step) {
   release_uncovered();
   if (pair_.closes_touching) activate_touching();
   start_active_ = active_;
+  refresh_structure();
 }
 
 void MortarContactTerm::release_uncovered() {
@@ -190,9 +215,17 @@ void MortarContactTerm::add_pair(const FacePair& p, const time::StepContext& ste
   for (int k = 0; k < 4; ++k) lambda[k] = z[offset_ + p.slave_index[k]];
   if (w_n != 0 && p.force_n)
     for (int a = 0; a < 24; ++a) R[p.dofs[a]] += w_n * (*p.force_n)[a];  // h w_n λ_n ∂g̃/∂x(x_n) (4.82)
+  // A pair with no active node adds nothing: its force is λ = 0, it has no gap rows, and its multipliers'
+  // columns of K meet rows λ_j = 0 that fix their increments to zero, so they change no Newton step. Nor
+  // has it a block in the pattern, whose factorisation then costs what the contact really couples.
+  if (!has_active_node(p)) return;
   // What this call needs: Σ λ_j ∂²g̃_j/∂x² for a tangent with λ ≠ 0, ∂g̃/∂x for any tangent or λ ≠ 0, else
   // the gaps' values.
   const bool loaded = !lambda.isZero(0), curved = K && loaded, sloped = K || loaded;
+  // Faces that overlap neither at x_n, x_θ nor x_{n+1} add nothing: a value costs µs, a derivative ms.
+  if (sloped && p.gap_n.isZero(0) && gap_values(p, x_theta).area == 0 &&
+      (rule_.theta == 1 || gap_values(p, x_1).area == 0))
+    return;
   mortar::Matrix24 H = mortar::Matrix24::Zero();
   const SegmentNodes s = face_positions(slave_faces_[p.slave_face], x_theta);
   const SegmentNodes m = face_positions(surfaces_.faces[p.master_face], x_theta);
@@ -269,6 +302,7 @@ bool MortarContactTerm::update_active_set(const time::StepContext& step, const E
       active_[j] = 1, lambda_[j] = 0, ++toggles_[j], ++report_.activations, changed = true;
     }
   }
+  if (changed) refresh_structure();
   return changed;
 }
 

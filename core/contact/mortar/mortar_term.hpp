@@ -63,7 +63,7 @@ class MortarContactTerm final : public ContactTerm {
     int slave_face = -1, master_face = -1;
     std::array<int, 4> slave_index;  ///< into surfaces_.slave_nodes
     std::vector<int> dofs;           ///< 24 position dofs then the 4 multiplier rows
-    int block = -1;
+    int block = -1;                  ///< in the pattern while a slave node of the pair is active, else −1
     std::optional<Eigen::Matrix<double, 1, 24>> force_n;  ///< λ_n · ∂g̃/∂x(x_n) if the rule weighs it, λ_n ≠ 0
     Eigen::Vector4d gap_n = Eigen::Vector4d::Zero();  ///< this pair's g̃_j at x_n (4.87)
   };
@@ -76,6 +76,12 @@ class MortarContactTerm final : public ContactTerm {
   std::optional<Eigen::Matrix<double, 1, 24>> previous_force(const FacePair& p,
                                                              const Eigen::VectorXd& x_n) const;
   void find_face_pairs(const time::StepContext& step);
+  /// The pair's 24 position dofs and its 4 multiplier rows (at the current offset).
+  void set_dofs(FacePair& p) const;
+  /// Whether a slave node of the pair is active: only such pairs have rows and a block (register_blocks).
+  bool has_active_node(const FacePair& p) const;
+  /// A new structure generation when the pairs with an active node are not those with a block.
+  void refresh_structure();
   /// Releases the active slave nodes that no master face overlaps at x_n (D_jj = 0): their row (4.83) would
   /// be zero, the Jacobian singular (a body leaving contact; the seed example failed so at t = 0.93).
   void release_uncovered();

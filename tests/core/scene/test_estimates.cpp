@@ -1,6 +1,6 @@
 // The run-time estimate (W7) of docs/scene.md, by its form only (never against a wall clock): it is
 // t₀ plus steps times a per-step cost that grows as E^k with the elements, with the Courant number, and
-// with the slave nodes, a frictional pair's twice, a mortar pair's 4.6 times.
+// with the slave nodes, a frictional pair's twice, a mortar pair's 1.9 times.
 #include <gtest/gtest.h>
 
 #include <cmath>
