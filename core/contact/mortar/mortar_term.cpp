@@ -15,6 +15,12 @@ namespace {
 
 /// Activation threshold on the nodal gap g̃_j / D_jj, as §3.5: 1e-10 × the mean face size.
 constexpr double activation_gap = 1e-10;
+/// A slave node activates only once the master covers at least this fraction of its support: D_jj ≥ ½ Σ ∫ N_j
+/// over its slave faces that overlap a master face (its faces that face away, a box's sides, do not count).
+/// On a partly covered support the dual basis (4.77), negative over part of each face, makes D_jj small or
+/// negative and g̃_j / D_jj meaningless (the two-balls example's first contact: D_jj = 5.5e-5 where a covered
+/// node has 0.065, g̃_j / D_jj = −24).
+constexpr double covered_fraction = 0.5;
 /// closes_touching (static steps): a nodal gap g̃_j / D_jj up to this fraction of the mean face size touches,
 /// as the NTS term's.
 constexpr double touching_gap = 1e-8;
@@ -139,13 +145,29 @@ mortar::PairGaps MortarContactTerm::gaps(const FacePair& p, const Eigen::VectorX
                            face_positions(surfaces_.faces[p.master_face], x), mortar::Multipliers::dual);
 }
 
-void MortarContactTerm::nodal_gaps(const Eigen::VectorXd& x, Eigen::VectorXd& gap,
-                                   Eigen::VectorXd& weight) const {
+void MortarContactTerm::nodal_gaps(const Eigen::VectorXd& x, Eigen::VectorXd& gap, Eigen::VectorXd& weight,
+                                   Eigen::VectorXd* support, std::vector<FacePair>* store_gaps) const {
   gap = weight = Eigen::VectorXd::Zero(auxiliary_count());
-  for (const FacePair& p : pairs_) {
+  std::vector<char> overlapping(slave_faces_.size(), 0);
+  for (size_t k = 0; k < pairs_.size(); ++k) {
+    const FacePair& p = pairs_[k];
     const mortar::PairGaps g = gap_values(p, x);
+    if (store_gaps) (*store_gaps)[k].gap_n = g.gap;
+    if (g.area > 0) overlapping[p.slave_face] = 1;
     for (int K = 0; K < 4; ++K) gap[p.slave_index[K]] += g.gap[K], weight[p.slave_index[K]] += g.weight[K];
   }
+  if (!support) return;
+  *support = Eigen::VectorXd::Zero(auxiliary_count());
+  for (size_t s = 0; s < slave_faces_.size(); ++s) {
+    if (!overlapping[s]) continue;
+    const SegmentNodes y = face_positions(slave_faces_[s], x);
+    const double quarter_area = (y.row(2) - y.row(0)).cross(y.row(3) - y.row(1)).norm() / 8;
+    for (int node : slave_faces_[s]) (*support)[slave_index(node)] += quarter_area;
+  }
+}
+
+bool MortarContactTerm::covered(double weight, double support) {
+  return weight > covered_fraction * support;
 }
 
 void MortarContactTerm::prepare_step(const time::StepContext& step) {
@@ -156,14 +178,8 @@ void MortarContactTerm::prepare_step(const time::StepContext& step) {
   broad_.update(surfaces_, step.x_n, step.x_n + step.h * step.v_n);
   report_ = ContactReport{};
   find_face_pairs(step);
-  gap_n_ = weight_n_ = Eigen::VectorXd::Zero(auxiliary_count());
-  for (FacePair& p : pairs_) {
-    p.force_n = previous_force(p, step.x_n);
-    const mortar::PairGaps g = gap_values(p, step.x_n);
-    p.gap_n = g.gap;
-    for (int K = 0; K < 4; ++K)
-      gap_n_[p.slave_index[K]] += g.gap[K], weight_n_[p.slave_index[K]] += g.weight[K];
-  }
+  for (FacePair& p : pairs_) p.force_n = previous_force(p, step.x_n);
+  nodal_gaps(step.x_n, gap_n_, weight_n_, &support_n_, &pairs_);
   release_uncovered();
   if (pair_.closes_touching) activate_touching();
   start_active_ = active_;
@@ -177,7 +193,8 @@ void MortarContactTerm::release_uncovered() {
 
 void MortarContactTerm::activate_touching() {
   for (int j = 0; j < auxiliary_count(); ++j)
-    if (!active_[j] && weight_n_[j] > 0 && gap_n_[j] <= touching_gap * length_ * weight_n_[j])
+    if (!active_[j] && covered(weight_n_[j], support_n_[j]) &&
+        gap_n_[j] <= touching_gap * length_ * weight_n_[j])
       active_[j] = 1, target_[j] = 0;  // released after the pass if in tension (§3.5)
 }
 
@@ -282,8 +299,8 @@ void MortarContactTerm::add(const time::StepContext& step, const Eigen::VectorXd
 }
 
 bool MortarContactTerm::update_active_set(const time::StepContext& step, const Eigen::VectorXd& z) {
-  Eigen::VectorXd gap, weight;
-  nodal_gaps(z.head(step.x_n.size()), gap, weight);
+  Eigen::VectorXd gap, weight, support;
+  nodal_gaps(z.head(step.x_n.size()), gap, weight, &support);
   bool changed = false;
   for (int j = 0; j < auxiliary_count(); ++j) {
     lambda_[j] = z[offset_ + j];
@@ -295,8 +312,8 @@ bool MortarContactTerm::update_active_set(const time::StepContext& step, const E
         continue;
       }
       active_[j] = 0, lambda_[j] = 0, ++toggles_[j], ++report_.releases, changed = true;
-    } else if (!active_[j] && weight[j] > 0 && gap[j] < -activation_gap * length_ * weight[j] &&
-               toggles_[j] == 0) {
+    } else if (!active_[j] && covered(weight[j], support[j]) &&
+               gap[j] < -activation_gap * length_ * weight[j] && toggles_[j] == 0) {
       const bool frozen = impact() == model::ImpactMode::persist || impact() == model::ImpactMode::located;
       target_[j] = frozen ? gap_n_[j] : 0.0;  // g̃⁰_j (§4.5, (4.83))
       active_[j] = 1, lambda_[j] = 0, ++toggles_[j], ++report_.activations, changed = true;

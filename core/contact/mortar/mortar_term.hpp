@@ -54,8 +54,12 @@ class MortarContactTerm final : public ContactTerm {
 
   /// Per slave node: active in the current pass.
   const std::vector<char>& active() const { return active_; }
-  /// Assembled weighted gaps g̃_j and mortar weights D_jj at positions x (the step's face pairs).
-  void nodal_gaps(const Eigen::VectorXd& x, Eigen::VectorXd& gap, Eigen::VectorXd& weight) const;
+  /// Assembled weighted gaps g̃_j and mortar weights D_jj at positions x (the step's face pairs); `support`:
+  /// Σ ∫ N_j (a quarter of the area) over j's slave faces that overlap some master face at x (4.84).
+  void nodal_gaps(const Eigen::VectorXd& x, Eigen::VectorXd& gap, Eigen::VectorXd& weight,
+                  Eigen::VectorXd* support = nullptr) const {
+    nodal_gaps(x, gap, weight, support, nullptr);
+  }
 
  private:
   /// A slave face against a master face that may overlap in this step.
@@ -76,6 +80,11 @@ class MortarContactTerm final : public ContactTerm {
   std::optional<Eigen::Matrix<double, 1, 24>> previous_force(const FacePair& p,
                                                              const Eigen::VectorXd& x_n) const;
   void find_face_pairs(const time::StepContext& step);
+  /// nodal_gaps, also keeping each pair's gaps in `store_gaps` (pairs_ itself: FacePair::gap_n).
+  void nodal_gaps(const Eigen::VectorXd& x, Eigen::VectorXd& gap, Eigen::VectorXd& weight,
+                  Eigen::VectorXd* support, std::vector<FacePair>* store_gaps) const;
+  /// D_jj covers enough of the node's support for g̃_j / D_jj to be a gap (4.84).
+  static bool covered(double weight, double support);
   /// The pair's 24 position dofs and its 4 multiplier rows (at the current offset).
   void set_dofs(FacePair& p) const;
   /// Whether a slave node of the pair is active: only such pairs have rows and a block (register_blocks).
@@ -104,11 +113,11 @@ class MortarContactTerm final : public ContactTerm {
 
   std::vector<char> active_, start_active_, committed_active_;
   std::vector<int> toggles_;
-  Eigen::VectorXd lambda_;                     ///< latest multipliers (read back after each solve)
-  Eigen::VectorXd lambda_n_;                   ///< λ of the last converged step (t_n)
-  Eigen::VectorXd target_, committed_target_;  ///< g̃⁰_j
-  Eigen::VectorXd gap_n_, weight_n_;           ///< g̃_j and D_jj at x_n
-  double length_ = 1;                          ///< mean master face size ℓ
+  Eigen::VectorXd lambda_;                        ///< latest multipliers (read back after each solve)
+  Eigen::VectorXd lambda_n_;                      ///< λ of the last converged step (t_n)
+  Eigen::VectorXd target_, committed_target_;     ///< g̃⁰_j
+  Eigen::VectorXd gap_n_, weight_n_, support_n_;  ///< g̃_j, D_jj and the coverable support at x_n
+  double length_ = 1;                             ///< mean master face size ℓ
   int offset_ = 0, generation_ = 0;
 };
 
