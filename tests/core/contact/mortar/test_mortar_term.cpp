@@ -21,9 +21,10 @@ struct Fixture {
   std::unique_ptr<MortarContactTerm> term;
   std::unique_ptr<time::StepContext> step;
 
-  explicit Fixture(const time::ForceRule& rule, unsigned seed = 3) {
+  /// `shift`: the cube moved along x (1.15: its bottom's middle row of nodes 0.05 past the plate's edge).
+  explicit Fixture(const time::ForceRule& rule, unsigned seed = 3, double shift = 0) {
     mesh.add_body("plate", mesh::box({-1, -1, -0.4}, {1, 1, 0}, {3, 3, 1}));
-    mesh.add_body("cube", mesh::box({-0.55, -0.45, 0.0}, {0.45, 0.5, 0.6}, {2, 2, 1}));
+    mesh.add_body("cube", mesh::box({-0.55 + shift, -0.45, 0.0}, {0.45 + shift, 0.5, 0.6}, {2, 2, 1}));
     model::ContactPair pair;
     pair.slave = "cube/bottom";
     pair.master = "plate/top";
@@ -90,6 +91,35 @@ TEST(MortarTerm, MidpointTangentMatchesCentralDifferences) {
   const double error = relative_tangent_error(Fixture(time::ForceRule::midpoint()));
   std::printf("mortar midpoint: |K − K_fd| / |K| = %.2e\n", error);
   EXPECT_LT(error, 1e-6);
+}
+
+// The energy–momentum rule's force is the discrete gradient of §4.7.2: its tangent (4.88) in the term's
+// blocks.
+TEST(MortarTerm, DiscreteGradientTangentMatchesCentralDifferences) {
+  const double error = relative_tangent_error(Fixture(time::ForceRule::discrete_gradient()));
+  std::printf("mortar discrete gradient: |K − K_fd| / |K| = %.2e\n", error);
+  EXPECT_LT(error, 1e-6);
+}
+
+// (4.84): only nodes whose D_jj covers half of their coverable support activate. The cube moved to overhang
+// the plate's edge (x = 1): its bottom's first row of nodes (x = 0.6) lies over the plate; the middle row (x
+// = 1.1) has 80 % of its inner faces over the plate, where the dual basis gives it D_jj = 0.34 of their ∫ N_j
+// and a negative weighted gap (the rule before, D_jj > 0, activated it); the last row (x = 1.6) overlaps
+// nothing.
+TEST(MortarTerm, OnlySlaveNodesTheMasterCoversActivate) {
+  const Fixture f(time::ForceRule::midpoint(), 3, 1.15);
+  Eigen::VectorXd gap, weight, support;
+  f.term->nodal_gaps(f.z.head(f.nx), gap, weight, &support);
+  int active = 0;
+  for (size_t j = 0; j < f.term->active().size(); ++j) {
+    const double x = f.mesh.reference_positions()[3 * f.term->surfaces().slave_nodes[j]];
+    std::printf("slave node at x = %.2f: D_jj %.4f, support %.4f, g̃_j %.2e, active %d\n", x, weight[j],
+                support[j], gap[j], f.term->active()[j]);
+    EXPECT_EQ(f.term->active()[j] != 0, x < 1)
+        << "x = " << x << ", D_jj / support = " << weight[j] / support[j];
+    active += f.term->active()[j];
+  }
+  EXPECT_EQ(active, 3);
 }
 
 TEST(MortarTerm, EndPointTangentMatchesCentralDifferences) {
