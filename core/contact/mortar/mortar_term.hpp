@@ -18,8 +18,9 @@ namespace stoss::contact {
 /// - momentum rows  h [w Σ_j λ_j ∂g̃_j/∂x (x_θ) + w_n Σ_j λ_j,n ∂g̃_j/∂x (x_n)]   (4.82)
 ///                  energy_momentum: h Σ_j λ_j G_j, G_j the discrete gradient of g̃_j per face pair (4.87)
 /// - active j:      g̃_j(x_{n+1}) − g̃⁰_j = 0;  inactive j:  λ_j = 0                    (4.83)
-/// - active set on the weighted gaps: j activates when g̃_j / D_jj < −1e-10 ℓ, releases when λ_j > 0 (once a
-///   step, as §3.5; a static step may take back its own activation once)                         (4.84)
+/// - active set on the weighted gaps: j activates when g̃_j / D_jj < −1e-10 ℓ and D_jj covers half of the
+///   support its overlapping slave faces give it, releases when λ_j > 0 (once a step, as §3.5; a static step
+///   may take back its own activation once)                                                          (4.84)
 /// - contact_pressure p_j = −λ_j: λ_j is conjugate to g̃_j, the node's force is λ_j D_jj n, so −λ_j is that
 ///   force over D_jj (λ ≤ 0 in compression, §0)                                                 (4.84)
 /// Why dual: the assembled D is diagonal, so g̃_j and λ_j are nodal quantities: the active set is
