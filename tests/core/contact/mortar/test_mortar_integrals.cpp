@@ -215,9 +215,9 @@ TEST(MortarIntegralsInput, NonConvexSlaveProjectionIsAnError) {
 }
 
 // (4.76): a master face is paired only when it faces the slave face at less than 60° (n_s · n̂_m below −½). A
-// master square under a slave square, tilted about x by θ (its projection still covers the slave's middle): at
-// 0°, 45° and 59° it is integrated (overlap > 0), at 61°, 75° and 85° it is not, however large its projected
-// overlap.
+// master square under a slave square, tilted about x by θ (its projection still covers the slave's middle):
+// at 0°, 45° and 59° it is integrated (overlap > 0), at 61°, 75° and 85° it is not, however large its
+// projected overlap.
 TEST(MortarIntegralsInput, AMasterFaceSeenAtMoreThan60DegreesIsNotPaired) {
   const SegmentNodes slave = rectangle(-0.5, -0.5, 0.5, 0.5, 0.0, true);  // outward normal −z
   const auto tilted_master = [](double degrees) {
