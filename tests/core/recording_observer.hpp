@@ -52,6 +52,14 @@ class RecordingObserver : public model::Observer {
   }
   bool has_series(const std::string& name) const { return layout.index_of(name) >= 0; }
 
+  /// max_n |s_n − s_{n−1}| / |s_0| of the scalar series `name` (the largest change in a step of an energy).
+  double largest_step_change(const std::string& name) const {
+    const std::vector<double> s = series(name);
+    double worst = 0;
+    for (size_t n = 1; n < s.size(); ++n) worst = std::max(worst, std::abs(s[n] - s[n - 1]) / std::abs(s[0]));
+    return worst;
+  }
+
   /// max_n |v_n − v_0| / |v_0| of the 3-vector series `name` (a momentum).
   double vector_drift(const std::string& name) const {
     const std::vector<double> x = series(name, 0), y = series(name, 1), z = series(name, 2);

@@ -146,13 +146,13 @@ mortar::PairGaps MortarContactTerm::gaps(const FacePair& p, const Eigen::VectorX
 }
 
 void MortarContactTerm::nodal_gaps(const Eigen::VectorXd& x, Eigen::VectorXd& gap, Eigen::VectorXd& weight,
-                                   Eigen::VectorXd* support, std::vector<FacePair>* store_gaps) const {
+                                   Eigen::VectorXd* support, std::vector<Eigen::Vector4d>* pair_gaps) const {
   gap = weight = Eigen::VectorXd::Zero(auxiliary_count());
+  if (pair_gaps) pair_gaps->clear();
   std::vector<char> overlapping(slave_faces_.size(), 0);
-  for (size_t k = 0; k < pairs_.size(); ++k) {
-    const FacePair& p = pairs_[k];
+  for (const FacePair& p : pairs_) {
     const mortar::PairGaps g = gap_values(p, x);
-    if (store_gaps) (*store_gaps)[k].gap_n = g.gap;
+    if (pair_gaps) pair_gaps->push_back(g.gap);
     if (g.area > 0) overlapping[p.slave_face] = 1;
     for (int K = 0; K < 4; ++K) gap[p.slave_index[K]] += g.gap[K], weight[p.slave_index[K]] += g.weight[K];
   }
@@ -179,7 +179,9 @@ void MortarContactTerm::prepare_step(const time::StepContext& step) {
   report_ = ContactReport{};
   find_face_pairs(step);
   for (FacePair& p : pairs_) p.force_n = previous_force(p, step.x_n);
-  nodal_gaps(step.x_n, gap_n_, weight_n_, &support_n_, &pairs_);
+  std::vector<Eigen::Vector4d> pair_gaps;
+  nodal_gaps(step.x_n, gap_n_, weight_n_, &support_n_, &pair_gaps);
+  for (size_t k = 0; k < pairs_.size(); ++k) pairs_[k].gap_n = pair_gaps[k];
   release_uncovered();
   if (pair_.closes_touching) activate_touching();
   start_active_ = active_;

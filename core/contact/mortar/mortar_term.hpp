@@ -56,11 +56,11 @@ class MortarContactTerm final : public ContactTerm {
   /// Per slave node: active in the current pass.
   const std::vector<char>& active() const { return active_; }
   /// Assembled weighted gaps g̃_j and mortar weights D_jj at positions x (the step's face pairs); `support`:
-  /// Σ ∫ N_j (a quarter of the area) over j's slave faces that overlap some master face at x (4.84).
+  /// Σ ∫ N_j (a quarter of the area) over j's slave faces that overlap some master face at x (4.84);
+  /// `pair_gaps`: each face pair's g̃_j, in the order of the pairs.
   void nodal_gaps(const Eigen::VectorXd& x, Eigen::VectorXd& gap, Eigen::VectorXd& weight,
-                  Eigen::VectorXd* support = nullptr) const {
-    nodal_gaps(x, gap, weight, support, nullptr);
-  }
+                  Eigen::VectorXd* support = nullptr,
+                  std::vector<Eigen::Vector4d>* pair_gaps = nullptr) const;
 
  private:
   /// A slave face against a master face that may overlap in this step.
@@ -81,9 +81,6 @@ class MortarContactTerm final : public ContactTerm {
   std::optional<Eigen::Matrix<double, 1, 24>> previous_force(const FacePair& p,
                                                              const Eigen::VectorXd& x_n) const;
   void find_face_pairs(const time::StepContext& step);
-  /// nodal_gaps, also keeping each pair's gaps in `store_gaps` (pairs_ itself: FacePair::gap_n).
-  void nodal_gaps(const Eigen::VectorXd& x, Eigen::VectorXd& gap, Eigen::VectorXd& weight,
-                  Eigen::VectorXd* support, std::vector<FacePair>* store_gaps) const;
   /// D_jj covers enough of the node's support for g̃_j / D_jj to be a gap (4.84).
   static bool covered(double weight, double support);
   /// The pair's 24 position dofs and its 4 multiplier rows (at the current offset).
