@@ -73,7 +73,7 @@ TEST(MortarEnergyMomentum, TheSeedExampleKeepsEnergyInEveryStepAndBothMomenta) {
 // 0.03 and the patch's growth to a dozen active nodes. Before only covered nodes could activate
 // (docs/theory.md (4.84)), rim nodes with D_jj = 5.5e-5 activated here and the second step failed on a
 // singular Jacobian. Every step keeps energy to 1e-10 H0, both momenta to 1e-10, and every check of the
-// verdict passes. (The whole run, 30 steps, completes too, in 112 s: docs/theory.md §4.7.2.)
+// verdict passes. (The whole run, 30 steps, completes too, in 81 s: docs/theory.md §4.7.2.)
 TEST(MortarEnergyMomentum, TheTwoBallsKeepEnergyAndMomentaThroughTheirFirstContact) {
   std::ifstream in(std::string(STOSS_SOURCE_DIR) + "/api/examples/two_balls.json");
   nlohmann::json scene = nlohmann::json::parse(in);

@@ -22,6 +22,7 @@ struct FacePairIntegrals {
   Eigen::Matrix<T, 4, 1> gap = Eigen::Matrix<T, 4, 1>::Zero();  ///< g̃_j (4.79)
   T area = T(0.0);                                              ///< the clip polygon's area
   Eigen::Vector4d weight = Eigen::Vector4d::Zero();             ///< the values of D_jj
+  Eigen::Vector4d basis_integral = Eigen::Vector4d::Zero();  ///< the values of ∫ Φ_j over the clip polygon
   int triangles = 0;
 };
 
@@ -58,14 +59,23 @@ inline constexpr double facing_cosine = 0.5;
 /// The integrals over the clip polygon of the slave face s and the master face m (4.77)–(4.80). Zero
 /// when the faces do not face each other (4.76) or do not overlap in the slave's plane.
 /// The gap is g = (x_m − x_s)·n_s = (x_s − x_m)·n with n = −n_s from the master to the slave (§0).
+/// `offset`: per slave node j a constant c_j taken off the gap, g̃_j = ∫ Φ_j (g − c_j) (the frozen nodal gap
+/// of persist and located, (4.83)).
 template <class T>
 FacePairIntegrals<T> face_pair_integrals(const QuadNodes<T>& s, const QuadNodes<T>& m, Multipliers kind,
-                                         Integrals what = Integrals::all) {
+                                         Integrals what = Integrals::all,
+                                         const Eigen::Vector4d& offset = Eigen::Vector4d::Zero()) {
   FacePairIntegrals<T> out;
   const MortarPlane<T> plane = mortar_plane(s);
   const Vec3<T> master_normal = (m[2] - m[0]).cross(m[3] - m[1]);
   const double cosine = value_of(T(master_normal.dot(plane.n))) / value_of(T(master_normal.norm()));
   if (!(cosine < -facing_cosine)) return out;  // (4.76)
+  // The frozen gaps fade out (C1) between 30° and the 60° cut: the cut is no jump in their share.
+  const T facing = -T(master_normal.dot(plane.n)) / T(master_normal.norm());
+  const T fade_s = (facing - T(facing_cosine)) / T(std::sqrt(0.75) - facing_cosine);
+  const T fade = value_of(fade_s) >= 1 ? T(1.0) : fade_s * fade_s * (T(3.0) - T(2.0) * fade_s);
+  Eigen::Matrix<T, 4, 1> faded_offset;
+  for (int j = 0; j < 4; ++j) faded_offset[j] = fade * offset[j];
   const Polygon<T> ps = projected(plane, s), pm = projected(plane, m);
   Polygon<T> pm_ccw = pm;
   if (value_of(signed_area(pm)) < 0) std::reverse(pm_ccw.begin(), pm_ccw.end());
@@ -101,7 +111,11 @@ FacePairIntegrals<T> face_pair_integrals(const QuadNodes<T>& s, const QuadNodes<
         for (int j = 0; j < 4; ++j)
           out.weight[j] += value_of(Phi[j]) * value_of(Ns[j]) * value_of(w);  // (4.78)
       }
-      out.gap += Phi * (T((xm - xs).dot(plane.n)) * w);  // (4.79)
+      const T gap_w = T((xm - xs).dot(plane.n)) * w;
+      for (int j = 0; j < 4; ++j) {
+        out.gap[j] += Phi[j] * (offset[j] == 0 ? gap_w : T(gap_w - w * faded_offset[j]));  // (4.79), (4.83)
+        out.basis_integral[j] += value_of(fade) * value_of(Phi[j]) * value_of(w);
+      }
     }
   }
   if (what == Integrals::all)

@@ -66,7 +66,7 @@ MortarContactTerm::MortarContactTerm(const mesh::Mesh& mesh, const model::Contac
   active_.assign(n, 0);
   start_active_ = committed_active_ = active_;
   toggles_.assign(n, 0);
-  lambda_ = lambda_n_ = target_ = committed_target_ = Eigen::VectorXd::Zero(n);
+  lambda_ = lambda_n_ = frozen_ = committed_frozen_ = Eigen::VectorXd::Zero(n);
   length_ = surfaces_.mean_face_size;
 }
 
@@ -140,19 +140,30 @@ void MortarContactTerm::register_blocks(solve::BlockPattern& pattern) {
   for (int j = 0; j < auxiliary_count(); ++j) diagonal_blocks_.push_back(pattern.add_block({offset_ + j}));
 }
 
+Eigen::Vector4d MortarContactTerm::frozen_gaps(const FacePair& p) const {
+  Eigen::Vector4d c;
+  for (int k = 0; k < 4; ++k) c[k] = frozen_[p.slave_index[k]];
+  return c;
+}
+
+Eigen::Vector4d MortarContactTerm::gaps_at_start(const FacePair& p) const {
+  return p.gap_n - frozen_gaps(p).cwiseProduct(p.basis_integral_n);  // ∫ Φ_j (g − ḡ⁰_j) at x_n (4.83)
+}
+
 mortar::PairGaps MortarContactTerm::gaps(const FacePair& p, const Eigen::VectorXd& x) const {
   return mortar::pair_gaps(face_positions(slave_faces_[p.slave_face], x),
-                           face_positions(surfaces_.faces[p.master_face], x), mortar::Multipliers::dual);
+                           face_positions(surfaces_.faces[p.master_face], x), mortar::Multipliers::dual,
+                           frozen_gaps(p));
 }
 
 void MortarContactTerm::nodal_gaps(const Eigen::VectorXd& x, Eigen::VectorXd& gap, Eigen::VectorXd& weight,
-                                   Eigen::VectorXd* support, std::vector<Eigen::Vector4d>* pair_gaps) const {
+                                   Eigen::VectorXd* support, std::vector<mortar::PairGaps>* pairs) const {
   gap = weight = Eigen::VectorXd::Zero(auxiliary_count());
-  if (pair_gaps) pair_gaps->clear();
+  if (pairs) pairs->clear();
   std::vector<char> overlapping(slave_faces_.size(), 0);
   for (const FacePair& p : pairs_) {
     const mortar::PairGaps g = gap_values(p, x);
-    if (pair_gaps) pair_gaps->push_back(g.gap);
+    if (pairs) pairs->push_back(g);
     if (g.area > 0) overlapping[p.slave_face] = 1;
     for (int K = 0; K < 4; ++K) gap[p.slave_index[K]] += g.gap[K], weight[p.slave_index[K]] += g.weight[K];
   }
@@ -173,15 +184,21 @@ bool MortarContactTerm::covered(double weight, double support) {
 void MortarContactTerm::prepare_step(const time::StepContext& step) {
   active_ = committed_active_;
   lambda_ = lambda_n_;
-  target_ = committed_target_;
+  frozen_ = committed_frozen_;
   std::fill(toggles_.begin(), toggles_.end(), 0);
   broad_.update(surfaces_, step.x_n, step.x_n + step.h * step.v_n);
   report_ = ContactReport{};
   find_face_pairs(step);
   for (FacePair& p : pairs_) p.force_n = previous_force(p, step.x_n);
-  std::vector<Eigen::Vector4d> pair_gaps;
-  nodal_gaps(step.x_n, gap_n_, weight_n_, &support_n_, &pair_gaps);
-  for (size_t k = 0; k < pairs_.size(); ++k) pairs_[k].gap_n = pair_gaps[k];
+  std::vector<mortar::PairGaps> at_start;
+  nodal_gaps(step.x_n, gap_n_, weight_n_, &support_n_, &at_start);
+  basis_integral_n_ = Eigen::VectorXd::Zero(auxiliary_count());
+  for (size_t k = 0; k < pairs_.size(); ++k) {
+    FacePair& p = pairs_[k];
+    p.basis_integral_n = at_start[k].basis_integral;
+    p.gap_n = at_start[k].gap + frozen_gaps(p).cwiseProduct(p.basis_integral_n);  // with no frozen gap
+    for (int K = 0; K < 4; ++K) basis_integral_n_[p.slave_index[K]] += p.basis_integral_n[K];
+  }
   release_uncovered();
   if (pair_.closes_touching) activate_touching();
   start_active_ = active_;
@@ -190,14 +207,14 @@ void MortarContactTerm::prepare_step(const time::StepContext& step) {
 
 void MortarContactTerm::release_uncovered() {
   for (int j = 0; j < auxiliary_count(); ++j)
-    if (active_[j] && !(weight_n_[j] > 0)) active_[j] = 0, lambda_[j] = 0, ++report_.releases;
+    if (active_[j] && !(weight_n_[j] > 0)) active_[j] = 0, lambda_[j] = 0, frozen_[j] = 0, ++report_.releases;
 }
 
 void MortarContactTerm::activate_touching() {
   for (int j = 0; j < auxiliary_count(); ++j)
     if (!active_[j] && covered(weight_n_[j], support_n_[j]) &&
         gap_n_[j] <= touching_gap * length_ * weight_n_[j])
-      active_[j] = 1, target_[j] = 0;  // released after the pass if in tension (§3.5)
+      active_[j] = 1, frozen_[j] = 0;  // released after the pass if in tension (§3.5)
 }
 
 void MortarContactTerm::begin_step(const time::StepContext& step, Eigen::VectorXd& z) {
@@ -220,9 +237,9 @@ mortar::PairGaps MortarContactTerm::gap_values(const FacePair& p, const Eigen::V
   const mortar::FacePairIntegrals<double> r = mortar::face_pair_integrals<double>(
       mortar::quad_nodes(face_positions(slave_faces_[p.slave_face], x)),
       mortar::quad_nodes(face_positions(surfaces_.faces[p.master_face], x)), mortar::Multipliers::dual,
-      mortar::Integrals::gaps);
+      mortar::Integrals::gaps, frozen_gaps(p));
   mortar::PairGaps g;
-  g.gap = r.gap, g.weight = r.weight, g.area = r.area;
+  g.gap = r.gap, g.weight = r.weight, g.area = r.area, g.basis_integral = r.basis_integral;
   return g;
 }
 
@@ -248,8 +265,9 @@ void MortarContactTerm::add_pair(const FacePair& p, const time::StepContext& ste
   mortar::Matrix24 H = mortar::Matrix24::Zero();
   const SegmentNodes s = face_positions(slave_faces_[p.slave_face], x_theta);
   const SegmentNodes m = face_positions(surfaces_.faces[p.master_face], x_theta);
-  const mortar::PairGaps g = curved   ? mortar::pair_gaps(s, m, mortar::Multipliers::dual, lambda, H)
-                             : sloped ? mortar::pair_gaps(s, m, mortar::Multipliers::dual)
+  const Eigen::Vector4d frozen = frozen_gaps(p);
+  const mortar::PairGaps g = curved   ? mortar::pair_gaps(s, m, mortar::Multipliers::dual, lambda, H, frozen)
+                             : sloped ? mortar::pair_gaps(s, m, mortar::Multipliers::dual, frozen)
                                       : gap_values(p, x_theta);
   const mortar::PairGaps g_1 = rule_.theta == 1 ? g : K ? gaps(p, x_1) : gap_values(p, x_1);
   // The force's gradients and ∂(Σ λ_j ∂g̃_j)/∂x_{n+1}: the discrete gradient (4.87), (4.88) or ∂g̃/∂x(x_θ).
@@ -259,7 +277,8 @@ void MortarContactTerm::add_pair(const FacePair& p, const time::StepContext& ste
     const mortar::Vector24 y_n =
         pair_coordinates(face_positions(slave, step.x_n), face_positions(master, step.x_n));
     const mortar::Vector24 y_1 = pair_coordinates(face_positions(slave, x_1), face_positions(master, x_1));
-    force = mortar::discrete_gradient({y_n, y_1, p.gap_n, g_1, g, curved ? &H : nullptr, length_}, lambda);
+    force = mortar::discrete_gradient({y_n, y_1, gaps_at_start(p), g_1, g, curved ? &H : nullptr, length_},
+                                      lambda);
   }
   if (loaded) {
     const Eigen::Matrix<double, 1, 24> f = lambda.transpose() * force.gradient;
@@ -291,10 +310,7 @@ void MortarContactTerm::add(const time::StepContext& step, const Eigen::VectorXd
     }
   }
   for (int j = 0; j < auxiliary_count(); ++j) {
-    if (active_[j]) {
-      R[offset_ + j] -= target_[j];  // (4.83)
-      continue;
-    }
+    if (active_[j]) continue;
     R[offset_ + j] += z[offset_ + j];  // λ_j = 0 (4.83)
     if (K) K->scatter(diagonal_blocks_[j], Eigen::Matrix<double, 1, 1>::Ones());
   }
@@ -313,11 +329,13 @@ bool MortarContactTerm::update_active_set(const time::StepContext& step, const E
                       " (it already changed state in this step)");
         continue;
       }
-      active_[j] = 0, lambda_[j] = 0, ++toggles_[j], ++report_.releases, changed = true;
+      active_[j] = 0, lambda_[j] = 0, frozen_[j] = 0, ++toggles_[j], ++report_.releases, changed = true;
     } else if (!active_[j] && covered(weight[j], support[j]) &&
                gap[j] < -activation_gap * length_ * weight[j] && toggles_[j] == 0) {
-      const bool frozen = impact() == model::ImpactMode::persist || impact() == model::ImpactMode::located;
-      target_[j] = frozen ? gap_n_[j] : 0.0;  // g̃⁰_j (§4.5, (4.83))
+      const bool freezes = impact() == model::ImpactMode::persist || impact() == model::ImpactMode::located;
+      // ḡ⁰_j (§4.5, (4.83)); a node its master does not cover at x_n closes its gap (its nodal gap is none)
+      frozen_[j] =
+          freezes && covered(basis_integral_n_[j], support_n_[j]) ? gap_n_[j] / basis_integral_n_[j] : 0.0;
       active_[j] = 1, lambda_[j] = 0, ++toggles_[j], ++report_.activations, changed = true;
     }
   }
@@ -337,12 +355,12 @@ void MortarContactTerm::end_step(const time::StepContext& step, const Eigen::Vec
     lambda_[j] = active_[j] ? z[offset_ + j] : 0.0;
     if (!active_[j]) continue;
     ++report_.active;
-    if (!start_active_[j])
-      report_.energy_jump += lambda_[j] * (gap_n_[j] - target_[j]);  // analogue of (4.11)
-    if (!start_active_[j])
-      report_.max_new_gap_target = std::max(report_.max_new_gap_target, target_[j] / weight[j]);
-    report_.max_own_face_penetration =
-        std::max(report_.max_own_face_penetration, -(gap[j] - target_[j]) / weight[j]);
+    if (!start_active_[j]) {
+      const double gap_at_start = gap_n_[j] - frozen_[j] * basis_integral_n_[j];  // (4.83) at x_n
+      report_.energy_jump += lambda_[j] * gap_at_start;                           // analogue of (4.11)
+      report_.max_new_gap_target = std::max(report_.max_new_gap_target, frozen_[j]);
+    }
+    report_.max_own_face_penetration = std::max(report_.max_own_face_penetration, -gap[j] / weight[j]);
     // (4.84): λ_j is conjugate to g̃_j, so slave node j's force is λ_j D_jj n and its pressure −λ_j.
     if (weight[j] > 0) pressure_.emplace_back(surfaces_.slave_nodes[j], std::max(-lambda_[j], 0.0));
     if (lambda_[j] < 0)
@@ -350,7 +368,7 @@ void MortarContactTerm::end_step(const time::StepContext& step, const Eigen::Vec
   }
   lambda_n_ = lambda_;
   committed_active_ = active_;
-  committed_target_ = target_;
+  committed_frozen_ = frozen_;
   measure_closest_penetration(step, x);
 }
 
@@ -367,7 +385,7 @@ time::TermState MortarContactTerm::save_state() const {
   time::TermState s;
   s.integers["active"].assign(committed_active_.begin(), committed_active_.end());
   s.reals["lambda"].assign(lambda_n_.data(), lambda_n_.data() + lambda_n_.size());
-  s.reals["target"].assign(committed_target_.data(), committed_target_.data() + committed_target_.size());
+  s.reals["frozen_gap"].assign(committed_frozen_.data(), committed_frozen_.data() + committed_frozen_.size());
   return s;
 }
 
@@ -376,10 +394,10 @@ void MortarContactTerm::restore_state(const time::TermState& state, const Eigen:
   const size_t n = surfaces_.slave_nodes.size();
   const std::vector<std::int64_t>& active = state.integer("active", n);
   const std::vector<double>& lambda = state.real("lambda", n);
-  const std::vector<double>& target = state.real("target", n);
+  const std::vector<double>& frozen = state.real("frozen_gap", n);
   committed_active_.assign(active.begin(), active.end());
   lambda_n_ = lambda_ = Eigen::Map<const Eigen::VectorXd>(lambda.data(), static_cast<Eigen::Index>(n));
-  committed_target_ = Eigen::Map<const Eigen::VectorXd>(target.data(), static_cast<Eigen::Index>(n));
+  committed_frozen_ = Eigen::Map<const Eigen::VectorXd>(frozen.data(), static_cast<Eigen::Index>(n));
   pairs_.clear();  // the next prepare_step finds them at x_n and lays them out anew
   ++generation_;
 }

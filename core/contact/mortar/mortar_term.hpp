@@ -17,7 +17,7 @@ namespace stoss::contact {
 /// One multiplier λ_j per slave node, after x_{n+1} in z (all slave nodes: the layout never changes).
 /// - momentum rows  h [w Σ_j λ_j ∂g̃_j/∂x (x_θ) + w_n Σ_j λ_j,n ∂g̃_j/∂x (x_n)]   (4.82)
 ///                  energy_momentum: h Σ_j λ_j G_j, G_j the discrete gradient of g̃_j per face pair (4.87)
-/// - active j:      g̃_j(x_{n+1}) − g̃⁰_j = 0;  inactive j:  λ_j = 0                    (4.83)
+/// - active j:      g̃_j(x_{n+1}; ḡ⁰_j) = ∫ Φ_j (g − ḡ⁰_j) = 0;  inactive j:  λ_j = 0  (4.83)
 /// - active set on the weighted gaps: j activates when g̃_j / D_jj < −1e-10 ℓ and D_jj covers half of the
 ///   support its overlapping slave faces give it, releases when λ_j > 0 (once a step, as §3.5; a static step
 ///   may take back its own activation once)                                                          (4.84)
@@ -26,8 +26,11 @@ namespace stoss::contact {
 /// Why dual: the assembled D is diagonal, so g̃_j and λ_j are nodal quantities: the active set is
 /// decided node by node, −λ_j is the nodal pressure, and the multipliers could be condensed node by
 /// node (they are kept as unknowns here, like the NTS multipliers).
-/// @note g̃⁰_j: the weighted gap at x_n of a node activated in the step (max 0) with impact persist or
-///       located (the frozen gap of §4.5), else 0. Located events are not cut (the step runs to its end), and
+/// @note ḡ⁰_j: the nodal gap g̃_j(x_n) / ∫Φ_j(x_n) of a node activated in the step with impact persist or
+///       located (the frozen gap of §4.5, held while the node stays active), else 0. Taken off g inside the
+///       integral, it vanishes where the gap is uniform, so a slave rim edge lying on a master rim edge is no
+///       kink in the force (a weighted-gap target, ∫ Φ_j g = g̃⁰_j, made it one: the colliding bars with
+///       mortar stalled in Newton). Located events are not cut (the step runs to its end), and
 ///       velocity_correction restores no energy (no impact impulse yet): both act as their frozen-gap or
 ///       closed-gap counterparts.
 /// @note series: contact_area is Σ D_jj over the active nodes with λ_j < 0 (their mortar weights, the
@@ -48,19 +51,19 @@ class MortarContactTerm final : public ContactTerm {
   bool update_active_set(const time::StepContext& step, const Eigen::VectorXd& z) override;
   void end_step(const time::StepContext& step, const Eigen::VectorXd& z) override;
   double auxiliary_residual_measure(const Eigen::VectorXd& R, const time::MeasureScales& s) const override;
-  /// Checkpoint: the committed active set, λ_n and the frozen gaps g̃⁰_j; the face pairs are found again.
+  /// Checkpoint: the committed active set, λ_n and the frozen nodal gaps ḡ⁰_j; the face pairs are found
+  /// again.
   time::TermState save_state() const override;
   void restore_state(const time::TermState& state, const Eigen::VectorXd& x,
                      const Eigen::VectorXd& v) override;
 
   /// Per slave node: active in the current pass.
   const std::vector<char>& active() const { return active_; }
-  /// Assembled weighted gaps g̃_j and mortar weights D_jj at positions x (the step's face pairs); `support`:
-  /// Σ ∫ N_j (a quarter of the area) over j's slave faces that overlap some master face at x (4.84);
-  /// `pair_gaps`: each face pair's g̃_j, in the order of the pairs.
+  /// Assembled weighted gaps g̃_j (less the frozen nodal gaps, (4.83)) and mortar weights D_jj at positions
+  /// x (the step's face pairs); `support`: Σ ∫ N_j (a quarter of the area) over j's slave faces that overlap
+  /// some master face at x (4.84); `pairs`: each face pair's values, in the order of the pairs.
   void nodal_gaps(const Eigen::VectorXd& x, Eigen::VectorXd& gap, Eigen::VectorXd& weight,
-                  Eigen::VectorXd* support = nullptr,
-                  std::vector<Eigen::Vector4d>* pair_gaps = nullptr) const;
+                  Eigen::VectorXd* support = nullptr, std::vector<mortar::PairGaps>* pairs = nullptr) const;
 
  private:
   /// A slave face against a master face that may overlap in this step.
@@ -70,8 +73,13 @@ class MortarContactTerm final : public ContactTerm {
     std::vector<int> dofs;           ///< 24 position dofs then the 4 multiplier rows
     int block = -1;                  ///< in the pattern while a slave node of the pair is active, else −1
     std::optional<Eigen::Matrix<double, 1, 24>> force_n;  ///< λ_n · ∂g̃/∂x(x_n) if the rule weighs it, λ_n ≠ 0
-    Eigen::Vector4d gap_n = Eigen::Vector4d::Zero();  ///< this pair's g̃_j at x_n (4.87)
+    Eigen::Vector4d gap_n = Eigen::Vector4d::Zero();  ///< this pair's g̃_j at x_n with no frozen gap (4.87)
+    Eigen::Vector4d basis_integral_n = Eigen::Vector4d::Zero();  ///< this pair's ∫ Φ_j at x_n
   };
+  /// The pair's slave nodes' frozen nodal gaps ḡ⁰_j (4.83).
+  Eigen::Vector4d frozen_gaps(const FacePair& p) const;
+  /// The pair's g̃_j(x_n; ḡ⁰_j) (4.83), (4.87).
+  Eigen::Vector4d gaps_at_start(const FacePair& p) const;
   /// The gaps and their gradient at x.
   mortar::PairGaps gaps(const FacePair& p, const Eigen::VectorXd& x) const;
   /// The gaps and D_jj at x, values only (no gradient).
@@ -113,8 +121,9 @@ class MortarContactTerm final : public ContactTerm {
   std::vector<int> toggles_;
   Eigen::VectorXd lambda_;                        ///< latest multipliers (read back after each solve)
   Eigen::VectorXd lambda_n_;                      ///< λ of the last converged step (t_n)
-  Eigen::VectorXd target_, committed_target_;     ///< g̃⁰_j
+  Eigen::VectorXd frozen_, committed_frozen_;     ///< ḡ⁰_j (4.83); 0 for an inactive node
   Eigen::VectorXd gap_n_, weight_n_, support_n_;  ///< g̃_j, D_jj and the coverable support at x_n
+  Eigen::VectorXd basis_integral_n_;              ///< Σ ∫ Φ_j over j's face pairs at x_n
   double length_ = 1;                             ///< mean master face size ℓ
   int offset_ = 0, generation_ = 0;
 };

@@ -36,11 +36,12 @@ void seed(const SegmentNodes& slave, const SegmentNodes& master, QuadNodes<T>& s
 
 template <class T>
 FacePairIntegrals<T> integrals(const SegmentNodes& slave, const SegmentNodes& master, Multipliers kind,
-                               PairGaps& out) {
+                               const Eigen::Vector4d& offset, PairGaps& out) {
   QuadNodes<T> s, m;
   seed(slave, master, s, m);
-  const FacePairIntegrals<T> r = face_pair_integrals<T>(s, m, kind, Integrals::gaps);
+  const FacePairIntegrals<T> r = face_pair_integrals<T>(s, m, kind, Integrals::gaps, offset);
   out.area = value_of(r.area);
+  out.basis_integral = r.basis_integral;
   for (int j = 0; j < 4; ++j) {
     out.gap[j] = value_of(r.gap[j]);
     out.weight[j] = r.weight[j];
@@ -51,16 +52,17 @@ FacePairIntegrals<T> integrals(const SegmentNodes& slave, const SegmentNodes& ma
 
 }  // namespace
 
-PairGaps pair_gaps(const SegmentNodes& slave, const SegmentNodes& master, Multipliers kind) {
+PairGaps pair_gaps(const SegmentNodes& slave, const SegmentNodes& master, Multipliers kind,
+                   const Eigen::Vector4d& offset) {
   PairGaps out;
-  integrals<Dual>(slave, master, kind, out);
+  integrals<Dual>(slave, master, kind, offset, out);
   return out;
 }
 
 PairGaps pair_gaps(const SegmentNodes& slave, const SegmentNodes& master, Multipliers kind,
-                   const Eigen::Vector4d& lambda, Matrix24& weighted_hessian) {
+                   const Eigen::Vector4d& lambda, Matrix24& weighted_hessian, const Eigen::Vector4d& offset) {
   PairGaps out;
-  const FacePairIntegrals<Second> r = integrals<Second>(slave, master, kind, out);
+  const FacePairIntegrals<Second> r = integrals<Second>(slave, master, kind, offset, out);
   Second::Hessian sum = Second::Hessian::Zero();
   for (int j = 0; j < 4; ++j) sum += lambda[j] * r.gap[j].packed_hessian();  // (4.81)
   for (int a = 0, k = 0; a < 24; ++a)

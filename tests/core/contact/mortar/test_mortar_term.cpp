@@ -22,13 +22,15 @@ struct Fixture {
   std::unique_ptr<time::StepContext> step;
 
   /// `shift`: the cube moved along x (1.15: its bottom's middle row of nodes 0.05 past the plate's edge).
-  explicit Fixture(const time::ForceRule& rule, unsigned seed = 3, double shift = 0) {
+  /// `impact`: persist freezes each activated node's nodal gap at x_n (4.83), exact closes it.
+  explicit Fixture(const time::ForceRule& rule, unsigned seed = 3, double shift = 0,
+                   model::ImpactMode impact = model::ImpactMode::exact) {
     mesh.add_body("plate", mesh::box({-1, -1, -0.4}, {1, 1, 0}, {3, 3, 1}));
     mesh.add_body("cube", mesh::box({-0.55 + shift, -0.45, 0.0}, {0.45 + shift, 0.5, 0.6}, {2, 2, 1}));
     model::ContactPair pair;
     pair.slave = "cube/bottom";
     pair.master = "plate/top";
-    pair.impact = model::ImpactMode::exact;
+    pair.impact = impact;
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> jitter(-0.01, 0.01);
     x_n = mesh.reference_positions();
@@ -99,6 +101,20 @@ TEST(MortarTerm, DiscreteGradientTangentMatchesCentralDifferences) {
   const double error = relative_tangent_error(Fixture(time::ForceRule::discrete_gradient()));
   std::printf("mortar discrete gradient: |K − K_fd| / |K| = %.2e\n", error);
   EXPECT_LT(error, 1e-6);
+}
+
+// With persist each activated node carries its frozen nodal gap ḡ⁰_j inside the integral, g̃_j = ∫ Φ_j (g −
+// ḡ⁰_j) (4.83): the tangent includes ḡ⁰_j's share, −ḡ⁰_j ∂(∫ Φ_j)/∂x.
+TEST(MortarTerm, PersistTangentMatchesCentralDifferences) {
+  for (const time::ForceRule& rule : {time::ForceRule::midpoint(), time::ForceRule::discrete_gradient()}) {
+    const Fixture f(rule, 3, 0, model::ImpactMode::persist);
+    Eigen::VectorXd gap, weight;
+    f.term->nodal_gaps(f.x_n, gap, weight);
+    const double error = relative_tangent_error(f);
+    std::printf("mortar persist: |K − K_fd| / |K| = %.2e, largest |g̃_j(x_n; ḡ⁰_j)| = %.1e\n", error,
+                gap.cwiseAbs().maxCoeff());
+    EXPECT_LT(error, 1e-6);
+  }
 }
 
 // (4.84): only nodes whose D_jj covers half of their coverable support activate. The cube moved to overhang
