@@ -16,7 +16,7 @@ using Matrix24 = Eigen::Matrix<double, 24, 24>;
 struct PairGaps {
   Eigen::Vector4d gap = Eigen::Vector4d::Zero();             ///< g̃_j (4.79)
   Eigen::Vector4d weight = Eigen::Vector4d::Zero();          ///< D_jj of this pair (4.78)
-  Eigen::Vector4d basis_integral = Eigen::Vector4d::Zero();  ///< ∫ Φ_j over the overlap
+  Eigen::Vector4d basis_integral = Eigen::Vector4d::Zero();  ///< ∫ Φ_j ψ dA over the overlap
   Eigen::Matrix<double, 4, 24> gradient = Eigen::Matrix<double, 4, 24>::Zero();  ///< ∂g̃_j/∂x (4.80)
   double area = 0;                                                               ///< the clip polygon's area
 };

@@ -7,7 +7,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <stdexcept>
-#include <type_traits>
+#include <unsupported/Eigen/AutoDiff>
 
 #include "core/contact/mortar/polygon.hpp"
 
@@ -72,37 +72,49 @@ Point2<double> point_value(const Point2<T>& x) {
   return {value_of(x[0]), value_of(x[1])};
 }
 
-/// ξ with Σ N_K(ξ) q_K = p for the projected quad q (4.75), by Newton from ξ = 0. Iterates two more
-/// times after |Δξ| < 1e-14 so that the derivatives of a dual number converge too: the iterations up to the
-/// first small step run on the values alone (the derivatives of the solution do not depend on the path to
-/// it), the last two on the dual numbers from that ξ, which makes first and second derivatives exact (each
-/// Newton step doubles the order of the error in the perturbation). Throws std::runtime_error if 30
-/// iterations do not converge (a projected quad folded over itself).
+/// How many Newton steps on the dual numbers make a converged ξ's derivatives exact: each step from a
+/// converged value doubles the order of the error in the perturbation, so one for first derivatives, two for
+/// second ones. Unknown scalars get two.
+template <class T>
+struct DerivativeOrder {
+  static constexpr int value = 2;
+};
+template <>
+struct DerivativeOrder<double> {
+  static constexpr int value = 0;
+};
+template <>
+struct DerivativeOrder<long double> {  // the tests' extended precision: one step past double's round-off
+  static constexpr int value = 1;
+};
+template <class D>
+struct DerivativeOrder<Eigen::AutoDiffScalar<D>> {
+  static constexpr int value = 1 + DerivativeOrder<typename D::Scalar>::value;
+};
+
+/// ξ with Σ N_K(ξ) q_K = p for the projected quad q (4.75), by Newton from ξ = 0 on the values until
+/// |Δξ| < 1e-14, then DerivativeOrder<T> more steps on the dual numbers from that ξ, which makes their first
+/// (and second) derivatives exact (the derivatives of the solution do not depend on the path to it). Throws
+/// std::runtime_error if 30 iterations do not converge (a projected quad folded over itself).
 template <class T>
 Point2<T> inverse_bilinear(const Polygon<T>& q, const Point2<T>& p) {
-  int iteration = 0, extra = 0;
   const auto small = [](const auto& step) {  // |Δξ| < 1e-14, without hypot (8 % of a mortar run)
     return value_of(step[0]) * value_of(step[0]) + value_of(step[1]) * value_of(step[1]) < 1e-28;
   };
-  Point2<T> xi(T(0.0), T(0.0));
-  if constexpr (!std::is_floating_point_v<T>) {
-    Polygon<double> q_value;
-    for (const Point2<T>& v : q) q_value.push_back(point_value(v));
-    const Point2<double> p_value = point_value(p);
-    Point2<double> xi_value(0.0, 0.0);
-    while (iteration < 30 && extra == 0) {
-      const Point2<double> step = bilinear_newton_step(q_value, p_value, xi_value);
-      xi_value -= step, ++iteration;
-      if (small(step)) extra = 1;
-    }
-    xi = Point2<T>(T(xi_value[0]), T(xi_value[1]));
+  Polygon<double> q_value;
+  for (const Point2<T>& v : q) q_value.push_back(point_value(v));
+  const Point2<double> p_value = point_value(p);
+  Point2<double> xi_value(0.0, 0.0);
+  for (int iteration = 0;; ++iteration) {
+    if (iteration == 30)
+      throw std::runtime_error("mortar: the inverse bilinear map (docs/theory.md (4.75)) did not converge");
+    const Point2<double> step = bilinear_newton_step(q_value, p_value, xi_value);
+    xi_value -= step;
+    if (small(step)) break;
   }
-  for (; iteration < 30; ++iteration) {
-    const Point2<T> step = bilinear_newton_step(q, p, xi);
-    xi -= step;
-    if (small(step) && ++extra > 2) return xi;
-  }
-  throw std::runtime_error("mortar: the inverse bilinear map (docs/theory.md (4.75)) did not converge");
+  Point2<T> xi = Point2<T>(T(xi_value[0]), T(xi_value[1]));
+  for (int k = 0; k < DerivativeOrder<T>::value; ++k) xi -= bilinear_newton_step(q, p, xi);
+  return xi;
 }
 
 /// A 7-point rule on a triangle, exact for polynomials of degree 5 (Radon 1948; (4.74)): barycentric

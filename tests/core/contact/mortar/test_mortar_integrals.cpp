@@ -214,11 +214,13 @@ TEST(MortarIntegralsInput, NonConvexSlaveProjectionIsAnError) {
   }
 }
 
-// (4.76): a master face is paired only when it faces the slave face at less than 60° (n_s · n̂_m below −½). A
-// master square under a slave square, tilted about x by θ (its projection still covers the slave's middle):
-// at 0°, 45° and 59° it is integrated (overlap > 0), at 61°, 75° and 85° it is not, however large its
-// projected overlap.
-TEST(MortarIntegralsInput, AMasterFaceSeenAtMoreThan60DegreesIsNotPaired) {
+// (4.76): a master face is paired only when it faces the slave face at less than 60° (n_s · n̂_m below −½),
+// and its pair's measure fades out (ψ, C1) from 30° to that cut, so the cut is no jump. A master square under
+// a slave square, tilted about x by θ (its projection still covers the slave's middle): at 0° and 29° ψ = 1
+// (the same D_jj), at 45° ψ is between 0 and 1, at 59.9° Σ D_jj is below 1e-3 of the slave's area, at 61°,
+// 75° and 85° it is not integrated, however large its projected overlap. In the fade band the gaps' Jacobian,
+// ψ's share included, matches central differences.
+TEST(MortarIntegralsInput, AMasterFaceFadesOutTowards60DegreesAndIsNotPairedBeyond) {
   const SegmentNodes slave = rectangle(-0.5, -0.5, 0.5, 0.5, 0.0, true);  // outward normal −z
   const auto tilted_master = [](double degrees) {
     const double t = degrees * M_PI / 180, c = std::cos(t), s = std::sin(t);
@@ -229,12 +231,25 @@ TEST(MortarIntegralsInput, AMasterFaceSeenAtMoreThan60DegreesIsNotPaired) {
     }
     return m;
   };
-  for (double degrees : {0.0, 45.0, 59.0, 61.0, 75.0, 85.0}) {
-    const FacePairIntegrals<double> f = face_pair_integrals(slave, tilted_master(degrees), Multipliers::dual);
-    if (degrees < 60)
-      EXPECT_GT(f.area, 0.05) << degrees << "°: faces the slave, paired";
-    else
-      EXPECT_EQ(f.area, 0) << degrees << "°: nearly edge-on, not paired";
+  const auto at = [&](double degrees) {
+    return face_pair_integrals(slave, tilted_master(degrees), Multipliers::dual);
+  };
+  const double full = at(0).weight.sum();
+  EXPECT_NEAR(full, 1.0, 1e-12) << "ψ = 1: Σ D_jj is the slave's area";
+  EXPECT_NEAR(at(29).weight.sum(), full, 1e-12) << "ψ = 1 up to 30°";
+  const double half_way = at(45).weight.sum();
+  EXPECT_GT(half_way, 0.05 * full);
+  EXPECT_LT(half_way, 0.95 * full);
+  EXPECT_GT(at(59.9).area, 0.05) << "still overlapping";
+  EXPECT_LT(at(59.9).weight.sum(), 1e-3 * full) << "faded out";
+  for (double degrees : {61.0, 75.0, 85.0}) EXPECT_EQ(at(degrees).area, 0) << degrees << "°: not paired";
+  for (double degrees : {40.0, 50.0}) {
+    const SegmentNodes m = tilted_master(degrees);
+    const double error = relative(weighted_gap_jacobian(slave, m, Multipliers::dual),
+                                  central_differences(slave, m, Multipliers::dual, 1e-6));
+    std::printf("mortar fade at %g°: ψ-weighted Σ D_jj %.4f, |J − J_fd| / |J_fd| = %.1e\n", degrees,
+                face_pair_integrals(slave, m, Multipliers::dual).weight.sum(), error);
+    EXPECT_LT(error, 1e-6) << degrees << "°";
   }
 }
 
