@@ -12,11 +12,14 @@ materials (H1). Wall time: the result's wall_seconds (the run, without process s
     /usr/bin/python3 bench/hertz_indentation.py [--stoss build/stoss] [--meshes coarse,medium,fine]
                                                 [--surfaces smooth,faceted] [--steps 8] [--linear direct]
                                                 [--enforcement lagrange|penalty] [--radius R]
-                                                [--out DIR]
+                                                [--discretization node_to_segment|mortar] [--out DIR]
 
 --radius R (default 1) makes the meshes with a sphere of radius R (`-setnumber R`) and drives it to
 delta = 0.02 / R: the same contact radii a = sqrt(R delta) on the same elements, with strains a/R that are R times
 smaller. Against Hertz's small-strain solution that leaves the discretisation error alone (docs/measurements.md).
+
+--discretization mortar runs the pair as mortar contact (docs/scene.md), which integrates on the faceted
+surface: use it with --surfaces faceted.
 
 Needs numpy and h5py (Debian's /usr/bin/python3 has both). Wall times are reported, never asserted.
 """
@@ -77,11 +80,13 @@ def run(args, mesh, surface, workdir):
     scene["boundary"][0]["displacement"][2] /= args.radius  # delta = 0.02 / R: a = sqrt(R delta) kept
     scene["contact"][0]["master_surface"] = surface
     scene["contact"][0]["enforcement"] = args.enforcement
+    scene["contact"][0]["discretization"] = args.discretization
     scene["time"]["step"] = 1.0 / args.steps
     # UMFPACK by default: when "auto" still picked petsc_gamg from 14,000 elements with contact, GMRES needed
     # minutes per step of the fine mesh on this problem (a 1000 times stiffer sphere, flat graded elements).
     scene["solver"] = {"linear": args.linear}
     name = f"{mesh}_{surface}" + ("" if args.enforcement == "lagrange" else f"_{args.enforcement}") + (
+        "" if args.discretization == "node_to_segment" else f"_{args.discretization}") + (
         "" if args.radius == 1.0 else f"_R{args.radius:g}")
     path = os.path.join(workdir, f"{name}.json")
     json.dump(scene, open(path, "w"), indent=1)
@@ -106,7 +111,8 @@ def run(args, mesh, surface, workdir):
         rows.append(dict(delta=delta, level=delta * radius, force=force, reaction=reaction, a=a,
                          hertz=4 / 3 * e_star * math.sqrt(radius) * delta ** 1.5, a_hertz=math.sqrt(radius * delta)))
     iterations = s["newton_iterations"][1:] if "newton_iterations" in s else []
-    return dict(mesh=mesh, surface=surface if args.enforcement == "lagrange" else f"{surface}, {args.enforcement}", elements=len(f["mesh/hex8"]), h0=top_edge(f), rows=rows,
+    return dict(mesh=mesh, surface=", ".join([surface] + ([args.enforcement] if args.enforcement != "lagrange" else []) +
+                                           ([args.discretization] if args.discretization != "node_to_segment" else [])), elements=len(f["mesh/hex8"]), h0=top_edge(f), rows=rows,
                 wall=wall, iterations=int(np.sum(iterations)), e_star=e_star, verdict=f.attrs["verdict"])
 
 
@@ -119,6 +125,7 @@ def main():
     p.add_argument("--linear", default="direct", help="solver.linear of every run")
     p.add_argument("--enforcement", default="lagrange", help="the pair's enforcement: lagrange or penalty")
     p.add_argument("--radius", type=float, default=1.0, help="the sphere's radius R; delta = 0.02 / R")
+    p.add_argument("--discretization", default="node_to_segment", help="the pair's discretization")
     p.add_argument("--out", help="keep the runs here (default: a temporary directory)")
     p.add_argument("--reuse", action="store_true", help="tabulate the results already in --out, run only missing ones")
     args = p.parse_args()

@@ -31,8 +31,9 @@ TEST(BallOnBoxEdge, TheExampleIsWrittenAsTwoPairsAndLoadsAsOneWithTheUnionMaster
   EXPECT_EQ(m.contact[0].master_surface, model::MasterSurface::smooth);
 }
 
-TEST(BallOnBoxEdge, EnergyMomentumKeepsEnergyAcrossTheEdgeWithEveryNodeProjected) {
-  const model::Model m = scene::load_file(example);
+/// The run's energy and momentum bounds across the edge, and (`projects`: node-to-segment) every slave node
+/// projected; prints `label`.
+void expect_energy_across_the_edge(const model::Model& m, const char* label, bool projects) {
   testing::RecordingObserver r;
   const model::Summary s = simulate(m, r);
   ASSERT_TRUE(s.completed);
@@ -43,12 +44,28 @@ TEST(BallOnBoxEdge, EnergyMomentumKeepsEnergyAcrossTheEdgeWithEveryNodeProjected
   const auto active = r.series("active_contacts"), unprojected = r.series("unprojected_nodes");
   const double most_active = *std::max_element(active.begin(), active.end());
   EXPECT_GE(most_active, 3) << "the ball meets the edge";
-  EXPECT_EQ(*std::max_element(unprojected.begin(), unprojected.end()), 0);
+  if (projects) EXPECT_EQ(*std::max_element(unprojected.begin(), unprojected.end()), 0);
   EXPECT_LT(worst, 1e-10 * largest) << "max_n |H_n − H_0| / max |H|";
   EXPECT_LT(s.linear_momentum_drift, 1e-10);
+  EXPECT_EQ(s.verdict, "ok");
   std::printf(
-      "ball on box edge: max |H_n − H_0| = %.2e max|H|, active ≤ %.0f, %.1f Newton its/step, verdict %s\n",
-      worst / largest, most_active, s.newton_iterations_per_step, s.verdict.c_str());
+      "ball on box edge, %s: max |H_n − H_0| = %.2e max|H|, active ≤ %.0f, %.1f Newton its/step, verdict "
+      "%s\n",
+      label, worst / largest, most_active, s.newton_iterations_per_step, s.verdict.c_str());
+}
+
+TEST(BallOnBoxEdge, EnergyMomentumKeepsEnergyAcrossTheEdgeWithEveryNodeProjected) {
+  expect_energy_across_the_edge(scene::load_file(example), "node-to-segment", true);
+}
+
+// The same with mortar contact (docs/theory.md §4.7). Slave nodes near the edge face the box's top and side
+// at 30–60°, where the pairs fade (4.76): before the support of (4.84) was faded alike, those nodes never
+// counted as covered and penetrated 5.6e-2 (over the verdict's bound); and a node activated while not covered
+// at x_n closed its gap, 3.3 max |H| gained. Measured now: 3.4e-13, 7.2 Newton its/step.
+TEST(BallOnBoxEdge, MortarKeepsEnergyAcrossTheEdge) {
+  nlohmann::json written = nlohmann::json::parse(std::ifstream(example));
+  for (nlohmann::json& pair : written["contact"]) pair["discretization"] = "mortar";
+  expect_energy_across_the_edge(scene::load(written), "mortar", false);  // mortar projects no nodes
 }
 
 // The comparator the merge replaces: the same scene with the two pairs kept apart (built by hand, as loading

@@ -21,6 +21,7 @@ struct FacePairIntegrals {
   Eigen::Matrix<T, 4, 4> M = Eigen::Matrix<T, 4, 4>::Zero();    ///< M_jl = ∫ Φ_j N^m_l (4.78)
   Eigen::Matrix<T, 4, 1> gap = Eigen::Matrix<T, 4, 1>::Zero();  ///< g̃_j (4.79)
   T area = T(0.0);                                              ///< the clip polygon's area
+  double facing_weight = 0;                                     ///< ψ of (4.76) (0: not paired)
   Eigen::Vector4d weight = Eigen::Vector4d::Zero();             ///< the values of D_jj
   Eigen::Vector4d basis_integral =
       Eigen::Vector4d::Zero();  ///< the values of ∫ Φ_j ψ dA over the clip polygon
@@ -83,6 +84,7 @@ FacePairIntegrals<T> face_pair_integrals(const QuadNodes<T>& s, const QuadNodes<
   const T facing = -T(master_normal.dot(plane.n)) / T(master_normal.norm());
   if (!(value_of(facing) > facing_cosine)) return out;  // (4.76)
   const T fade = facing_fade(facing);                   // ψ (4.76)
+  out.facing_weight = value_of(fade);
   const Polygon<T> ps = projected(plane, s), pm = projected(plane, m);
   Polygon<T> pm_ccw = pm;
   if (value_of(signed_area(pm)) < 0) std::reverse(pm_ccw.begin(), pm_ccw.end());

@@ -66,7 +66,7 @@ MortarContactTerm::MortarContactTerm(const mesh::Mesh& mesh, const model::Contac
   active_.assign(n, 0);
   start_active_ = committed_active_ = active_;
   toggles_.assign(n, 0);
-  lambda_ = lambda_n_ = frozen_ = committed_frozen_ = Eigen::VectorXd::Zero(n);
+  lambda_ = lambda_n_ = frozen_ = committed_frozen_ = target_ = committed_target_ = Eigen::VectorXd::Zero(n);
   length_ = surfaces_.mean_face_size;
 }
 
@@ -160,19 +160,19 @@ void MortarContactTerm::nodal_gaps(const Eigen::VectorXd& x, Eigen::VectorXd& ga
                                    Eigen::VectorXd* support, std::vector<mortar::PairGaps>* pairs) const {
   gap = weight = Eigen::VectorXd::Zero(auxiliary_count());
   if (pairs) pairs->clear();
-  std::vector<char> overlapping(slave_faces_.size(), 0);
+  std::vector<double> facing(slave_faces_.size(), 0);  // per slave face: the largest ψ of its overlaps
   for (const FacePair& p : pairs_) {
     const mortar::PairGaps g = gap_values(p, x);
     if (pairs) pairs->push_back(g);
-    if (g.area > 0) overlapping[p.slave_face] = 1;
+    if (g.area > 0) facing[p.slave_face] = std::max(facing[p.slave_face], g.facing_weight);
     for (int K = 0; K < 4; ++K) gap[p.slave_index[K]] += g.gap[K], weight[p.slave_index[K]] += g.weight[K];
   }
   if (!support) return;
   *support = Eigen::VectorXd::Zero(auxiliary_count());
   for (size_t s = 0; s < slave_faces_.size(); ++s) {
-    if (!overlapping[s]) continue;
+    if (facing[s] == 0) continue;
     const SegmentNodes y = face_positions(slave_faces_[s], x);
-    const double quarter_area = (y.row(2) - y.row(0)).cross(y.row(3) - y.row(1)).norm() / 8;
+    const double quarter_area = facing[s] * (y.row(2) - y.row(0)).cross(y.row(3) - y.row(1)).norm() / 8;
     for (int node : slave_faces_[s]) (*support)[slave_index(node)] += quarter_area;
   }
 }
@@ -185,6 +185,7 @@ void MortarContactTerm::prepare_step(const time::StepContext& step) {
   active_ = committed_active_;
   lambda_ = lambda_n_;
   frozen_ = committed_frozen_;
+  target_ = committed_target_;
   std::fill(toggles_.begin(), toggles_.end(), 0);
   broad_.update(surfaces_, step.x_n, step.x_n + step.h * step.v_n);
   report_ = ContactReport{};
@@ -207,14 +208,15 @@ void MortarContactTerm::prepare_step(const time::StepContext& step) {
 
 void MortarContactTerm::release_uncovered() {
   for (int j = 0; j < auxiliary_count(); ++j)
-    if (active_[j] && !(weight_n_[j] > 0)) active_[j] = 0, lambda_[j] = 0, frozen_[j] = 0, ++report_.releases;
+    if (active_[j] && !(weight_n_[j] > 0))
+      active_[j] = 0, lambda_[j] = 0, frozen_[j] = target_[j] = 0, ++report_.releases;
 }
 
 void MortarContactTerm::activate_touching() {
   for (int j = 0; j < auxiliary_count(); ++j)
     if (!active_[j] && covered(weight_n_[j], support_n_[j]) &&
         gap_n_[j] <= touching_gap * length_ * weight_n_[j])
-      active_[j] = 1, frozen_[j] = 0;  // released after the pass if in tension (§3.5)
+      active_[j] = 1, frozen_[j] = target_[j] = 0;  // released after the pass if in tension (§3.5)
 }
 
 void MortarContactTerm::begin_step(const time::StepContext& step, Eigen::VectorXd& z) {
@@ -240,6 +242,7 @@ mortar::PairGaps MortarContactTerm::gap_values(const FacePair& p, const Eigen::V
       mortar::Integrals::gaps, frozen_gaps(p));
   mortar::PairGaps g;
   g.gap = r.gap, g.weight = r.weight, g.area = r.area, g.basis_integral = r.basis_integral;
+  g.facing_weight = r.facing_weight;
   return g;
 }
 
@@ -310,7 +313,10 @@ void MortarContactTerm::add(const time::StepContext& step, const Eigen::VectorXd
     }
   }
   for (int j = 0; j < auxiliary_count(); ++j) {
-    if (active_[j]) continue;
+    if (active_[j]) {
+      R[offset_ + j] -= target_[j];  // (4.83)
+      continue;
+    }
     R[offset_ + j] += z[offset_ + j];  // λ_j = 0 (4.83)
     if (K) K->scatter(diagonal_blocks_[j], Eigen::Matrix<double, 1, 1>::Ones());
   }
@@ -329,13 +335,16 @@ bool MortarContactTerm::update_active_set(const time::StepContext& step, const E
                       " (it already changed state in this step)");
         continue;
       }
-      active_[j] = 0, lambda_[j] = 0, frozen_[j] = 0, ++toggles_[j], ++report_.releases, changed = true;
+      active_[j] = 0, lambda_[j] = 0, frozen_[j] = target_[j] = 0, ++toggles_[j], ++report_.releases,
+      changed = true;
     } else if (!active_[j] && covered(weight[j], support[j]) &&
                gap[j] < -activation_gap * length_ * weight[j] && toggles_[j] == 0) {
       const bool freezes = impact() == model::ImpactMode::persist || impact() == model::ImpactMode::located;
-      // ḡ⁰_j (§4.5, (4.83)); a node its master does not cover at x_n closes its gap (its nodal gap is none)
-      frozen_[j] =
-          freezes && covered(basis_integral_n_[j], support_n_[j]) ? gap_n_[j] / basis_integral_n_[j] : 0.0;
+      // ḡ⁰_j (§4.5, (4.83)); a node its master does not cover at x_n has no nodal gap there: it keeps its
+      // weighted gap instead, g̃⁰_j = g̃_j(x_n), so that its constraint too is zero at x_n
+      const bool nodal = freezes && covered(basis_integral_n_[j], support_n_[j]);
+      frozen_[j] = nodal ? gap_n_[j] / basis_integral_n_[j] : 0.0;
+      target_[j] = freezes && !nodal ? gap_n_[j] : 0.0;
       active_[j] = 1, lambda_[j] = 0, ++toggles_[j], ++report_.activations, changed = true;
     }
   }
@@ -356,11 +365,13 @@ void MortarContactTerm::end_step(const time::StepContext& step, const Eigen::Vec
     if (!active_[j]) continue;
     ++report_.active;
     if (!start_active_[j]) {
-      const double gap_at_start = gap_n_[j] - frozen_[j] * basis_integral_n_[j];  // (4.83) at x_n
-      report_.energy_jump += lambda_[j] * gap_at_start;                           // analogue of (4.11)
-      report_.max_new_gap_target = std::max(report_.max_new_gap_target, frozen_[j]);
+      const double gap_at_start =
+          gap_n_[j] - frozen_[j] * basis_integral_n_[j] - target_[j];  // (4.83) at x_n
+      report_.energy_jump += lambda_[j] * gap_at_start;                // analogue of (4.11)
+      report_.max_new_gap_target = std::max(report_.max_new_gap_target, frozen_[j] + target_[j] / weight[j]);
     }
-    report_.max_own_face_penetration = std::max(report_.max_own_face_penetration, -gap[j] / weight[j]);
+    report_.max_own_face_penetration =
+        std::max(report_.max_own_face_penetration, -(gap[j] - target_[j]) / weight[j]);
     // (4.84): λ_j is conjugate to g̃_j, so slave node j's force is λ_j D_jj n and its pressure −λ_j.
     if (weight[j] > 0) pressure_.emplace_back(surfaces_.slave_nodes[j], std::max(-lambda_[j], 0.0));
     if (lambda_[j] < 0)
@@ -369,6 +380,7 @@ void MortarContactTerm::end_step(const time::StepContext& step, const Eigen::Vec
   lambda_n_ = lambda_;
   committed_active_ = active_;
   committed_frozen_ = frozen_;
+  committed_target_ = target_;
   measure_closest_penetration(step, x);
 }
 
@@ -386,6 +398,7 @@ time::TermState MortarContactTerm::save_state() const {
   s.integers["active"].assign(committed_active_.begin(), committed_active_.end());
   s.reals["lambda"].assign(lambda_n_.data(), lambda_n_.data() + lambda_n_.size());
   s.reals["frozen_gap"].assign(committed_frozen_.data(), committed_frozen_.data() + committed_frozen_.size());
+  s.reals["target"].assign(committed_target_.data(), committed_target_.data() + committed_target_.size());
   return s;
 }
 
@@ -395,9 +408,11 @@ void MortarContactTerm::restore_state(const time::TermState& state, const Eigen:
   const std::vector<std::int64_t>& active = state.integer("active", n);
   const std::vector<double>& lambda = state.real("lambda", n);
   const std::vector<double>& frozen = state.real("frozen_gap", n);
+  const std::vector<double>& target = state.real("target", n);
   committed_active_.assign(active.begin(), active.end());
   lambda_n_ = lambda_ = Eigen::Map<const Eigen::VectorXd>(lambda.data(), static_cast<Eigen::Index>(n));
   committed_frozen_ = Eigen::Map<const Eigen::VectorXd>(frozen.data(), static_cast<Eigen::Index>(n));
+  committed_target_ = Eigen::Map<const Eigen::VectorXd>(target.data(), static_cast<Eigen::Index>(n));
   pairs_.clear();  // the next prepare_step finds them at x_n and lays them out anew
   ++generation_;
 }

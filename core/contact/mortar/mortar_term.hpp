@@ -60,8 +60,9 @@ class MortarContactTerm final : public ContactTerm {
   /// Per slave node: active in the current pass.
   const std::vector<char>& active() const { return active_; }
   /// Assembled weighted gaps g̃_j (less the frozen nodal gaps, (4.83)) and mortar weights D_jj at positions
-  /// x (the step's face pairs); `support`: Σ ∫ N_j (a quarter of the area) over j's slave faces that overlap
-  /// some master face at x (4.84); `pairs`: each face pair's values, in the order of the pairs.
+  /// x (the step's face pairs); `support`: Σ ψ_s ∫ N_j (a quarter of the area) over j's slave faces s that
+  /// overlap some master face at x, ψ_s the largest fade (4.76) of those overlaps (4.84); `pairs`: each face
+  /// pair's values, in the order of the pairs.
   void nodal_gaps(const Eigen::VectorXd& x, Eigen::VectorXd& gap, Eigen::VectorXd& weight,
                   Eigen::VectorXd* support = nullptr, std::vector<mortar::PairGaps>* pairs = nullptr) const;
 
@@ -122,6 +123,7 @@ class MortarContactTerm final : public ContactTerm {
   Eigen::VectorXd lambda_;                        ///< latest multipliers (read back after each solve)
   Eigen::VectorXd lambda_n_;                      ///< λ of the last converged step (t_n)
   Eigen::VectorXd frozen_, committed_frozen_;     ///< ḡ⁰_j (4.83); 0 for an inactive node
+  Eigen::VectorXd target_, committed_target_;     ///< g̃⁰_j of a node not covered at x_n (4.83), else 0
   Eigen::VectorXd gap_n_, weight_n_, support_n_;  ///< g̃_j, D_jj and the coverable support at x_n
   Eigen::VectorXd basis_integral_n_;              ///< Σ ∫ Φ_j over j's face pairs at x_n
   double length_ = 1;                             ///< mean master face size ℓ

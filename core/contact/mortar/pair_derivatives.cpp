@@ -42,6 +42,7 @@ FacePairIntegrals<T> integrals(const SegmentNodes& slave, const SegmentNodes& ma
   const FacePairIntegrals<T> r = face_pair_integrals<T>(s, m, kind, Integrals::gaps, offset);
   out.area = value_of(r.area);
   out.basis_integral = r.basis_integral;
+  out.facing_weight = r.facing_weight;
   for (int j = 0; j < 4; ++j) {
     out.gap[j] = value_of(r.gap[j]);
     out.weight[j] = r.weight[j];

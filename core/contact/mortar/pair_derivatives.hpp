@@ -19,6 +19,7 @@ struct PairGaps {
   Eigen::Vector4d basis_integral = Eigen::Vector4d::Zero();  ///< ∫ Φ_j ψ dA over the overlap
   Eigen::Matrix<double, 4, 24> gradient = Eigen::Matrix<double, 4, 24>::Zero();  ///< ∂g̃_j/∂x (4.80)
   double area = 0;                                                               ///< the clip polygon's area
+  double facing_weight = 0;                                                      ///< ψ of (4.76)
 };
 
 /// The gaps and their gradient, by forward dual numbers (4.80). `offset`: the nodes' frozen nodal gaps c_j,
