@@ -1,99 +1,17 @@
 #include "core/fem/assembly.hpp"
 
 #include <algorithm>
-#include <atomic>
-#include <cstdlib>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 namespace stoss::fem {
 namespace {
-
-std::atomic<int> threads_override{0};
-
-int threads_from_environment() {
-  if (const char* text = std::getenv("STOSS_THREADS")) {
-    const int n = std::atoi(text);
-    if (n > 0) return n;
-  }
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-}
-
-/// Runs body(e) for e in [begin, end) on `threads` threads of `pool`, each a contiguous range (this thread
-/// runs the first).
-template <class Body>
-void for_each_element(int begin, int end, int threads, ElementThreads& pool, const Body& body) {
-  const int n = end - begin;
-  threads = std::clamp(threads, 1, std::max(1, n / 16));  // no thread for fewer than 16 elements
-  if (threads == 1) {
-    for (int e = begin; e < end; ++e) body(e);
-    return;
-  }
-  pool.run(begin, end, threads, body);
-}
 
 /// Elements per chunk of ElasticityTerm::add: its forces and tangents are held until summed (a chunk of
 /// 512 tangents is 2.4 MB); residual-only chunks are larger.
 constexpr int tangent_chunk = 512, force_chunk = 4096;
 
 }  // namespace
-
-ElementThreads::~ElementThreads() {
-  {
-    std::lock_guard lock(mutex_);
-    stop_ = true;
-  }
-  start_.notify_all();
-  for (std::thread& worker : workers_) worker.join();
-}
-
-void ElementThreads::run(int begin, int end, int parts, const std::function<void(int)>& body) {
-  std::unique_lock lock(mutex_);
-  while (static_cast<int>(workers_.size()) < parts - 1) {
-    const int part = static_cast<int>(workers_.size()) + 1;
-    workers_.emplace_back([this, part] { work(part); });
-  }
-  body_ = &body;
-  begin_ = begin;
-  end_ = end;
-  parts_ = parts;
-  pending_ = parts - 1;
-  ++round_;
-  lock.unlock();
-  start_.notify_all();
-  const int n = end - begin;
-  for (int e = begin; e < begin + n / parts; ++e) body(e);
-  lock.lock();
-  done_.wait(lock, [this] { return pending_ == 0; });
-}
-
-void ElementThreads::work(int part) {
-  long seen = 0;
-  std::unique_lock lock(mutex_);
-  for (;;) {
-    start_.wait(lock, [&] { return stop_ || round_ != seen; });
-    if (stop_) return;
-    seen = round_;
-    if (part >= parts_) continue;
-    const int begin = begin_, n = end_ - begin_, parts = parts_;
-    const std::function<void(int)>& body = *body_;
-    lock.unlock();
-    for (int e = begin + n * part / parts; e < begin + n * (part + 1) / parts; ++e) body(e);
-    lock.lock();
-    if (--pending_ == 0) done_.notify_one();
-  }
-}
-
-int element_threads() {
-  static const int from_environment = threads_from_environment();
-  const int n = threads_override.load();
-  return n > 0 ? n : from_environment;
-}
-
-void set_element_threads(int threads) {
-  threads_override.store(std::max(threads, 0));
-}
 
 std::vector<ElementGeometry> precompute_mesh(const mesh::Mesh& mesh) {
   std::vector<ElementGeometry> out;
@@ -193,7 +111,7 @@ void ElasticityTerm::add(const time::StepContext& step, const Eigen::VectorXd& z
   // Threads compute whole elements into the chunk's buffers; this thread sums them in element order, so
   // R and K are the same bits for every thread count.
   const int n = static_cast<int>(hex8_.size()), chunk = K ? tangent_chunk : force_chunk,
-            threads = element_threads();
+            threads = parallel::worker_threads();
   chunk_force_.resize(std::min(n, chunk));
   if (K) chunk_tangent_.resize(std::min(n, chunk));
   for (int first = 0; first < n; first += chunk) {
@@ -201,7 +119,7 @@ void ElasticityTerm::add(const time::StepContext& step, const Eigen::VectorXd& z
     const std::function<void(int)> body = [&](int e) {
       element_step(step, e, z, chunk_force_[e - first], K ? &chunk_tangent_[e - first] : nullptr);
     };
-    for_each_element(first, last, threads, *threads_, body);
+    threads_->for_each(first, last, threads, 16, body);  // no thread for fewer than 16 elements
     for (int e = first; e < last; ++e) {
       const Vector24& f = chunk_force_[e - first];
       for (int I = 0; I < 8; ++I) R.segment<3>(3 * hex8_[e][I]) += step.force_factor * f.segment<3>(3 * I);

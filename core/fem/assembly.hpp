@@ -2,51 +2,16 @@
 /// @file Whole-mesh pieces built from the element kernels: geometry, mass, and the elasticity and gravity
 /// terms.
 
-#include <condition_variable>
-#include <functional>
 #include <memory>
-#include <mutex>
-#include <thread>
 #include <vector>
 
 #include "core/fem/element.hpp"
 #include "core/mesh/mesh.hpp"
+#include "core/parallel/worker_threads.hpp"
 #include "core/solve/block_pattern.hpp"
 #include "core/time/term.hpp"
 
 namespace stoss::fem {
-
-/// Threads the element loops of ElasticityTerm::add use: the STOSS_THREADS environment variable when it
-/// is a positive integer, else every core the machine has (one job alone uses both cores of the CI
-/// machine; a service running several jobs at once sets STOSS_THREADS=1 for its workers). Results do
-/// not depend on it: each thread computes whole elements and one thread sums them in element order.
-int element_threads();
-/// Overrides element_threads() for this process (0: back to STOSS_THREADS or the cores).
-void set_element_threads(int threads);
-
-/// Worker threads that live as long as their owner (a term, for the run): run() hands them contiguous
-/// ranges of elements and waits, instead of starting threads at every residual (~50 µs each, ~650 times
-/// in the seed's example). Not shared between owners, so two runs in one process never wait on each other.
-class ElementThreads {
- public:
-  ElementThreads() = default;
-  ~ElementThreads();
-  ElementThreads(const ElementThreads&) = delete;
-  ElementThreads& operator=(const ElementThreads&) = delete;
-  /// Runs body(e) for e in [begin, end) in `parts` contiguous ranges, the first on this thread, part t
-  /// from begin + n t / parts on a worker (started on first need). Returns when every range is done.
-  void run(int begin, int end, int parts, const std::function<void(int)>& body);
-
- private:
-  void work(int part);
-  std::vector<std::thread> workers_;  ///< worker k runs part k + 1
-  std::mutex mutex_;
-  std::condition_variable start_, done_;
-  const std::function<void(int)>* body_ = nullptr;
-  int begin_ = 0, end_ = 0, parts_ = 0, pending_ = 0;
-  long round_ = 0;
-  bool stop_ = false;
-};
 
 /// Gauss data of every element; throws std::invalid_argument naming the element if one is inverted.
 std::vector<ElementGeometry> precompute_mesh(const mesh::Mesh& mesh);
@@ -89,7 +54,7 @@ class ElasticityTerm : public time::Term {
   /// One chunk of elements' forces and tangents, computed by the threads before they are summed.
   mutable std::vector<Vector24> chunk_force_;
   mutable std::vector<Matrix24> chunk_tangent_;
-  mutable std::unique_ptr<ElementThreads> threads_ = std::make_unique<ElementThreads>();
+  mutable std::unique_ptr<parallel::WorkerThreads> threads_ = std::make_unique<parallel::WorkerThreads>();
 };
 
 /// Dead load of gravity: V = −Σ (M g)·x, exact in every scheme.

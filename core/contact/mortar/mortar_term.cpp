@@ -134,7 +134,8 @@ void MortarContactTerm::refresh_structure() {
 void MortarContactTerm::register_blocks(solve::BlockPattern& pattern) {
   for (FacePair& p : pairs_) {
     set_dofs(p);
-    p.block = has_active_node(p) ? pattern.add_block(p.dofs) : -1;  // only these have a tangent (add_pair)
+    p.block =
+        has_active_node(p) ? pattern.add_block(p.dofs) : -1;  // only these have a tangent (pair_contribution)
   }
   diagonal_blocks_.clear();
   for (int j = 0; j < auxiliary_count(); ++j) diagonal_blocks_.push_back(pattern.add_block({offset_ + j}));
@@ -246,21 +247,18 @@ mortar::PairGaps MortarContactTerm::gap_values(const FacePair& p, const Eigen::V
   return g;
 }
 
-void MortarContactTerm::add_pair(const FacePair& p, const time::StepContext& step, const Eigen::VectorXd& z,
-                                 const Eigen::VectorXd& x_1, const Eigen::VectorXd& x_theta,
-                                 Eigen::VectorXd& R, solve::BlockPattern* K) const {
-  const double w = step.force_factor * rule_.weight, w_n = step.force_factor * rule_.previous_weight;
+void MortarContactTerm::pair_contribution(const FacePair& p, const time::StepContext& step,
+                                          const Eigen::VectorXd& z, const Eigen::VectorXd& x_1,
+                                          const Eigen::VectorXd& x_theta, bool tangent,
+                                          PairContribution& out) const {
+  out.rows.setZero();
+  out.tangent = false;
+  const double w = step.force_factor * rule_.weight;
   Eigen::Vector4d lambda;
   for (int k = 0; k < 4; ++k) lambda[k] = z[offset_ + p.slave_index[k]];
-  if (w_n != 0 && p.force_n)
-    for (int a = 0; a < 24; ++a) R[p.dofs[a]] += w_n * (*p.force_n)[a];  // h w_n λ_n ∂g̃/∂x(x_n) (4.82)
-  // A pair with no active node adds nothing: its force is λ = 0, it has no gap rows, and its multipliers'
-  // columns of K meet rows λ_j = 0 that fix their increments to zero, so they change no Newton step. Nor
-  // has it a block in the pattern, whose factorisation then costs what the contact really couples.
-  if (!has_active_node(p)) return;
   // What this call needs: Σ λ_j ∂²g̃_j/∂x² for a tangent with λ ≠ 0, ∂g̃/∂x for any tangent or λ ≠ 0, else
   // the gaps' values.
-  const bool loaded = !lambda.isZero(0), curved = K && loaded, sloped = K || loaded;
+  const bool loaded = !lambda.isZero(0), curved = tangent && loaded, sloped = tangent || loaded;
   // Faces that overlap neither at x_n, x_θ nor x_{n+1} add nothing: a value costs µs, a derivative ms.
   if (sloped && p.gap_n.isZero(0) && gap_values(p, x_theta).area == 0 &&
       (rule_.theta == 1 || gap_values(p, x_1).area == 0))
@@ -272,7 +270,7 @@ void MortarContactTerm::add_pair(const FacePair& p, const time::StepContext& ste
   const mortar::PairGaps g = curved   ? mortar::pair_gaps(s, m, mortar::Multipliers::dual, lambda, H, frozen)
                              : sloped ? mortar::pair_gaps(s, m, mortar::Multipliers::dual, frozen)
                                       : gap_values(p, x_theta);
-  const mortar::PairGaps g_1 = rule_.theta == 1 ? g : K ? gaps(p, x_1) : gap_values(p, x_1);
+  const mortar::PairGaps g_1 = rule_.theta == 1 ? g : tangent ? gaps(p, x_1) : gap_values(p, x_1);
   // The force's gradients and ∂(Σ λ_j ∂g̃_j)/∂x_{n+1}: the discrete gradient (4.87), (4.88) or ∂g̃/∂x(x_θ).
   mortar::PairDiscreteGradient force{g.gradient, rule_.theta * H};
   if (exact_energy_ && sloped) {
@@ -283,34 +281,54 @@ void MortarContactTerm::add_pair(const FacePair& p, const time::StepContext& ste
     force = mortar::discrete_gradient({y_n, y_1, gaps_at_start(p), g_1, g, curved ? &H : nullptr, length_},
                                       lambda);
   }
-  if (loaded) {
-    const Eigen::Matrix<double, 1, 24> f = lambda.transpose() * force.gradient;
-    for (int a = 0; a < 24; ++a) R[p.dofs[a]] += w * f[a];  // h w λ ∂g̃/∂x(x_θ) (4.82), or λ G (4.87)
-  }
+  if (loaded) out.rows.head<24>() = w * (lambda.transpose() * force.gradient).transpose();  // (4.82), (4.87)
   for (int k = 0; k < 4; ++k)
-    if (active_[p.slave_index[k]]) R[p.dofs[24 + k]] += g_1.gap[k];  // (4.83)
-  if (!K) return;
-  Eigen::Matrix<double, 28, 28> block = Eigen::Matrix<double, 28, 28>::Zero();
-  block.topLeftCorner<24, 24>() = w * force.tangent;               // (4.81), (4.82), (4.88)
-  block.topRightCorner<24, 4>() = w * force.gradient.transpose();  // (4.82), (4.87)
+    if (active_[p.slave_index[k]]) out.rows[24 + k] = g_1.gap[k];  // (4.83)
+  if (!tangent) return;
+  out.tangent = true;
+  out.block.setZero();
+  out.block.topLeftCorner<24, 24>() = w * force.tangent;               // (4.81), (4.82), (4.88)
+  out.block.topRightCorner<24, 4>() = w * force.gradient.transpose();  // (4.82), (4.87)
   for (int k = 0; k < 4; ++k)
-    if (active_[p.slave_index[k]]) block.block<1, 24>(24 + k, 0) = g_1.gradient.row(k);  // (4.83)
-  K->scatter(p.block, block);
+    if (active_[p.slave_index[k]]) out.block.block<1, 24>(24 + k, 0) = g_1.gradient.row(k);  // (4.83)
 }
 
 void MortarContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
                             solve::BlockPattern* K) const {
   const Eigen::VectorXd x_1 = z.head(step.x_n.size());
   const Eigen::VectorXd x_theta = rule_.evaluation_point(step.x_n, x_1);
-  for (const FacePair& p : pairs_) {
+  // A pair with no active node adds nothing but its λ_n part: its force is λ = 0, it has no gap rows, and its
+  // multipliers' columns of K meet rows λ_j = 0 that fix their increments to zero, so they change no Newton
+  // step. Nor has it a block in the pattern, whose factorisation then costs what the contact really couples.
+  std::vector<int> loaded;  // the pairs with an active node, computed on the worker threads
+  for (size_t k = 0; k < pairs_.size(); ++k)
+    if (has_active_node(pairs_[k])) loaded.push_back(static_cast<int>(k));
+  contributions_.resize(loaded.size());
+  threads_->for_each(0, static_cast<int>(loaded.size()), parallel::worker_threads(), 1, [&](int i) {
+    PairContribution& out = contributions_[i];
     try {
-      add_pair(p, step, z, x_1, x_theta, R, K);
+      pair_contribution(pairs_[loaded[i]], step, z, x_1, x_theta, K != nullptr, out);
+      out.failed = false;
     } catch (const std::exception&) {
-      // A Newton iterate that folds a face's projection (4.75) or makes a slave face's non-convex (4.70) is
-      // no configuration to integrate on: a residual that is not finite makes Newton backtrack, or the step
+      out.failed = true;  // a face's projection folds (4.75) or a slave face's is not convex (4.70)
+    }
+  });
+  // Summed on this thread in pair order: the same bits for every thread count.
+  const double w_n = step.force_factor * rule_.previous_weight;
+  for (size_t k = 0, i = 0; k < pairs_.size(); ++k) {
+    const FacePair& p = pairs_[k];
+    if (w_n != 0 && p.force_n)
+      for (int a = 0; a < 24; ++a) R[p.dofs[a]] += w_n * (*p.force_n)[a];  // h w_n λ_n ∂g̃/∂x(x_n) (4.82)
+    if (i == loaded.size() || loaded[i] != static_cast<int>(k)) continue;
+    const PairContribution& c = contributions_[i++];
+    if (c.failed) {
+      // No configuration to integrate on: a residual that is not finite makes Newton backtrack, or the step
       // shorter.
       R[p.dofs[0]] = std::numeric_limits<double>::quiet_NaN();
+      continue;
     }
+    for (int a = 0; a < 28; ++a) R[p.dofs[a]] += c.rows[a];
+    if (K && c.tangent) K->scatter(p.block, c.block);
   }
   for (int j = 0; j < auxiliary_count(); ++j) {
     if (active_[j]) {

@@ -6,11 +6,13 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "core/contact/contact_term.hpp"
 #include "core/contact/mortar/pair_derivatives.hpp"
+#include "core/parallel/worker_threads.hpp"
 
 namespace stoss::contact {
 
@@ -104,11 +106,19 @@ class MortarContactTerm final : public ContactTerm {
   /// Static steps (pair closes_touching): slave nodes whose nodal gap g̃_j / D_jj at x_n is at most 1e-8 ℓ
   /// start the step active, as the NTS term's (a body held by this contact alone has no other support).
   void activate_touching();
-  /// One face pair's rows of add (4.81)–(4.83). Throws what the integrals throw on a folded projection.
-  /// x_1 = z's positions, x_θ the rule's evaluation point: formed once per add, not per pair.
-  void add_pair(const FacePair& p, const time::StepContext& step, const Eigen::VectorXd& z,
-                const Eigen::VectorXd& x_1, const Eigen::VectorXd& x_theta, Eigen::VectorXd& R,
-                solve::BlockPattern* K) const;
+  /// One face pair's share of add: its 24 position rows and 4 multiplier rows, and its 28 × 28 block.
+  struct PairContribution {
+    Eigen::Matrix<double, 28, 1> rows;
+    Eigen::Matrix<double, 28, 28> block;
+    bool tangent = false;  ///< block is set
+    bool failed = false;   ///< the integrals threw: a folded projection
+  };
+  /// One face pair's rows (and with `tangent` its block) of add (4.81)–(4.83), without λ_n's part. Throws
+  /// what the integrals throw on a folded projection. x_1 = z's positions, x_θ the rule's evaluation point:
+  /// formed once per add, not per pair. Reads the term only: add runs it on worker threads.
+  void pair_contribution(const FacePair& p, const time::StepContext& step, const Eigen::VectorXd& z,
+                         const Eigen::VectorXd& x_1, const Eigen::VectorXd& x_theta, bool tangent,
+                         PairContribution& out) const;
 
   time::ForceRule rule_;
   bool exact_energy_ = false;  ///< energy_momentum: the discrete gradient (4.87) instead of ∂g̃/∂x(x_m)
@@ -127,6 +137,8 @@ class MortarContactTerm final : public ContactTerm {
   Eigen::VectorXd gap_n_, weight_n_, support_n_;  ///< g̃_j, D_jj and the coverable support at x_n
   Eigen::VectorXd basis_integral_n_;              ///< Σ ∫ Φ_j over j's face pairs at x_n
   double length_ = 1;                             ///< mean master face size ℓ
+  mutable std::vector<PairContribution> contributions_;  ///< add's per-pair buffers
+  mutable std::unique_ptr<parallel::WorkerThreads> threads_ = std::make_unique<parallel::WorkerThreads>();
   int offset_ = 0, generation_ = 0;
 };
 
