@@ -18,11 +18,13 @@ class SecondOrder {
   using Gradient = Eigen::Matrix<double, N, 1>;
   using Hessian = Eigen::Matrix<double, packed_size, 1>;  ///< (0,0), (0,1) … (0,N−1), (1,1) … row by row
 
+  /// A constant: zero gradient and Hessian.
   SecondOrder(double value = 0) : value_(value), gradient_(Gradient::Zero()), hessian_(Hessian::Zero()) {}
   /// The variable x_index at `value`: unit gradient, zero Hessian.
   static SecondOrder variable(double value, int index) {
     SecondOrder x(value);
     x.gradient_[index] = 1;
+    x.constant_ = false;
     return x;
   }
 
@@ -37,12 +39,18 @@ class SecondOrder {
     return H;
   }
 
+  // A constant operand (the integrals' weights and the shape functions' ¼, 1 ± ξ) changes the value alone, or
+  // scales: the same numbers as the full update, whose terms with its zero derivatives add zeros.
   SecondOrder& operator+=(const SecondOrder& b) {
-    value_ += b.value_, gradient_ += b.gradient_, hessian_ += b.hessian_;
+    value_ += b.value_;
+    if (b.constant_) return *this;
+    gradient_ += b.gradient_, hessian_ += b.hessian_, constant_ = false;
     return *this;
   }
   SecondOrder& operator-=(const SecondOrder& b) {
-    value_ -= b.value_, gradient_ -= b.gradient_, hessian_ -= b.hessian_;
+    value_ -= b.value_;
+    if (b.constant_) return *this;
+    gradient_ -= b.gradient_, hessian_ -= b.hessian_, constant_ = false;
     return *this;
   }
   SecondOrder& operator*=(double c) {
@@ -59,7 +67,9 @@ class SecondOrder {
 
   /// (ab)'' = a b'' + b a'' + a' b'ᵀ + b' a'ᵀ.
   friend SecondOrder operator*(const SecondOrder& a, const SecondOrder& b) {
-    SecondOrder r(a.value_ * b.value_);
+    if (b.constant_) return scaled(a, a.value_ * b.value_, b.value_);
+    if (a.constant_) return scaled(b, a.value_ * b.value_, a.value_);
+    SecondOrder r(a.value_ * b.value_, uninitialized);
     r.gradient_ = a.value_ * b.gradient_ + b.value_ * a.gradient_;
     for (int i = 0, k = 0; i < N; ++i)
       for (int j = i; j < N; ++j, ++k)
@@ -69,8 +79,9 @@ class SecondOrder {
   }
   /// q = a / b from a = q b: q' = (a' − q b') / b, q'' = (a'' − q b'' − b' q'ᵀ − q' b'ᵀ) / b.
   friend SecondOrder operator/(const SecondOrder& a, const SecondOrder& b) {
-    SecondOrder q(a.value_ / b.value_);
     const double inverse = 1 / b.value_;
+    if (b.constant_) return scaled(a, a.value_ / b.value_, inverse);
+    SecondOrder q(a.value_ / b.value_, uninitialized);
     q.gradient_ = (a.gradient_ - q.value_ * b.gradient_) * inverse;
     for (int i = 0, k = 0; i < N; ++i)
       for (int j = i; j < N; ++j, ++k)
@@ -81,7 +92,8 @@ class SecondOrder {
   }
   /// r = √a from a = r²: r' = a' / (2r), r'' = (a'' − 2 r' r'ᵀ) / (2r).
   friend SecondOrder sqrt(const SecondOrder& a) {
-    SecondOrder r(std::sqrt(a.value_));
+    if (a.constant_) return SecondOrder(std::sqrt(a.value_));
+    SecondOrder r(std::sqrt(a.value_), uninitialized);
     const double inverse = 0.5 / r.value_;
     r.gradient_ = a.gradient_ * inverse;
     for (int i = 0, k = 0; i < N; ++i)
@@ -99,9 +111,23 @@ class SecondOrder {
   friend SecondOrder operator-(SecondOrder a, double c) { return a -= SecondOrder(c); }
 
  private:
+  struct Uninitialized {};
+  static constexpr Uninitialized uninitialized{};
+  /// A result whose gradient and Hessian the caller writes in full.
+  SecondOrder(double value, Uninitialized) : value_(value), constant_(false) {}
+  /// a's derivatives times `factor`, with the value `value`.
+  static SecondOrder scaled(const SecondOrder& a, double value, double factor) {
+    if (a.constant_) return SecondOrder(value);
+    SecondOrder r(value, uninitialized);
+    r.gradient_ = a.gradient_ * factor;
+    r.hessian_ = a.hessian_ * factor;
+    return r;
+  }
+
   double value_;
   Gradient gradient_;
   Hessian hessian_;
+  bool constant_ = true;  ///< gradient and Hessian are zero (a double made a SecondOrder)
 };
 
 }  // namespace stoss::contact::mortar
