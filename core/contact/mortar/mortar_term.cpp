@@ -209,15 +209,19 @@ void MortarContactTerm::prepare_step(const time::StepContext& step) {
 
 void MortarContactTerm::release_uncovered() {
   for (int j = 0; j < auxiliary_count(); ++j)
-    if (active_[j] && !(weight_n_[j] > 0))
-      active_[j] = 0, lambda_[j] = 0, frozen_[j] = target_[j] = 0, ++report_.releases;
+    if (active_[j] && !(weight_n_[j] > 0)) release(j);
+}
+
+void MortarContactTerm::release(int j) {
+  active_[j] = 0, lambda_[j] = 0, frozen_[j] = target_[j] = 0, ++report_.releases;
 }
 
 void MortarContactTerm::activate_touching() {
   for (int j = 0; j < auxiliary_count(); ++j)
     if (!active_[j] && covered(weight_n_[j], support_n_[j]) &&
         gap_n_[j] <= touching_gap * length_ * weight_n_[j])
-      active_[j] = 1, frozen_[j] = target_[j] = 0;  // released after the pass if in tension (§3.5)
+      active_[j] =
+          1;  // closes its gap (an inactive node freezes none); released after the pass if in tension
 }
 
 void MortarContactTerm::begin_step(const time::StepContext& step, Eigen::VectorXd& z) {
@@ -353,8 +357,7 @@ bool MortarContactTerm::update_active_set(const time::StepContext& step, const E
                       " (it already changed state in this step)");
         continue;
       }
-      active_[j] = 0, lambda_[j] = 0, frozen_[j] = target_[j] = 0, ++toggles_[j], ++report_.releases,
-      changed = true;
+      release(j), ++toggles_[j], changed = true;
     } else if (!active_[j] && covered(weight[j], support[j]) &&
                gap[j] < -activation_gap * length_ * weight[j] && toggles_[j] == 0) {
       const bool freezes = impact() == model::ImpactMode::persist || impact() == model::ImpactMode::located;

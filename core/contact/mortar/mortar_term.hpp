@@ -19,7 +19,7 @@ namespace stoss::contact {
 /// One multiplier λ_j per slave node, after x_{n+1} in z (all slave nodes: the layout never changes).
 /// - momentum rows  h [w Σ_j λ_j ∂g̃_j/∂x (x_θ) + w_n Σ_j λ_j,n ∂g̃_j/∂x (x_n)]   (4.82)
 ///                  energy_momentum: h Σ_j λ_j G_j, G_j the discrete gradient of g̃_j per face pair (4.87)
-/// - active j:      g̃_j(x_{n+1}; ḡ⁰_j) = ∫ Φ_j (g − ḡ⁰_j) = 0;  inactive j:  λ_j = 0  (4.83)
+/// - active j:      g̃_j(x_{n+1}; ḡ⁰_j) − g̃⁰_j = ∫ Φ_j (g − ḡ⁰_j) ψ − g̃⁰_j = 0;  inactive j:  λ_j = 0  (4.83)
 /// - active set on the weighted gaps: j activates when g̃_j / D_jj < −1e-10 ℓ and D_jj covers half of the
 ///   support its overlapping slave faces give it, releases when λ_j > 0 (once a step, as §3.5; a static step
 ///   may take back its own activation once)                                                          (4.84)
@@ -32,9 +32,10 @@ namespace stoss::contact {
 ///       located (the frozen gap of §4.5, held while the node stays active), else 0. Taken off g inside the
 ///       integral, it vanishes where the gap is uniform, so a slave rim edge lying on a master rim edge is no
 ///       kink in the force (a weighted-gap target, ∫ Φ_j g = g̃⁰_j, made it one: the colliding bars with
-///       mortar stalled in Newton). Located events are not cut (the step runs to its end), and
-///       velocity_correction restores no energy (no impact impulse yet): both act as their frozen-gap or
-///       closed-gap counterparts.
+///       mortar stalled in Newton). g̃⁰_j: the weighted gap g̃_j(x_n) of such a node the master does not cover
+///       at x_n, where it has no nodal gap, else 0. Both are 0 while j is inactive. ψ: the facing fade
+///       (4.76). Located events are not cut (the step runs to its end), and velocity_correction restores no
+///       energy (no impact impulse yet): both act as their frozen-gap or closed-gap counterparts.
 /// @note series: contact_area is Σ D_jj over the active nodes with λ_j < 0 (their mortar weights, the
 ///       current area the multipliers act on); contact_force is measured from the rows as for every pair
 ///       (measured_contact.hpp).
@@ -100,6 +101,8 @@ class MortarContactTerm final : public ContactTerm {
   bool has_active_node(const FacePair& p) const;
   /// A new structure generation when the pairs with an active node are not those with a block.
   void refresh_structure();
+  /// Makes slave node j inactive: λ_j = 0 and no frozen gap.
+  void release(int j);
   /// Releases the active slave nodes that no master face overlaps at x_n (D_jj = 0): their row (4.83) would
   /// be zero, the Jacobian singular (a body leaving contact; the seed example failed so at t = 0.93).
   void release_uncovered();
