@@ -80,6 +80,10 @@ struct LinearSolver::Impl {
   Impl() {
     keep_large_blocks_in_heap();
     blas_turn();  // configures the BLAS before its first use
+    configure(lu);
+  }
+  template <class Matrix>
+  static void configure(Eigen::UmfPackLU<Matrix>& lu) {
     // No iterative refinement inside UMFPACK: Newton refines the solution itself, and refinement
     // made each solve four times dearer (5.9 ms instead of 1.4 ms on the 4563-dof ball-on-plate system).
     lu.umfpackControl()(UMFPACK_IRSTEP) = 0;
@@ -87,6 +91,35 @@ struct LinearSolver::Impl {
     lu.umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_METIS;
   }
   Eigen::UmfPackLU<SparseMatrix> lu;
+  /// UMFPACK's 64-bit-index variant (umfpack_dl_*), used from the first time the 32-bit one (umfpack_di_*)
+  /// runs out of memory: that one sizes its workspace in ints and fails once its estimate passes 2^31, as on
+  /// the Hertz example's 52,000-node mesh with 21 GB free (bench/hertz_indentation.py --meshes graded). Not
+  /// from the start: its orderings differ in round-off, and every smaller run would change its last bits.
+  using WideMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, SuiteSparse_long>;
+  std::unique_ptr<Eigen::UmfPackLU<WideMatrix>> wide_lu;
+  WideMatrix wide_copy;      ///< the matrix wide_lu factorised, which it refers to
+  long status = UMFPACK_OK;  ///< of the last numeric factorisation
+
+  /// Factorises A, analysed by analyze(); on the 32-bit variant's out-of-memory, again with the 64-bit one.
+  bool factorize(const SparseMatrix& A) {
+    if (!wide_lu) {
+      lu.factorize(A);
+      status = lu.umfpackFactorizeReturncode();
+      if (status != UMFPACK_ERROR_out_of_memory) return lu.info() == Eigen::Success;
+      wide_lu = std::make_unique<Eigen::UmfPackLU<WideMatrix>>();
+      configure(*wide_lu);
+      forget_analysis();
+      analyze(A);
+    }
+    wide_copy = A;
+    wide_lu->factorize(wide_copy);
+    status = wide_lu->umfpackFactorizeReturncode();
+    return wide_lu->info() == Eigen::Success;
+  }
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const {
+    if (wide_lu) return wide_lu->solve(b);
+    return lu.solve(b);
+  }
   /// The sparsity of the matrix lu's symbolic analysis was made for (empty: none, or not known).
   std::vector<int> analyzed_outer, analyzed_inner;
 
@@ -106,7 +139,12 @@ struct LinearSolver::Impl {
     if (analyzed_for(A)) return;
     {
       std::lock_guard ordering(ordering_mutex());
-      lu.analyzePattern(A);
+      if (wide_lu) {
+        wide_copy = A;
+        wide_lu->analyzePattern(wide_copy);
+      } else {
+        lu.analyzePattern(A);
+      }
     }
     ++analyses_in_process;
     analyzed_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
@@ -169,16 +207,22 @@ bool LinearSolver::factorize(const BlockPattern& A) {
     impl_->analyze(A.matrix());
     analyzed_generation_ = A.generation();
   }
+  bool ok = false;
   {
     const auto turn = blas_turn();
-    impl_->lu.factorize(A.matrix());
+    ok = impl_->factorize(A.matrix());
   }
   factorization_seconds_ += seconds_since(t0);
   ++factorizations_;
   ++factorizations_in_process;
-  const bool ok = impl_->lu.info() == Eigen::Success;
   factorized_generation_ = ok ? A.generation() : -1;
   return ok;
+}
+
+std::string LinearSolver::factorization_failure() const {
+  if (method_ == LinearMethod::direct && impl_->status == UMFPACK_ERROR_out_of_memory)
+    return "the direct solver (UMFPACK) ran out of memory factorising the Jacobian";
+  return "singular Jacobian";
 }
 
 Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) const {
@@ -198,7 +242,7 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) const {
   Eigen::VectorXd x;
   {
     const auto turn = blas_turn();
-    x = impl_->lu.solve(b);
+    x = impl_->solve(b);
   }
   solve_seconds_ += seconds_since(t0);
   return x;
@@ -237,14 +281,16 @@ Eigen::VectorXd LinearSolver::checked_krylov(Eigen::VectorXd x, int iterations, 
   if (converged && x.allFinite()) return x;
   ++krylov_fallbacks_;  // Newton gets a solution of this matrix either way
   if (!lu_ready) {
-    std::lock_guard ordering(ordering_mutex());
+    const SparseMatrix A = matrix();
+    impl_->forget_analysis();
+    impl_->analyze(A);
     const auto turn = blas_turn();
-    impl_->lu.compute(matrix());
+    impl_->factorize(A);
     impl_->forget_analysis();
     lu_ready = true;
   }
   const auto turn = blas_turn();
-  return impl_->lu.solve(b);
+  return impl_->solve(b);
 }
 
 void LinearSolver::set_krylov_tolerance(double relative) {

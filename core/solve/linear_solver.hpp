@@ -34,6 +34,9 @@ class LinearSolver {
   /// Factorises A (iterative: keeps a copy of A and builds the preconditioner); returns false if the
   /// matrix is numerically singular.
   bool factorize(const BlockPattern& A);
+  /// Why the last factorize() returned false: "singular Jacobian", or the direct solver's own failure
+  /// when it is not singularity (UMFPACK out of memory).
+  std::string factorization_failure() const;
   /// The next ready_for() is false: Newton factorises anew, the symbolic analysis stays.
   void forget_factorization() { factorized_generation_ = -1; }
   /// Whether a factorisation exists for a matrix of this pattern generation.

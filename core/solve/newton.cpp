@@ -80,7 +80,7 @@ bool factorize_at(NonlinearSystem& system, Iterate& current, BlockPattern& A, Li
                   NewtonResult& result) {
   system.evaluate(current.z, current.R, &A);
   if (solver.factorize(A)) return true;
-  result.failure = "singular Jacobian";
+  result.failure = solver.factorization_failure();
   return false;
 }
 
