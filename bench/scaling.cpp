@@ -5,11 +5,14 @@
 // shares of the wall time (linear solver, assembly, output) from the run's summary.
 // Writes bench/results/scaling.csv and bench/results/scaling.png (gnuplot).
 // Run: ./build/bench_scaling [--linear direct|iterative|petsc_gamg] [--large | --only-large] [--steps N]
-//                            [--stoss PATH]
+//                            [--ranks N] [--stoss PATH]
 //   default sizes about 1k, 8k and 27k elements; --large adds 64k and 100k, --only-large runs just those
 //   (appending to the CSV). --linear sets the scene's solver.linear (default direct); other than direct
 //   the results go to scaling_<linear>.csv, with the Krylov iterations per solve and the most one took.
 //   scaling.png draws every scaling*.csv there is, one line per linear solver.
+//   --ranks N runs each size with `stoss run --ranks N` (solver.linear petsc_gamg; results to
+//   scaling_petsc_gamg_ranks<N>.csv); peak memory is then rank 0's, and every rank holds as much (the model
+//   is replicated, docs/many_machines.md, "One run on several MPI ranks").
 //   stoss defaults to the stoss next to this executable (build it first: --target stoss).
 #include <unistd.h>
 
@@ -46,6 +49,7 @@ struct Row {
 struct Options {
   std::string linear = "direct";
   int steps = 5;
+  int ranks = 1;
 };
 
 std::string run_capture(const std::string& command, int& status) {
@@ -105,7 +109,9 @@ Row measure(const fs::path& stoss, const Size& size, const fs::path& work, const
   const fs::path out = work / ("out_" + std::to_string(size.divisions));
   // The log (stderr) carries the Krylov line; the progress line's carriage returns do no harm.
   const std::string ran =
-      run_capture(stoss.string() + " run " + scene.string() + " -o " + out.string() + " 2>&1", status);
+      run_capture(stoss.string() + " run " + scene.string() + " -o " + out.string() +
+                      (o.ranks > 1 ? " --ranks " + std::to_string(o.ranks) : "") + " 2>&1",
+                  status);
   if (status != 0) {
     std::cerr << "bench_scaling: stoss run failed (status " << status << "):\n" << ran;
     std::exit(1);
@@ -183,9 +189,11 @@ int main(int argc, char** argv) {
       o.steps = std::atoi(argv[++i]);
     else if (a == "--stoss" && i + 1 < argc)
       stoss = argv[++i];
+    else if (a == "--ranks" && i + 1 < argc)
+      o.ranks = std::atoi(argv[++i]);
     else {
       std::cerr << "usage: bench_scaling [--linear direct|iterative|petsc_gamg] [--large | --only-large] "
-                   "[--steps N] "
+                   "[--steps N] [--ranks N] "
                    "[--stoss PATH]\n";
       return 2;
     }
@@ -204,7 +212,9 @@ int main(int argc, char** argv) {
   const fs::path work = fs::temp_directory_path() / ("stoss_scaling_" + std::to_string(::getpid()));
   fs::create_directories(work);
   fs::create_directories(results_dir);
-  const std::string base = o.linear == "direct" ? "scaling" : "scaling_" + o.linear;
+  if (o.ranks > 1) o.linear = "petsc_gamg";  // the solver that spans ranks
+  const std::string base = (o.linear == "direct" ? "scaling" : "scaling_" + o.linear) +
+                           (o.ranks > 1 ? "_ranks" + std::to_string(o.ranks) : "");
   const fs::path csv = results_dir / (base + ".csv"), png = results_dir / "scaling.png";
   const bool append = only_large && fs::exists(csv);
   std::ofstream out(csv, append ? std::ios::app : std::ios::trunc);

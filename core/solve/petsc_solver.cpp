@@ -10,9 +10,11 @@
 namespace stoss::solve {
 namespace {
 
-/// The symbol core/solve/petsc/petsc_amg_solver.cpp exports.
+/// The symbols core/solve/petsc/petsc_amg_solver.cpp exports.
 using Factory = AmgSolver* (*)();
+using Barrier = void (*)();
 constexpr const char* factory_symbol = "stoss_make_petsc_amg_solver";
+constexpr const char* barrier_symbol = "stoss_synchronize_ranks";
 constexpr const char* module_name = "libstoss_petsc.so";
 
 /// Where the module is: beside the running executable (an installed or copied build), else where
@@ -28,33 +30,43 @@ std::vector<std::string> module_candidates() {
   return paths;
 }
 
-Factory load_factory() {
-  std::string errors;
-  for (const std::string& path : module_candidates()) {
-    if (!std::filesystem::exists(path)) {
-      errors += " " + path + ": not found;";
-      continue;
-    }
-    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);  // kept open for the process
-    if (!handle) {
+/// The module, opened once for the process (and kept open).
+void* module() {
+  static void* handle = nullptr;
+  static std::once_flag once;
+  std::call_once(once, [] {
+    std::string errors;
+    for (const std::string& path : module_candidates()) {
+      if (!std::filesystem::exists(path)) {
+        errors += " " + path + ": not found;";
+        continue;
+      }
+      if ((handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL))) return;
       errors += " " + path + ": " + dlerror() + ";";
-      continue;
     }
-    if (auto factory = reinterpret_cast<Factory>(dlsym(handle, factory_symbol))) return factory;
-    errors += " " + path + ": no symbol " + factory_symbol + ";";
-  }
-  throw std::runtime_error("solver.linear petsc_gamg: cannot load the PETSc module (" +
-                           std::string(module_name) + "):" + errors +
-                           " install petsc-dev (deploy/packages.txt) and rebuild");
+    throw std::runtime_error("solver.linear petsc_gamg: cannot load the PETSc module (" +
+                             std::string(module_name) + "):" + errors +
+                             " install petsc-dev (deploy/packages.txt) and rebuild");
+  });
+  return handle;
+}
+
+template <class Function>
+Function symbol(const char* name) {
+  if (auto function = reinterpret_cast<Function>(dlsym(module(), name))) return function;
+  throw std::runtime_error(std::string("the PETSc module (") + module_name + ") has no symbol " + name);
 }
 
 }  // namespace
 
 std::unique_ptr<AmgSolver> make_petsc_amg_solver() {
-  static std::once_flag once;
-  static Factory factory = nullptr;
-  std::call_once(once, [] { factory = load_factory(); });
+  static const Factory factory = symbol<Factory>(factory_symbol);
   return std::unique_ptr<AmgSolver>(factory());
+}
+
+void synchronize_ranks() {
+  static const Barrier barrier = symbol<Barrier>(barrier_symbol);
+  barrier();
 }
 
 }  // namespace stoss::solve

@@ -57,4 +57,10 @@ constexpr int amg_max_iterations = 200;
 /// Throws std::runtime_error naming the module path and the loader's message if it cannot.
 std::unique_ptr<AmgSolver> make_petsc_amg_solver();
 
+/// Starts PETSc and MPI (through the module) and returns once every rank of the launch has called it: a run
+/// on several ranks (core/parallel/mpi_place.hpp) calls it before its first step, so that a rank resuming
+/// reads the checkpoint rank 0 reads. One process of its own returns at once. Throws as
+/// make_petsc_amg_solver.
+void synchronize_ranks();
+
 }  // namespace stoss::solve

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <thread>
 
 #include "core/output/durable_file.hpp"
 #include "core/output/result_writer.hpp"
@@ -16,6 +17,7 @@
 #include "core/simulate.hpp"
 #include "core/study/study.hpp"
 #include "server/cli/progress.hpp"
+#include "server/cli/ranks.hpp"
 #include "server/common/json_input.hpp"
 
 namespace stoss::cli {
@@ -168,6 +170,7 @@ struct RunOptions {
   std::string scene_path;
   std::string out_dir = "out";
   bool resume = false, out_given = false, strict = false;
+  std::optional<int> ranks;  ///< --ranks N (server/cli/ranks.hpp)
 };
 
 /// nullopt when `args` is not a command line of `stoss run`.
@@ -181,7 +184,16 @@ std::optional<RunOptions> parse_run_options(const std::vector<std::string>& args
       o.out_dir = args[++i], o.out_given = true;
     else if (args[i] == "--resume" && i + 1 < args.size())
       resume_dir = args[++i];
-    else if (o.scene_path.empty() && args[i].rfind("-", 0) != 0)
+    else if (args[i] == "--ranks" && i + 1 < args.size()) {
+      const std::string& value = args[++i];
+      size_t end = 0;
+      try {
+        o.ranks = std::stoi(value, &end);
+      } catch (const std::exception&) {
+        return std::nullopt;
+      }
+      if (end != value.size()) return std::nullopt;
+    } else if (o.scene_path.empty() && args[i].rfind("-", 0) != 0)
       o.scene_path = args[i];
     else
       return std::nullopt;
@@ -195,6 +207,8 @@ std::optional<RunOptions> parse_run_options(const std::vector<std::string>& args
 /// Without -o, out/ is written only when it is absent or empty: nothing is overwritten unasked.
 bool refuses_default_output(const RunOptions& o) {
   std::error_code error;
+  // A rank k > 0 of a launch writes elsewhere, and rank 0 may have begun writing out/ already.
+  if (parallel::mpi_place().rank > 0) return false;
   if (o.resume || o.out_given || !fs::exists(o.out_dir, error)) return false;
   if (fs::is_directory(o.out_dir, error) && fs::is_empty(o.out_dir, error)) return false;
   std::cerr << "stoss run: " << o.out_dir << "/ exists and is not empty; nothing was overwritten. Pass -o "
@@ -202,8 +216,16 @@ bool refuses_default_output(const RunOptions& o) {
   return true;
 }
 
-/// Simulates (or resumes) into o.out_dir and prints the summary and the verdict; the exit code.
-int simulate_into(const RunOptions& o) {
+/// Simulates (or resumes) into o.out_dir and prints the summary and the verdict; the exit code. On rank k > 0
+/// of an MPI launch, into a private directory (server/cli/ranks.hpp).
+int simulate_into(RunOptions o) {
+  std::optional<RankRun> rank;
+  try {
+    rank.emplace(parallel::mpi_place(), o.out_dir, o.resume);
+  } catch (const std::exception& e) {
+    std::cerr << "stoss run: " << e.what() << "\n";
+    return solver_failure;
+  }
   const fs::path checkpoint_dir = fs::path(o.out_dir) / output::checkpoint_directory_name;
   std::error_code error;
   try {
@@ -221,9 +243,12 @@ int simulate_into(const RunOptions& o) {
       fs::remove_all(checkpoint_dir, error);  // a checkpoint of an earlier run in DIR
       write_run_file(o.out_dir, model, o.scene_path);
     }
+    rank->prepare(model);
     output::ResultWriter writer(o.out_dir);
     ProgressObserver progress;
-    model::ObserverList observers({&writer, &progress});
+    std::vector<model::Observer*> listeners{&writer};
+    if (rank->reports()) listeners.push_back(&progress);  // the other ranks' progress would repeat it
+    model::ObserverList observers(listeners);
     const model::Summary summary = simulate(model, observers, nullptr, {checkpoint_dir, true});
     fs::remove_all(checkpoint_dir, error);  // result.h5 has it all
     print_summary(model, summary);
@@ -253,13 +278,15 @@ int simulate_into(const RunOptions& o) {
 
 int run_command(const std::vector<std::string>& args) {
   constexpr const char* text =
-      "stoss run SCENE.json [-o DIR] [--strict] | stoss run --resume DIR [--strict]\n"
+      "stoss run SCENE.json [-o DIR] [--strict] [--ranks N] | stoss run --resume DIR [--strict] [--ranks N]\n"
       "  simulates the scene; writes DIR/result.h5 and DIR/result.xdmf (DIR defaults to out/, which must\n"
       "  then be absent or empty: pass -o DIR to write into, or over, an existing directory). While it runs\n"
       "  it keeps a checkpoint in DIR/checkpoint/ (every output.checkpoint_seconds, or checkpoint_every "
       "steps);\n"
       "  --resume DIR goes on from it after a crash and writes the result the run would have written.\n"
       "  It ends with the checks and the verdict (ok or suspect); --strict exits 3 on a suspect result.\n"
+      "  --ranks N runs it on N MPI ranks of this machine (mpiexec; solver.linear petsc_gamg), as does\n"
+      "  `mpiexec -n N stoss run ...` (docs/many_machines.md).\n"
       "  exit 0 success, 1 solver failure, 2 invalid scene or command line, 3 suspect result with --strict";
   if (wants_help(args)) {
     std::cout << "usage: " << text << "\n";
@@ -267,6 +294,17 @@ int run_command(const std::vector<std::string>& args) {
   }
   const std::optional<RunOptions> options = parse_run_options(args);
   if (!options) return usage(text);
+  if (options->ranks) {
+    const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    if (const auto problem = ranks_problem(*options->ranks, cores)) {
+      std::cerr << "stoss run: " << *problem << "\n";
+      return invalid_scene;
+    }
+    if (*options->ranks > 1 && !parallel::mpi_place().several()) {
+      std::cerr << "stoss run: " << launch_ranks(args, *options->ranks) << "\n";
+      return solver_failure;
+    }
+  }
   if (refuses_default_output(*options)) return invalid_scene;
   return simulate_into(*options);
 }

@@ -30,6 +30,18 @@ void initialize_petsc() {
   std::atexit([] { PetscFinalize(); });
 }
 
+/// The MPI ranks of this run (`mpiexec -n N stoss run`, docs/many_machines.md): 1 for a process of its own.
+int world_size() {
+  PetscMPIInt size = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  return size;
+}
+int world_rank() {
+  PetscMPIInt rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  return rank;
+}
+
 /// Sets an option of this solver unless the user set it already (PETSC_OPTIONS="-stoss_...").
 PetscErrorCode default_option(const std::string& name, const char* value) {
   PetscBool set = PETSC_FALSE;
@@ -67,8 +79,10 @@ PetscErrorCode set_default_options() {
   PetscCall(default_option(std::string("-") + prefix + "fieldsplit_0_pc_type", "gamg"));
   PetscCall(default_option(std::string("-") + prefix + "fieldsplit_1_ksp_type", "preonly"));
   PetscCall(default_option(std::string("-") + prefix + "fieldsplit_1_pc_type", "lu"));
-  // The contact block is indefinite (multiplier rows): an LU that pivots (PETSc's own does not).
-  PetscCall(default_option(std::string("-") + prefix + "fieldsplit_1_pc_factor_mat_solver_type", "umfpack"));
+  // The contact block is indefinite (multiplier rows): an LU that pivots (PETSc's own does not). UMFPACK is
+  // sequential; on several ranks the block is distributed and MUMPS factorises it.
+  PetscCall(default_option(std::string("-") + prefix + "fieldsplit_1_pc_factor_mat_solver_type",
+                           world_size() > 1 ? "mumps" : "umfpack"));
   return success;
 }
 
@@ -80,12 +94,14 @@ class PetscAmgSolver final : public AmgSolver {
  public:
   PetscAmgSolver() {
     initialize_petsc();
+    ranks_ = world_size();
     check(set_default_options(), "setting the default options");
   }
   ~PetscAmgSolver() override { destroy(); }
 
   bool factorize(const SparseMatrix& A, int generation, const Eigen::VectorXd& positions) override {
     const RowMajorMatrix R = A;  // PETSc's AIJ is CSR
+    if (ranks_ > 1) full_ = A;   // matrix(): the ranks hold only their rows
     const int m = positions.size() % 3 == 0 && positions.size() <= R.rows() ? int(positions.size()) : 0;
     if (generation != generation_ || R.rows() != rows_ || R.nonZeros() != nonzeros_ || m != positions_) {
       destroy();
@@ -115,6 +131,7 @@ class PetscAmgSolver final : public AmgSolver {
   }
 
   SparseMatrix matrix() const override {
+    if (ranks_ > 1) return full_;
     PetscInt n = 0;
     const PetscInt *ia = nullptr, *ja = nullptr;
     PetscBool done = PETSC_FALSE;
@@ -137,6 +154,7 @@ class PetscAmgSolver final : public AmgSolver {
     if (split_setups_ > 0)
       text += "; " + std::to_string(split_setups_) + " setups of " + split_ + " (the last)";
     if (reuses_ > 0) text += "; the preconditioner reused for " + std::to_string(reuses_) + " more matrices";
+    if (ranks_ > 1) text += "; on " + std::to_string(ranks_) + " MPI ranks";
     return text;
   }
 
@@ -226,25 +244,60 @@ class PetscAmgSolver final : public AmgSolver {
     return std::to_string(levels);
   }
 
+  /// One process: PETSC_COMM_SELF and sequential objects. Several MPI ranks: every rank holds the whole
+  /// system (each assembles it: the model is replicated) and passes PETSc its own rows (own_rows).
+  MPI_Comm communicator() const { return ranks_ > 1 ? PETSC_COMM_WORLD : PETSC_COMM_SELF; }
+
+  /// This rank's rows [first_, last_): the position rows in whole nodes, split evenly over the ranks, and
+  /// the contact unknowns after them on the last rank (the field split's second block, MUMPS's there).
+  void own_rows() {
+    const int rank = ranks_ > 1 ? world_rank() : 0;
+    const int unit = positions_ > 0 ? 3 : 1;
+    const int units = positions_ > 0 ? positions_ / 3 : rows_;
+    const auto start = [&](int k) { return unit * (k * (units / ranks_) + std::min(k, units % ranks_)); };
+    first_ = start(rank);
+    last_ = rank == ranks_ - 1 ? rows_ : start(rank + 1);
+  }
+  int owned_positions() const { return std::max(0, std::min(last_, positions_) - first_); }
+
+  /// This rank's rows of R in CSR with global columns (kept for refill on several ranks).
+  void local_csr(const RowMajorMatrix& R) {
+    const int* outer = R.outerIndexPtr();
+    local_ia_.resize(last_ - first_ + 1);
+    for (int k = 0; k <= last_ - first_; ++k) local_ia_[k] = outer[first_ + k] - outer[first_];
+    local_ja_.assign(R.innerIndexPtr() + outer[first_], R.innerIndexPtr() + outer[last_]);
+  }
+
   PetscErrorCode create(const RowMajorMatrix& R, const Eigen::VectorXd& positions) {
     rows_ = int(R.rows());
     nonzeros_ = R.nonZeros();
     positions_ = int(positions.size());
-    PetscCall(MatCreate(PETSC_COMM_SELF, &A_));
-    PetscCall(MatSetSizes(A_, rows_, rows_, rows_, rows_));
-    PetscCall(MatSetType(A_, MATSEQAIJ));
+    own_rows();
+    const int local = last_ - first_;
+    PetscCall(MatCreate(communicator(), &A_));
+    PetscCall(MatSetSizes(A_, local, local, rows_, rows_));
+    PetscCall(MatSetType(A_, ranks_ > 1 ? MATMPIAIJ : MATSEQAIJ));
     if (positions_ == rows_) PetscCall(MatSetBlockSize(A_, 3));
-    const std::vector<PetscInt> ia(R.outerIndexPtr(), R.outerIndexPtr() + rows_ + 1),
-        ja(R.innerIndexPtr(), R.innerIndexPtr() + nonzeros_);
-    PetscCall(MatSeqAIJSetPreallocationCSR(A_, ia.data(), ja.data(), R.valuePtr()));
+    local_csr(R);
+    const PetscScalar* values = R.valuePtr() + R.outerIndexPtr()[first_];
+    if (ranks_ > 1)
+      PetscCall(MatMPIAIJSetPreallocationCSR(A_, local_ia_.data(), local_ja_.data(), values));
+    else
+      PetscCall(MatSeqAIJSetPreallocationCSR(A_, local_ia_.data(), local_ja_.data(), values));
     // No node (inode) kernels for this matrix: measured on the tumbling sphere at 27,648 hex8 (3 steps,
     // quiet machine), its products and sweeps took the linear solver from 11.9 s without them to 18.5 s.
     PetscCall(MatSetOption(A_, MAT_USE_INODES, PETSC_FALSE));
-    PetscCall(VecCreateSeq(PETSC_COMM_SELF, rows_, &b_));
-    PetscCall(VecDuplicate(b_, &x_));
+    if (ranks_ > 1) {
+      PetscCall(VecCreateMPI(PETSC_COMM_WORLD, local, rows_, &b_));
+      PetscCall(VecDuplicate(b_, &x_));
+      PetscCall(VecScatterCreateToAll(x_, &gather_, &all_));  // every rank gets the whole solution
+    } else {
+      PetscCall(VecCreateSeq(PETSC_COMM_SELF, rows_, &b_));
+      PetscCall(VecDuplicate(b_, &x_));
+    }
     if (positions_ > 0) PetscCall(rigid_body_modes(positions));
 
-    PetscCall(KSPCreate(PETSC_COMM_SELF, &ksp_));
+    PetscCall(KSPCreate(communicator(), &ksp_));
     PetscCall(KSPSetOptionsPrefix(ksp_, prefix));
     PetscCall(KSPSetType(ksp_, KSPGMRES));
     PetscCall(KSPGMRESSetRestart(ksp_, 100));
@@ -264,11 +317,14 @@ class PetscAmgSolver final : public AmgSolver {
   /// Translations and rotations about the origin of the current positions (block size 3).
   PetscErrorCode rigid_body_modes(const Eigen::VectorXd& positions) {
     Vec coordinates;
-    PetscCall(VecCreateSeq(PETSC_COMM_SELF, positions_, &coordinates));
+    if (ranks_ > 1)
+      PetscCall(VecCreateMPI(PETSC_COMM_WORLD, owned_positions(), positions_, &coordinates));
+    else
+      PetscCall(VecCreateSeq(PETSC_COMM_SELF, positions_, &coordinates));
     PetscCall(VecSetBlockSize(coordinates, 3));
     PetscScalar* p = nullptr;
     PetscCall(VecGetArray(coordinates, &p));
-    std::copy(positions.data(), positions.data() + positions_, p);
+    std::copy(positions.data() + first_, positions.data() + first_ + owned_positions(), p);
     PetscCall(VecRestoreArray(coordinates, &p));
     PetscCall(MatNullSpaceCreateRigidBody(coordinates, &near_null_));
     PetscCall(VecDestroy(&coordinates));
@@ -278,11 +334,13 @@ class PetscAmgSolver final : public AmgSolver {
   /// Positions first (GAMG with the rigid-body modes, attached to the split's index set so the
   /// extracted block carries them), then the contact unknowns (LU of the selfp Schur complement).
   PetscErrorCode field_split() {
-    PetscCall(ISCreateStride(PETSC_COMM_SELF, positions_, 0, 1, &fields_[0]));
+    PetscCall(ISCreateStride(communicator(), owned_positions(), first_, 1, &fields_[0]));
     PetscCall(ISSetBlockSize(fields_[0], 3));
     if (near_null_)
       PetscCall(PetscObjectCompose((PetscObject)fields_[0], "nearnullspace", (PetscObject)near_null_));
-    PetscCall(ISCreateStride(PETSC_COMM_SELF, rows_ - positions_, positions_, 1, &fields_[1]));
+    const int contact_first = std::max(first_, positions_);
+    PetscCall(
+        ISCreateStride(communicator(), std::max(0, last_ - contact_first), contact_first, 1, &fields_[1]));
     PC split = pc();
     PetscCall(PCSetType(split, PCFIELDSPLIT));
     PetscCall(PCFieldSplitSetIS(split, "0", fields_[0]));
@@ -295,6 +353,13 @@ class PetscAmgSolver final : public AmgSolver {
 
   /// Same pattern: the values only, in PETSc's CSR order (both sorted by column within a row).
   PetscErrorCode refill(const RowMajorMatrix& R) {
+    if (ranks_ > 1) {
+      const int local = last_ - first_;
+      PetscCall(MatUpdateMPIAIJWithArrays(A_, local, local, rows_, rows_, local_ia_.data(), local_ja_.data(),
+                                          R.valuePtr() + R.outerIndexPtr()[first_]));
+      PetscCall(KSPSetOperators(ksp_, A_, A_));
+      return success;
+    }
     PetscScalar* values = nullptr;
     PetscCall(MatSeqAIJGetArray(A_, &values));
     std::copy(R.valuePtr(), R.valuePtr() + nonzeros_, values);
@@ -319,7 +384,7 @@ class PetscAmgSolver final : public AmgSolver {
   PetscErrorCode run(const Eigen::VectorXd& b, Eigen::VectorXd& x, KrylovOutcome& outcome) {
     PetscScalar* p = nullptr;
     PetscCall(VecGetArray(b_, &p));
-    std::copy(b.data(), b.data() + b.size(), p);
+    std::copy(b.data() + first_, b.data() + last_, p);
     PetscCall(VecRestoreArray(b_, &p));
     PetscCall(KSPSolve(ksp_, b_, x_));
     KSPConvergedReason reason;
@@ -331,10 +396,16 @@ class PetscAmgSolver final : public AmgSolver {
     last_iterations_ =
         outcome.converged ? outcome.iterations : amg_max_iterations + 1;  // not converged: rebuild
     if (fresh_iterations_ < 0) fresh_iterations_ = last_iterations_;
+    Vec whole = x_;
+    if (ranks_ > 1) {
+      PetscCall(VecScatterBegin(gather_, x_, all_, INSERT_VALUES, SCATTER_FORWARD));
+      PetscCall(VecScatterEnd(gather_, x_, all_, INSERT_VALUES, SCATTER_FORWARD));
+      whole = all_;
+    }
     const PetscScalar* q = nullptr;
-    PetscCall(VecGetArrayRead(x_, &q));
+    PetscCall(VecGetArrayRead(whole, &q));
     std::copy(q, q + x.size(), x.data());
-    PetscCall(VecRestoreArrayRead(x_, &q));
+    PetscCall(VecRestoreArrayRead(whole, &q));
     return success;
   }
 
@@ -345,6 +416,8 @@ class PetscAmgSolver final : public AmgSolver {
     MatNullSpaceDestroy(&near_null_);
     VecDestroy(&b_);
     VecDestroy(&x_);
+    VecScatterDestroy(&gather_);
+    VecDestroy(&all_);
     MatDestroy(&A_);
     generation_ = rows_ = positions_ = -1;
     finest_sor_ = false;
@@ -355,6 +428,12 @@ class PetscAmgSolver final : public AmgSolver {
   Mat A_ = nullptr;
   KSP ksp_ = nullptr;
   Vec b_ = nullptr, x_ = nullptr;
+  VecScatter gather_ = nullptr;  ///< several ranks: x_ to all_ on every rank
+  Vec all_ = nullptr;
+  int ranks_ = 1;                              ///< MPI ranks, after PETSc's initialisation
+  int first_ = 0, last_ = 0;                   ///< this rank's rows (own_rows)
+  std::vector<PetscInt> local_ia_, local_ja_;  ///< this rank's rows of the pattern, global columns
+  SparseMatrix full_;                          ///< several ranks: the last matrix, for matrix()
   IS fields_[2] = {nullptr, nullptr};
   MatNullSpace near_null_ = nullptr;
   int generation_ = -1, rows_ = -1, positions_ = -1;
@@ -372,4 +451,10 @@ class PetscAmgSolver final : public AmgSolver {
 
 extern "C" stoss::solve::AmgSolver* stoss_make_petsc_amg_solver() {
   return new stoss::solve::PetscAmgSolver();
+}
+
+/// Starts PETSc and MPI and waits for every rank (core/solve/petsc_solver.hpp, synchronize_ranks).
+extern "C" void stoss_synchronize_ranks() {
+  stoss::solve::initialize_petsc();
+  MPI_Barrier(PETSC_COMM_WORLD);
 }

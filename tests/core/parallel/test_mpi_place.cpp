@@ -1,0 +1,58 @@
+// A run's place in an MPI launch (core/parallel/mpi_place.hpp) shall come from Open MPI's variables, else
+// from PMI's, and be {0, 1} when they are absent or make no sense, so that a stray variable never splits a
+// run.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "core/parallel/mpi_place.hpp"
+
+namespace stoss::parallel {
+namespace {
+
+/// Sets the four variables (nullptr: unset) for one test and restores none: each test sets all four.
+void launch_environment(const char* ompi_rank, const char* ompi_size, const char* pmi_rank,
+                        const char* pmi_size) {
+  const auto set = [](const char* name, const char* value) {
+    if (value)
+      setenv(name, value, 1);
+    else
+      unsetenv(name);
+  };
+  set("OMPI_COMM_WORLD_RANK", ompi_rank);
+  set("OMPI_COMM_WORLD_SIZE", ompi_size);
+  set("PMI_RANK", pmi_rank);
+  set("PMI_SIZE", pmi_size);
+}
+
+TEST(MpiPlace, IsRankZeroOfOneWithoutALauncher) {
+  launch_environment(nullptr, nullptr, nullptr, nullptr);
+  const MpiPlace place = mpi_place();
+  EXPECT_EQ(place.rank, 0);
+  EXPECT_EQ(place.size, 1);
+  EXPECT_FALSE(place.several());
+}
+
+TEST(MpiPlace, ReadsOpenMpiFirstThenPmi) {
+  launch_environment("1", "3", "0", "2");
+  EXPECT_EQ(mpi_place().rank, 1);
+  EXPECT_EQ(mpi_place().size, 3);
+  EXPECT_TRUE(mpi_place().several());
+  launch_environment(nullptr, nullptr, "1", "2");
+  EXPECT_EQ(mpi_place().rank, 1);
+  EXPECT_EQ(mpi_place().size, 2);
+  launch_environment(nullptr, nullptr, nullptr, nullptr);
+}
+
+TEST(MpiPlace, IgnoresValuesThatAreNoRankBelowASize) {
+  for (const auto& [rank, size] :
+       {std::pair{"2", "2"}, {"-1", "2"}, {"0", "0"}, {"x", "2"}, {"1", "2x"}, {"", "2"}}) {
+    launch_environment(rank, size, nullptr, nullptr);
+    EXPECT_EQ(mpi_place().size, 1) << rank << " of " << size;
+    EXPECT_EQ(mpi_place().rank, 0) << rank << " of " << size;
+  }
+  launch_environment(nullptr, nullptr, nullptr, nullptr);
+}
+
+}  // namespace
+}  // namespace stoss::parallel

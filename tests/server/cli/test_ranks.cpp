@@ -1,0 +1,181 @@
+// `stoss run` on several MPI ranks (server/cli/ranks.hpp, issue 27 §1 and §3): --ranks N shall be refused
+// with exit 2 outside 1 … cores, start mpiexec without itself, and a run on 2 ranks shall give the answers
+// of 1 rank: on the seed's example through its impact (the ball moved down so that 20 steps are all contact)
+// the energy and momentum series agree within 1e-9 relative and the final positions within 1e-9 of the
+// scene's size, and the energy–momentum bound (1e-10 per step) holds on both; so does a run of 1 rank killed
+// and resumed on 2 (§4).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <csignal>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "core/output/result_reader.hpp"
+#include "server/cli/ranks.hpp"
+#include "tests/server/live_server.hpp"
+
+namespace stoss {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(Ranks, BelowOneOrAboveTheCoresAreRefusedWithTheRule) {
+  EXPECT_EQ(cli::ranks_problem(1, 2), std::nullopt);
+  EXPECT_EQ(cli::ranks_problem(2, 2), std::nullopt);
+  EXPECT_EQ(*cli::ranks_problem(0, 2), "--ranks must be at least 1, got 0");
+  EXPECT_NE(cli::ranks_problem(3, 2)->find("--ranks must be at most the 2 cores of this machine, got 3"),
+            std::string::npos);
+}
+
+TEST(Ranks, MpiexecRunsThisExecutableWithTheArgumentsButRanks) {
+  const std::vector<std::string> args{"scene.json", "--ranks", "2", "-o", "out", "--strict"};
+  EXPECT_EQ(cli::mpiexec_command(args, 2, false, "/bin/stoss"),
+            (std::vector<std::string>{"mpiexec", "-n", "2", "--use-hwthread-cpus", "--bind-to", "none",
+                                      "/bin/stoss", "run", "scene.json", "-o", "out", "--strict"}));
+  const auto as_root = cli::mpiexec_command(args, 2, true, "/bin/stoss");
+  EXPECT_EQ(as_root[3], "--allow-run-as-root");
+}
+
+TEST(Ranks, TheCommandLineRefusesRanksOutsideOneToTheCoresWithExit2) {
+  test::TempDir dir;
+  const std::string scene = std::string(STOSS_SOURCE_DIR) + "/api/examples/tumbling_bar.json";
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  for (const std::string& ranks : std::vector<std::string>{"0", "-1", std::to_string(cores + 1)}) {
+    const test::CommandResult r =
+        test::run_stoss({"run", scene, "-o", (dir.path() / "out").string(), "--ranks", ranks});
+    EXPECT_EQ(r.exit_code, 2) << ranks << ": " << r.err;
+    EXPECT_NE(r.err.find("--ranks must be"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir.path() / "out")) << "nothing started";
+  }
+  const test::CommandResult word = test::run_stoss({"run", scene, "--ranks", "two"});
+  EXPECT_EQ(word.exit_code, 2);
+  EXPECT_NE(word.err.find("--ranks N"), std::string::npos) << "the usage names it: " << word.err;
+}
+
+/// The seed's example (api/examples/hollow_ball_plate.json) with the ball 0.005 above the plate: its 20
+/// steps of 0.01 all have the ball in contact. solver.linear as given.
+std::string seed_in_contact(const test::TempDir& dir, const std::string& linear, int checkpoint_every = 0) {
+  std::ifstream in(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json");
+  nlohmann::json scene = nlohmann::json::parse(in);
+  scene["bodies"][0]["mesh"]["hollow_sphere"]["center"][2] = 1.005;
+  scene["time"]["end"] = 0.2;
+  scene["solver"]["linear"] = linear;
+  if (checkpoint_every > 0) scene["output"]["checkpoint_every"] = checkpoint_every;
+  const fs::path path = dir.path() / ("seed_" + linear + ".json");
+  std::ofstream(path) << scene.dump(1);
+  return path.string();
+}
+
+double relative_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return (a - b).cwiseAbs().maxCoeff() / a.cwiseAbs().maxCoeff();
+}
+
+double largest_energy_step(const output::ResultFile& r) {
+  const Eigen::VectorXd H = r.series("total_energy").col(0);
+  double largest = 0;
+  for (Eigen::Index n = 1; n < H.size(); ++n)
+    largest = std::max(largest, std::abs(H(n) - H(n - 1)) / std::abs(H(0)));
+  return largest;
+}
+
+/// The results of one rank and of two agree as §3 asks, and both keep energy per step.
+void expect_the_same_answers(const fs::path& one, const fs::path& two) {
+  const auto a = output::ResultFile::open(one / "result.h5");
+  const auto b = output::ResultFile::open(two / "result.h5");
+  ASSERT_EQ(a.series("time").rows(), 21);
+  ASSERT_EQ(b.series("time").rows(), 21);
+  EXPECT_GT(b.series("contact_area").col(0).tail(20).minCoeff(), 0) << "every step in contact";
+  for (const std::string name : {"total_energy", "linear_momentum", "angular_momentum"})
+    EXPECT_LT(relative_difference(a.series(name), b.series(name)), 1e-9) << name;
+  const Eigen::MatrixXd x = a.frame_positions(a.frame_count() - 1),
+                        y = b.frame_positions(b.frame_count() - 1);
+  const double size = (x.colwise().maxCoeff() - x.colwise().minCoeff()).maxCoeff();
+  EXPECT_LT((x - y).cwiseAbs().maxCoeff(), 1e-9 * size);
+  EXPECT_LT(largest_energy_step(a), 1e-10);
+  EXPECT_LT(largest_energy_step(b), 1e-10);
+}
+
+/// TMPDIR for the test's runs, which rank 1 makes its private directory in (server/cli/ranks.hpp); empty
+/// again once they ended. Restored by the destructor.
+class PrivateTemp {
+ public:
+  explicit PrivateTemp(const test::TempDir& dir) : path_(dir.path() / "tmp") {
+    fs::create_directories(path_);
+    setenv("TMPDIR", path_.c_str(), 1);
+  }
+  ~PrivateTemp() { unsetenv("TMPDIR"); }
+  /// What rank 1 left behind: nothing.
+  std::vector<std::string> rank_directories_left() const {
+    std::vector<std::string> left;
+    for (const auto& entry : fs::directory_iterator(path_))
+      if (entry.path().filename().string().rfind("stoss-rank-", 0) == 0) left.push_back(entry.path());
+    return left;
+  }
+
+ private:
+  fs::path path_;
+};
+
+TEST(Ranks, TwoRanksGiveTheSeedExampleOfOneRankThroughItsImpact) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: --ranks 2 is refused here";
+  test::TempDir dir;
+  const PrivateTemp temp(dir);
+  const std::string scene = seed_in_contact(dir, "petsc_gamg");
+  const auto one =
+      test::run_stoss({"run", scene, "-o", (dir.path() / "one").string()}, std::chrono::minutes(2));
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const auto two = test::run_stoss({"run", scene, "-o", (dir.path() / "two").string(), "--ranks", "2"},
+                                   std::chrono::minutes(2));
+  ASSERT_EQ(two.exit_code, 0) << two.out << two.err;
+  const std::string printed = two.out + two.err;
+  EXPECT_NE(printed.find("on 2 MPI ranks"), std::string::npos) << "the solver spans both ranks: " << printed;
+  EXPECT_EQ(printed.find("on 2 MPI ranks"), printed.rfind("on 2 MPI ranks")) << "rank 1 prints nothing";
+  EXPECT_EQ(printed.find("verdict: ok"), printed.rfind("verdict: ok")) << "rank 1 prints nothing";
+  expect_the_same_answers(dir.path() / "one", dir.path() / "two");
+  EXPECT_EQ(temp.rank_directories_left(), std::vector<std::string>{})
+      << "rank 1's private directory is removed";
+}
+
+TEST(Ranks, ARunOfOneRankKilledResumesOnTwo) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: --ranks 2 is refused here";
+  test::TempDir dir;
+  const PrivateTemp temp(dir);
+  const std::string scene = seed_in_contact(dir, "petsc_gamg", 2);
+  const auto whole =
+      test::run_stoss({"run", scene, "-o", (dir.path() / "whole").string()}, std::chrono::minutes(2));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const fs::path killed = dir.path() / "killed";
+  const pid_t pid = test::spawn_stoss({"run", scene, "-o", killed.string()}, dir.path() / "killed.log");
+  ASSERT_TRUE(
+      test::eventually([&] { return fs::exists(killed / "checkpoint/state.h5"); }, std::chrono::minutes(1)));
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "killed before its end (20 steps take seconds)";
+  const auto resumed =
+      test::run_stoss({"run", "--resume", killed.string(), "--ranks", "2"}, std::chrono::minutes(2));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.out << resumed.err;
+  const std::string printed = resumed.out + resumed.err;
+  EXPECT_NE(printed.find("resumed from step"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("on 2 MPI ranks"), std::string::npos) << printed;
+  expect_the_same_answers(dir.path() / "whole", killed);
+  EXPECT_EQ(temp.rank_directories_left(), std::vector<std::string>{})
+      << "rank 1's private directory is removed";
+}
+
+TEST(Ranks, ASceneAskingForASolverOfOneRankIsRefusedAtItsPointer) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: --ranks 2 is refused here";
+  test::TempDir dir;
+  const auto r = test::run_stoss(
+      {"run", seed_in_contact(dir, "direct"), "-o", (dir.path() / "out").string(), "--ranks", "2"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(
+      r.err.find("/solver/linear: \"direct\" solves on one rank; on 2 MPI ranks it must be \"petsc_gamg\""),
+      std::string::npos)
+      << r.err;
+}
+
+}  // namespace
+}  // namespace stoss
