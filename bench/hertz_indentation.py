@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Hertz indentation on the three Gmsh meshes, with the smooth and the faceted master surface (issue 23 §6).
 
-Runs api/examples/hertz_indentation.json with its mesh replaced by meshes/hertz_coarse.msh or the medium and fine
-meshes Gmsh makes from meshes/hertz_indentation.geo (h0 = 0.03, 0.02; Debian's gmsh is deterministic here), and its
+Runs api/examples/hertz_indentation.json with its mesh replaced by meshes/hertz_coarse.msh or the medium, fine and
+graded meshes Gmsh makes from meshes/hertz_indentation.geo (h0 = 0.03, 0.02, and 0.02 over a wider uniform zone:
+MESH_PARAMETERS; Debian's gmsh is deterministic here), and its
 pair's master_surface set to each of smooth and faceted, with the `stoss` binary, one run at a time, and prints
 the table of docs/measurements.md, "Hertz indentation": the force F = 4 |contact_force_z| (quarter model)
 against Hertz's F = (4/3) E* sqrt(R) delta^(3/2) (H2) and the contact radius sqrt(4 contact_area / pi) against
@@ -57,9 +58,9 @@ def top_edge(f):
 
 
 # The parameters of hertz_indentation.geo for each mesh; the coarse one ships with the example, the others are made
-# here. "graded" has the fine mesh's h0 over a wider uniform zone (0.35 instead of 0.25, past the largest contact
-# radius 0.14 by more than twice it) and a gentler growth beyond it (1.3 per element instead of 1.5): the fine mesh's
-# error at delta/R = 1.5-2 % no longer falls with h0 because the grading's part of it stays (docs/measurements.md).
+# here. "graded" is the fine mesh (h0 = 0.02) with its uniform zone 0.35 wide and deep instead of 0.25: on the fine
+# mesh the contact radius (0.14 at delta/R = 2 %) nears the zone's end, past which elements grow by 1.5 each, and
+# that part of the error does not fall with h0 (docs/measurements.md, "Hertz indentation").
 MESH_PARAMETERS = {"coarse": {"h0": 0.05}, "medium": {"h0": 0.03}, "fine": {"h0": 0.02},
                    "graded": {"h0": 0.02, "fine": 0.35, "zfine": 0.35}}
 

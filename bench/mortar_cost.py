@@ -13,8 +13,9 @@ Cases (one run at a time):
   hertz          the same, all 8 load steps
 CPU = user + sys of the child (os.wait4), wall = the child's elapsed time; the median of --repeat runs.
 --hertz-meshes also runs the Hertz example with mortar on those meshes (bench/hertz_indentation.py makes the
-medium and fine ones with Gmsh) and prints F against Hertz (H2) at delta/R = 0.5, 1, 1.5, 2 % and the contact
-radius error in element edges, as bench/hertz_indentation.py does.
+medium, fine and graded ones with Gmsh) and prints F against Hertz (H2) at delta/R = 0.5, 1, 1.5, 2 %, the contact
+radius error in element edges, as bench/hertz_indentation.py does, and the peak nodal contact_pressure at 2 %
+against Hertz's p0 = 2 E* a / (pi R).
 """
 import argparse
 import json
@@ -90,8 +91,11 @@ def hertz_rows(scene, out):
         if delta >= 0.005 - 1e-12:
             a_error = max(a_error, abs(a - delta ** 0.5) / h0)
     iterations = int(sum(s["newton_iterations"][1:]))
+    # the largest nodal contact_pressure of the last frame against Hertz's p0 = 2 E* a / (pi R) there (R = 1)
+    last = f["frames"][max((k for k in f["frames"] if k.isdigit()), key=int)]
+    peak = last["contact_pressure"][:].max() / (2 * e_star * depth ** 0.5 / 3.141592653589793) - 1
     return (" | ".join(f"{100 * rows[d]:+.2f} %" for d in (0.5, 1.0, 1.5, 2.0))
-            + f" | {a_error:.2f} | {iterations} | {len(f['mesh/hex8'])} hex8")
+            + f" | {a_error:.2f} | {100 * peak:+.2f} % | {iterations} | {len(f['mesh/hex8'])} hex8")
 
 
 def main():
@@ -115,7 +119,7 @@ def main():
     for mesh in filter(None, args.hertz_meshes.split(",")):
         scene = example("hertz_indentation.json", mesh=hertz.mesh_file(mesh, workdir))
         cpu, wall, out = run(args.stoss, scene, workdir, f"hertz_{mesh}")
-        print(f"hertz {mesh}, mortar: F error 0.5 / 1 / 1.5 / 2 % | a error (h0) | Newton its | size: "
+        print(f"hertz {mesh}, mortar: F error 0.5 / 1 / 1.5 / 2 % | a error (h0) | peak pressure | Newton its | size: "
               f"{hertz_rows(scene, out)}; {cpu:.1f} s CPU, {wall:.1f} s wall")
 
 
