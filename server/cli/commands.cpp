@@ -219,6 +219,7 @@ bool refuses_default_output(const RunOptions& o) {
 /// Simulates (or resumes) into o.out_dir and prints the summary and the verdict; the exit code. On rank k > 0
 /// of an MPI launch, into a private directory (server/cli/ranks.hpp).
 int simulate_into(RunOptions o) {
+  const std::string given_dir = o.out_dir;  // every rank's: rank k > 0 writes elsewhere
   std::optional<RankRun> rank;
   try {
     rank.emplace(parallel::mpi_place(), o.out_dir, o.resume);
@@ -230,9 +231,9 @@ int simulate_into(RunOptions o) {
   std::error_code error;
   try {
     model::Model model;
-    if (o.resume && !fs::exists(run_file(o.out_dir)) &&
-        fs::exists(fs::path(o.out_dir) / output::result_file_name)) {
-      std::printf("result: %s/result.h5 (the run had completed: nothing to resume)\n", o.out_dir.c_str());
+    if (o.resume && !fs::exists(run_file(given_dir)) &&
+        fs::exists(fs::path(given_dir) / output::result_file_name)) {
+      std::printf("result: %s/result.h5 (the run had completed: nothing to resume)\n", given_dir.c_str());
       return success;
     }
     if (o.resume) {
@@ -301,7 +302,9 @@ int run_command(const std::vector<std::string>& args) {
       return invalid_scene;
     }
     if (*options->ranks > 1 && !parallel::mpi_place().several()) {
-      std::cerr << "stoss run: " << launch_ranks(args, *options->ranks) << "\n";
+      const std::string why_not =
+          launch_ranks(args, *options->ranks);  // returns only when mpiexec did not start
+      std::cerr << "stoss run: " << why_not << "\n";
       return solver_failure;
     }
   }

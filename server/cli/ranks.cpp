@@ -54,7 +54,7 @@ std::string launch_ranks(const std::vector<std::string>& run_args, int ranks) {
   std::fflush(stdout);
   execvp(argv[0], argv.data());
   return std::string("cannot start mpiexec: ") + std::strerror(errno) +
-         " (Open MPI comes with petsc-dev, deploy/packages.txt)";
+         " (install openmpi-bin, deploy/packages.txt)";
 }
 
 RankRun::RankRun(parallel::MpiPlace place, std::string& out_dir, bool resume) : place_(place) {

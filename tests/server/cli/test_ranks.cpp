@@ -136,6 +136,11 @@ TEST(Ranks, TwoRanksGiveTheSeedExampleOfOneRankThroughItsImpact) {
   expect_the_same_answers(dir.path() / "one", dir.path() / "two");
   EXPECT_EQ(temp.rank_directories_left(), std::vector<std::string>{})
       << "rank 1's private directory is removed";
+
+  const auto again = test::run_stoss({"run", "--resume", (dir.path() / "two").string(), "--ranks", "2"});
+  EXPECT_EQ(again.exit_code, 0) << "every rank sees the run completed: " << again.err;
+  EXPECT_NE(again.out.find("nothing to resume"), std::string::npos) << again.out;
+  EXPECT_EQ(again.err, "");
 }
 
 TEST(Ranks, ARunOfOneRankKilledResumesOnTwo) {
