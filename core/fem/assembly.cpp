@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/parallel/element_share.hpp"
+
 namespace stoss::fem {
 namespace {
 
@@ -108,14 +110,20 @@ void ElasticityTerm::element_step(const time::StepContext& step, int e, const Ei
 
 void ElasticityTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
                          solve::BlockPattern* K) const {
+  if (parallel::element_share().shared()) return add_shared(step, z, R, K);
+  add_elements(step, z, 0, static_cast<int>(hex8_.size()), R, K);
+}
+
+void ElasticityTerm::add_elements(const time::StepContext& step, const Eigen::VectorXd& z, int first_element,
+                                  int last_element, Eigen::VectorXd& R, solve::BlockPattern* K) const {
   // Threads compute whole elements into the chunk's buffers; this thread sums them in element order, so
   // R and K are the same bits for every thread count.
-  const int n = static_cast<int>(hex8_.size()), chunk = K ? tangent_chunk : force_chunk,
+  const int n = last_element - first_element, chunk = K ? tangent_chunk : force_chunk,
             threads = parallel::worker_threads();
   chunk_force_.resize(std::min(n, chunk));
   if (K) chunk_tangent_.resize(std::min(n, chunk));
-  for (int first = 0; first < n; first += chunk) {
-    const int last = std::min(n, first + chunk);
+  for (int first = first_element; first < last_element; first += chunk) {
+    const int last = std::min(last_element, first + chunk);
     const std::function<void(int)> body = [&](int e) {
       element_step(step, e, z, chunk_force_[e - first], K ? &chunk_tangent_[e - first] : nullptr);
     };
@@ -126,6 +134,25 @@ void ElasticityTerm::add(const time::StepContext& step, const Eigen::VectorXd& z
       if (K) K->scatter(block_[e], step.force_factor * chunk_tangent_[e - first]);
     }
   }
+}
+
+void ElasticityTerm::add_shared(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                                solve::BlockPattern* K) const {
+  const parallel::ElementShare& share = parallel::element_share();
+  const auto [first, last] = share.range(static_cast<int>(hex8_.size()));
+  // The other terms' entries are in K already, alike on every rank: set aside, so that only this term's
+  // shares are summed.
+  double* values = K ? K->matrix().valuePtr() : nullptr;
+  const long slots = K ? static_cast<long>(K->matrix().nonZeros()) : 0;
+  std::vector<double> others(values, values + slots);
+  std::fill(values, values + slots, 0.0);
+  Eigen::VectorXd forces = Eigen::VectorXd::Zero(R.size());
+  add_elements(step, z, first, last, forces, K);
+  share.sum(forces.data(), static_cast<long>(forces.size()));
+  R += forces;
+  if (!K) return;
+  share.sum(values, slots);
+  for (long i = 0; i < slots; ++i) values[i] += others[i];
 }
 
 GravityTerm::GravityTerm(const solve::SparseMatrix& mass, const Eigen::Vector3d& g) {

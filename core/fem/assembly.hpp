@@ -42,6 +42,12 @@ class ElasticityTerm : public time::Term {
   void element_stresses(const Eigen::VectorXd& x, Eigen::VectorXd& cauchy, Eigen::VectorXd& von_mises) const;
 
  private:
+  /// add's forces and tangents of the elements [first, last), into R and K.
+  void add_elements(const time::StepContext& step, const Eigen::VectorXd& z, int first, int last,
+                    Eigen::VectorXd& R, solve::BlockPattern* K) const;
+  /// add on several ranks (parallel::element_share): this rank's elements, then the sum over the ranks.
+  void add_shared(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                  solve::BlockPattern* K) const;
   /// h·f_alg and h·∂f_alg/∂x_1 of element e under the step's force rule.
   void element_step(const time::StepContext& step, int e, const Eigen::VectorXd& x_1, Vector24& f,
                     Matrix24* K) const;

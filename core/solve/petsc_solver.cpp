@@ -13,8 +13,10 @@ namespace {
 /// The symbols core/solve/petsc/petsc_amg_solver.cpp exports.
 using Factory = AmgSolver* (*)();
 using Barrier = void (*)();
+using Sum = void (*)(double*, long);
 constexpr const char* factory_symbol = "stoss_make_petsc_amg_solver";
 constexpr const char* barrier_symbol = "stoss_synchronize_ranks";
+constexpr const char* sum_symbol = "stoss_sum_over_ranks";
 constexpr const char* module_name = "libstoss_petsc.so";
 
 /// Where the module is: beside the running executable (an installed or copied build), else where
@@ -67,6 +69,11 @@ std::unique_ptr<AmgSolver> make_petsc_amg_solver() {
 void synchronize_ranks() {
   static const Barrier barrier = symbol<Barrier>(barrier_symbol);
   barrier();
+}
+
+void sum_over_ranks(double* values, long count) {
+  static const Sum sum = symbol<Sum>(sum_symbol);
+  sum(values, count);
 }
 
 }  // namespace stoss::solve

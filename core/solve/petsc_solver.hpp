@@ -63,4 +63,9 @@ std::unique_ptr<AmgSolver> make_petsc_amg_solver();
 /// make_petsc_amg_solver.
 void synchronize_ranks();
 
+/// Sums `count` doubles over every rank of the launch in place, the same bits on every rank (a reduction to
+/// rank 0 and a broadcast); after synchronize_ranks. The element loops of a run on several ranks sum their
+/// shares with it (core/parallel/element_share.hpp).
+void sum_over_ranks(double* values, long count);
+
 }  // namespace stoss::solve

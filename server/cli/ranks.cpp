@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "core/output/result_writer.hpp"
+#include "core/parallel/element_share.hpp"
 #include "core/parallel/worker_threads.hpp"
 #include "core/solve/petsc_solver.hpp"
 
@@ -87,6 +88,7 @@ void RankRun::prepare(model::Model& m) const {
     parallel::set_worker_threads(std::max(1, cores / place_.size));
   }
   solve::synchronize_ranks();
+  parallel::set_element_share({place_.rank, place_.size, solve::sum_over_ranks});
 }
 
 }  // namespace stoss::cli

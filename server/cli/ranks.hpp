@@ -1,9 +1,10 @@
 #pragma once
 /// @file `stoss run` on several MPI ranks (docs/many_machines.md, "One run on several MPI ranks"): `--ranks
 /// N` starts mpiexec, and each rank of a launch prepares its run. Every rank holds the whole model and
-/// computes every step alike; PETSc's GMRES + GAMG solves each Newton system over the ranks, each rank
-/// passing its own rows (core/solve/petsc/petsc_amg_solver.cpp), and hands every rank the whole solution.
-/// Rank 0 writes the result; the others write into a private directory, removed at the end.
+/// computes every step alike but for the elements, which the ranks share (core/parallel/element_share.hpp);
+/// PETSc's GMRES + GAMG solves each Newton system over the ranks, each rank passing its own rows
+/// (core/solve/petsc/petsc_amg_solver.cpp), and hands every rank the whole solution. Rank 0 writes the
+/// result; the others write into a private directory, removed at the end.
 
 #include <filesystem>
 #include <optional>
@@ -40,7 +41,7 @@ class RankRun {
   bool reports() const { return place_.rank == 0; }
   /// Sets the model for the launch: solver.linear "auto" becomes "petsc_gamg" (the only solver that spans
   /// ranks), and each rank runs cores / ranks element threads unless STOSS_THREADS says otherwise. Then waits
-  /// for every rank (core/solve/petsc_solver.hpp, synchronize_ranks).
+  /// for every rank (core/solve/petsc_solver.hpp, synchronize_ranks) and shares the element loop with them.
   /// @throws std::invalid_argument when the scene asks for a solver that runs on one rank.
   void prepare(model::Model& m) const;
 

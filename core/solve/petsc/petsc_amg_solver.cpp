@@ -458,3 +458,18 @@ extern "C" void stoss_synchronize_ranks() {
   stoss::solve::initialize_petsc();
   MPI_Barrier(PETSC_COMM_WORLD);
 }
+
+/// Sums `count` doubles over every rank in place: reduced to rank 0 and broadcast, so every rank gets the
+/// same bits (core/solve/petsc_solver.hpp, sum_over_ranks).
+extern "C" void stoss_sum_over_ranks(double* values, long count) {
+  const bool root = stoss::solve::world_rank() == 0;
+  for (long done = 0; done < count;) {
+    const int part = static_cast<int>(std::min<long>(count - done, 1L << 30));
+    if (root)
+      MPI_Reduce(MPI_IN_PLACE, values + done, part, MPI_DOUBLE, MPI_SUM, 0, PETSC_COMM_WORLD);
+    else
+      MPI_Reduce(values + done, nullptr, part, MPI_DOUBLE, MPI_SUM, 0, PETSC_COMM_WORLD);
+    MPI_Bcast(values + done, part, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
+    done += part;
+  }
+}
