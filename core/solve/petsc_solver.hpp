@@ -25,7 +25,7 @@ struct KrylovOutcome {
 /// Unknowns: the first `positions.size()` rows are node positions (3 per node, x y z); the rows after
 /// them (contact multipliers and mixed contact unknowns) form a second field. With no such rows the
 /// preconditioner is GAMG on the whole matrix (block size 3). With them it is a Schur-complement
-/// field split (full factorisation): GAMG on the position block, and an LU of the approximate Schur
+/// field split (lower factorisation): GAMG on the position block, and an LU of the approximate Schur
 /// complement S ≈ A₁₁ − A₁₀ diag(A₀₀)⁻¹ A₀₁ for the contact unknowns (PETSc's "selfp").
 class AmgSolver {
  public:
