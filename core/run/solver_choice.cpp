@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "core/parallel/element_share.hpp"
+
 namespace stoss::run {
 
 solve::LinearMethod linear_method(const model::Model& m) {
@@ -11,8 +13,9 @@ solve::LinearMethod linear_method(const model::Model& m) {
       return solve::LinearMethod::iterative;
     case model::LinearSolver::petsc_gamg:
       return solve::LinearMethod::petsc_gamg;
-    case model::LinearSolver::direct:
-      return solve::LinearMethod::direct;
+    case model::LinearSolver::direct:  // UMFPACK is sequential: on several ranks, MUMPS through PETSc
+      return parallel::element_share().shared() ? solve::LinearMethod::petsc_mumps
+                                                : solve::LinearMethod::direct;
     case model::LinearSolver::automatic:
       break;
   }
@@ -28,9 +31,10 @@ int auto_iterative_elements(const model::Model& m) {
 std::string linear_solver_line(const model::Model& m) {
   const solve::LinearMethod method = linear_method(m);
   const std::string name =
-      method == solve::LinearMethod::petsc_gamg  ? "petsc_gamg (PETSc GMRES + GAMG, rigid-body modes)"
-      : method == solve::LinearMethod::iterative ? "iterative (BiCGSTAB, Jacobi preconditioner)"
-                                                 : "direct (UMFPACK LU)";
+      method == solve::LinearMethod::petsc_gamg    ? "petsc_gamg (PETSc GMRES + GAMG, rigid-body modes)"
+      : method == solve::LinearMethod::iterative   ? "iterative (BiCGSTAB, Jacobi preconditioner)"
+      : method == solve::LinearMethod::petsc_mumps ? "direct (MUMPS LU through PETSc, over the ranks)"
+                                                   : "direct (UMFPACK LU)";
   if (m.solver.linear != model::LinearSolver::automatic) return "linear solver: " + name;
   return "linear solver: auto → " + name + ": " + std::to_string(m.mesh.element_count()) +
          " elements, petsc_gamg from " + std::to_string(auto_iterative_elements(m)) +

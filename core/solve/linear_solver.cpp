@@ -170,7 +170,9 @@ struct LinearSolver::Krylov {
 
 /// The PETSc path (petsc_solver.hpp), loaded on first use; an LU of its matrix only when a solve fails.
 struct LinearSolver::Amg {
-  std::unique_ptr<AmgSolver> solver = make_petsc_amg_solver();
+  explicit Amg(LinearMethod method)
+      : solver(method == LinearMethod::petsc_mumps ? make_petsc_lu_solver() : make_petsc_amg_solver()) {}
+  std::unique_ptr<AmgSolver> solver;
   bool lu_ready = false;
 };
 
@@ -182,12 +184,13 @@ LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
 void LinearSolver::set_method(LinearMethod method) {
   if (method == method_) return;
   method_ = method;
+  amg_.reset();  // a PETSc solver of the other kind
   analyzed_generation_ = -1;
   factorized_generation_ = -1;
 }
 
 bool LinearSolver::factorize(const BlockPattern& A) {
-  if (method_ == LinearMethod::petsc_gamg) return factorize_amg(A);
+  if (through_petsc()) return factorize_amg(A);
   const auto t0 = std::chrono::steady_clock::now();
   if (method_ == LinearMethod::iterative) {
     if (!krylov_) krylov_ = std::make_unique<Krylov>();
@@ -227,7 +230,7 @@ std::string LinearSolver::factorization_failure() const {
 
 Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) const {
   ++solves_in_process;
-  if (method_ == LinearMethod::petsc_gamg) return solve_amg(b);
+  if (through_petsc()) return solve_amg(b);
   const auto t0 = std::chrono::steady_clock::now();
   if (method_ == LinearMethod::iterative) {
     // No convergence (an indefinite or badly scaled system, e.g. contact multipliers): this matrix is
@@ -250,7 +253,7 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) const {
 
 bool LinearSolver::factorize_amg(const BlockPattern& A) {
   const auto t0 = std::chrono::steady_clock::now();
-  if (!amg_) amg_ = std::make_unique<Amg>();
+  if (!amg_) amg_ = std::make_unique<Amg>(method_);
   if (amg_tolerance_ > 0) amg_->solver->set_tolerance(amg_tolerance_);
   amg_->lu_ready = false;
   const bool ok = amg_->solver->factorize(A.matrix(), A.generation(), coordinates_);
@@ -275,9 +278,11 @@ Eigen::VectorXd LinearSolver::solve_amg(const Eigen::VectorXd& b) const {
 Eigen::VectorXd LinearSolver::checked_krylov(Eigen::VectorXd x, int iterations, bool converged,
                                              const std::function<SparseMatrix()>& matrix, bool& lu_ready,
                                              const Eigen::VectorXd& b) const {
-  ++krylov_solves_;
-  krylov_iterations_ += iterations;
-  krylov_max_iterations_ = std::max(krylov_max_iterations_, iterations);
+  if (method_ != LinearMethod::petsc_mumps) {  // an LU's one "iteration" is no Krylov statistic
+    ++krylov_solves_;
+    krylov_iterations_ += iterations;
+    krylov_max_iterations_ = std::max(krylov_max_iterations_, iterations);
+  }
   if (converged && x.allFinite()) return x;
   ++krylov_fallbacks_;  // Newton gets a solution of this matrix either way
   if (!lu_ready) {
@@ -299,7 +304,7 @@ void LinearSolver::set_krylov_tolerance(double relative) {
 }
 
 std::string LinearSolver::preconditioner_description() const {
-  return amg_ && method_ == LinearMethod::petsc_gamg ? amg_->solver->description() : std::string();
+  return amg_ && through_petsc() ? amg_->solver->description() : std::string();
 }
 
 }  // namespace stoss::solve

@@ -15,8 +15,9 @@ namespace stoss::solve {
 /// factorised matrix (no AMG: see docs/measurements.md, "Performance"); a solve that does not reach its
 /// tolerance falls back to an LU of the same matrix, so Newton always receives a solution of that matrix.
 /// `petsc_gamg` is GMRES preconditioned by PETSc's algebraic multigrid (GAMG) with the rigid-body
-/// modes as near-null space (core/solve/petsc_solver.hpp), with the same LU fallback.
-enum class LinearMethod { direct, iterative, petsc_gamg };
+/// modes as near-null space (core/solve/petsc_solver.hpp), with the same LU fallback. `petsc_mumps` is
+/// MUMPS's LU through PETSc, the direct solver of a run on several MPI ranks (docs/many_machines.md).
+enum class LinearMethod { direct, iterative, petsc_gamg, petsc_mumps };
 
 /// Solver for general (non-symmetric, indefinite) sparse systems. Direct: LU, the symbolic analysis
 /// redone only when the pattern's generation changes, every factorize() refactorises numerically.
@@ -81,6 +82,9 @@ class LinearSolver {
   struct Krylov;
   struct Amg;
   bool factorize_amg(const BlockPattern& A);
+  bool through_petsc() const {
+    return method_ == LinearMethod::petsc_gamg || method_ == LinearMethod::petsc_mumps;
+  }
   Eigen::VectorXd solve_amg(const Eigen::VectorXd& b) const;
   /// Counts a Krylov solve of A x = b that took `iterations`; when it did not converge (or x is not
   /// finite), solves A directly instead, factorising A (asked of `matrix` only then) once, `lu_ready`,

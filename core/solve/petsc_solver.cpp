@@ -15,6 +15,7 @@ using Factory = AmgSolver* (*)();
 using Barrier = void (*)();
 using Sum = void (*)(double*, long);
 constexpr const char* factory_symbol = "stoss_make_petsc_amg_solver";
+constexpr const char* lu_factory_symbol = "stoss_make_petsc_lu_solver";
 constexpr const char* barrier_symbol = "stoss_synchronize_ranks";
 constexpr const char* sum_symbol = "stoss_sum_over_ranks";
 constexpr const char* module_name = "libstoss_petsc.so";
@@ -63,6 +64,11 @@ Function symbol(const char* name) {
 
 std::unique_ptr<AmgSolver> make_petsc_amg_solver() {
   static const Factory factory = symbol<Factory>(factory_symbol);
+  return std::unique_ptr<AmgSolver>(factory());
+}
+
+std::unique_ptr<AmgSolver> make_petsc_lu_solver() {
+  static const Factory factory = symbol<Factory>(lu_factory_symbol);
   return std::unique_ptr<AmgSolver>(factory());
 }
 

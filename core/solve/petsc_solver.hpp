@@ -57,6 +57,11 @@ constexpr int amg_max_iterations = 200;
 /// Throws std::runtime_error naming the module path and the loader's message if it cannot.
 std::unique_ptr<AmgSolver> make_petsc_amg_solver();
 
+/// The same interface over MUMPS's LU through PETSc (KSPPREONLY + PCLU): every factorize() factorises, every
+/// solve() is exact. The direct solver of a run on several ranks (LinearMethod::petsc_mumps). Throws as
+/// make_petsc_amg_solver.
+std::unique_ptr<AmgSolver> make_petsc_lu_solver();
+
 /// Starts PETSc and MPI (through the module) and returns once every rank of the launch has called it: a run
 /// on several ranks (core/parallel/mpi_place.hpp) calls it before its first step, so that a rank resuming
 /// reads the checkpoint rank 0 reads. One process of its own returns at once. Throws as

@@ -79,10 +79,10 @@ RankRun::~RankRun() {
 void RankRun::prepare(model::Model& m) const {
   if (!place_.several()) return;
   if (m.solver.linear == model::LinearSolver::automatic) m.solver.linear = model::LinearSolver::petsc_gamg;
-  if (m.solver.linear != model::LinearSolver::petsc_gamg)
-    throw std::invalid_argument("/solver/linear: \"" + model::to_string(m.solver.linear) +
-                                "\" solves on one rank; on " + std::to_string(place_.size) +
-                                " MPI ranks it must be \"petsc_gamg\" or \"auto\"");
+  if (m.solver.linear == model::LinearSolver::iterative)
+    throw std::invalid_argument("/solver/linear: \"iterative\" solves on one rank; on " +
+                                std::to_string(place_.size) +
+                                " MPI ranks it must be \"petsc_gamg\", \"direct\" (MUMPS) or \"auto\"");
   if (!std::getenv("STOSS_THREADS")) {
     const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     parallel::set_worker_threads(std::max(1, cores / place_.size));

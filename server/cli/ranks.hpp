@@ -39,9 +39,10 @@ class RankRun {
   RankRun& operator=(const RankRun&) = delete;
   /// Rank 0, or a process of its own: prints and writes the run's result.
   bool reports() const { return place_.rank == 0; }
-  /// Sets the model for the launch: solver.linear "auto" becomes "petsc_gamg" (the only solver that spans
-  /// ranks), and each rank runs cores / ranks element threads unless STOSS_THREADS says otherwise. Then waits
-  /// for every rank (core/solve/petsc_solver.hpp, synchronize_ranks) and shares the element loop with them.
+  /// Sets the model for the launch: solver.linear "auto" becomes "petsc_gamg" ("direct" solves with MUMPS,
+  /// core/run/solver_choice.cpp), and each rank runs cores / ranks element threads unless STOSS_THREADS says
+  /// otherwise. Then waits for every rank (core/solve/petsc_solver.hpp, synchronize_ranks) and shares the
+  /// element loop with them.
   /// @throws std::invalid_argument when the scene asks for a solver that runs on one rank.
   void prepare(model::Model& m) const;
 

@@ -92,7 +92,9 @@ void check(PetscErrorCode code, const char* what) {
 
 class PetscAmgSolver final : public AmgSolver {
  public:
-  PetscAmgSolver() {
+  /// `lu`: MUMPS's LU of the whole matrix (KSPPREONLY + PCLU), the direct solver on several ranks, instead of
+  /// GMRES + GAMG.
+  explicit PetscAmgSolver(bool lu = false) : lu_(lu) {
     initialize_petsc();
     ranks_ = world_size();
     check(set_default_options(), "setting the default options");
@@ -109,7 +111,7 @@ class PetscAmgSolver final : public AmgSolver {
       generation_ = generation;
     } else if (refill(R) != success) {
       return false;
-    } else if (preconditioner_still_good()) {
+    } else if (!lu_ && preconditioner_still_good()) {
       ++reuses_;
       return KSPSetReusePreconditioner(ksp_, PETSC_TRUE) == success;
     }
@@ -147,6 +149,9 @@ class PetscAmgSolver final : public AmgSolver {
   }
 
   std::string description() const override {
+    if (lu_)
+      return "MUMPS LU through PETSc, " + std::to_string(whole_setups_) + " factorisations" +
+             (ranks_ > 1 ? "; on " + std::to_string(ranks_) + " MPI ranks" : "");
     char rtol[16];
     std::snprintf(rtol, sizeof rtol, "%.0e", tolerance_);
     std::string text = std::string("GMRES(100), right-preconditioned, rtol ") + rtol;
@@ -299,6 +304,7 @@ class PetscAmgSolver final : public AmgSolver {
 
     PetscCall(KSPCreate(communicator(), &ksp_));
     PetscCall(KSPSetOptionsPrefix(ksp_, prefix));
+    if (lu_) return direct();
     PetscCall(KSPSetType(ksp_, KSPGMRES));
     PetscCall(KSPGMRESSetRestart(ksp_, 100));
     PetscCall(KSPSetPCSide(ksp_, PC_RIGHT));
@@ -310,6 +316,16 @@ class PetscAmgSolver final : public AmgSolver {
     } else {
       PetscCall(field_split());
     }
+    PetscCall(KSPSetFromOptions(ksp_));
+    return success;
+  }
+
+  /// MUMPS's LU of the whole matrix, which pivots (contact multiplier rows have zero diagonals).
+  PetscErrorCode direct() {
+    PetscCall(KSPSetType(ksp_, KSPPREONLY));
+    PetscCall(KSPSetOperators(ksp_, A_, A_));
+    PetscCall(PCSetType(pc(), PCLU));
+    PetscCall(PCFactorSetMatSolverType(pc(), MATSOLVERMUMPS));
     PetscCall(KSPSetFromOptions(ksp_));
     return success;
   }
@@ -378,6 +394,10 @@ class PetscAmgSolver final : public AmgSolver {
   PetscErrorCode setup() {
     PetscCall(KSPSetReusePreconditioner(ksp_, PETSC_FALSE));
     PetscCall(KSPSetUp(ksp_));
+    if (lu_) {
+      ++whole_setups_;
+      return success;
+    }
     PetscCall(smooth_finest_level_with_sor());
     fresh_iterations_ = -1;  // set by the next solve
     describe_setup();
@@ -447,6 +467,7 @@ class PetscAmgSolver final : public AmgSolver {
   int last_iterations_ = -1;   ///< of the last solve
   std::string whole_, split_;  ///< the last setup of each kind, described
   bool finest_sor_ = false;    ///< SOR smooths GAMG's finest level (smooth_finest_level_with_sor)
+  bool lu_ = false;            ///< MUMPS's LU instead of GMRES + GAMG
 };
 
 }  // namespace
@@ -454,6 +475,10 @@ class PetscAmgSolver final : public AmgSolver {
 
 extern "C" stoss::solve::AmgSolver* stoss_make_petsc_amg_solver() {
   return new stoss::solve::PetscAmgSolver();
+}
+
+extern "C" stoss::solve::AmgSolver* stoss_make_petsc_lu_solver() {
+  return new stoss::solve::PetscAmgSolver(true);
 }
 
 /// Starts PETSc and MPI and waits for every rank (core/solve/petsc_solver.hpp, synchronize_ranks).

@@ -1,6 +1,7 @@
 // `stoss run` on several MPI ranks (server/cli/ranks.hpp, issue 27 §1 and §3): --ranks N shall be refused
 // with exit 2 outside 1 … cores, start mpiexec without itself, and a run on 2 ranks shall give the answers
-// of 1 rank: on the seed's example through its impact (the ball moved down so that 20 steps are all contact)
+// of 1 rank: on the seed's example through its impact (the ball moved down so that 20 steps are all contact),
+// with GMRES + GAMG and with the direct solver (UMFPACK on one rank, MUMPS on two),
 // the energy and momentum series agree within 1e-9 relative and the final positions within 1e-9 of the
 // scene's size, and the energy–momentum bound (1e-10 per step) holds on both; so does a run of 1 rank killed
 // and resumed on 2 (§4).
@@ -170,15 +171,33 @@ TEST(Ranks, ARunOfOneRankKilledResumesOnTwo) {
       << "rank 1's private directory is removed";
 }
 
+TEST(Ranks, TheDirectSolverOnTwoRanksIsMumpsAndGivesTheAnswersOfUmfpack) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: --ranks 2 is refused here";
+  test::TempDir dir;
+  const PrivateTemp temp(dir);
+  const std::string scene = seed_in_contact(dir, "direct");
+  const auto one =
+      test::run_stoss({"run", scene, "-o", (dir.path() / "one").string()}, std::chrono::minutes(2));
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const auto two = test::run_stoss({"run", scene, "-o", (dir.path() / "two").string(), "--ranks", "2"},
+                                   std::chrono::minutes(2));
+  ASSERT_EQ(two.exit_code, 0) << two.out << two.err;
+  const std::string printed = two.out + two.err;
+  EXPECT_NE(printed.find("MUMPS LU through PETSc"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("on 2 MPI ranks"), std::string::npos) << printed;
+  EXPECT_EQ(printed.find("Krylov solves"), std::string::npos) << "an LU is no Krylov method: " << printed;
+  expect_the_same_answers(dir.path() / "one", dir.path() / "two");
+}
+
 TEST(Ranks, ASceneAskingForASolverOfOneRankIsRefusedAtItsPointer) {
   if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: --ranks 2 is refused here";
   test::TempDir dir;
   const auto r = test::run_stoss(
-      {"run", seed_in_contact(dir, "direct"), "-o", (dir.path() / "out").string(), "--ranks", "2"});
+      {"run", seed_in_contact(dir, "iterative"), "-o", (dir.path() / "out").string(), "--ranks", "2"});
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(
-      r.err.find("/solver/linear: \"direct\" solves on one rank; on 2 MPI ranks it must be \"petsc_gamg\""),
-      std::string::npos)
+  EXPECT_NE(r.err.find("/solver/linear: \"iterative\" solves on one rank; on 2 MPI ranks it must be "
+                       "\"petsc_gamg\", \"direct\" (MUMPS) or \"auto\""),
+            std::string::npos)
       << r.err;
 }
 
