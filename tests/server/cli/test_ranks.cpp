@@ -11,6 +11,7 @@
 #include <csignal>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <thread>
 
 #include "core/output/result_reader.hpp"
@@ -119,18 +120,26 @@ class PrivateTemp {
   fs::path path_;
 };
 
+/// `scene` run on 1 rank into dir/one and on 2 into dir/two, both ending with exit 0 (asserted); what the
+/// 2-rank run printed (stdout and stderr), or nothing when a run failed.
+std::optional<std::string> run_on_one_and_two_ranks(const test::TempDir& dir, const std::string& scene) {
+  const auto one =
+      test::run_stoss({"run", scene, "-o", (dir.path() / "one").string()}, std::chrono::minutes(2));
+  EXPECT_EQ(one.exit_code, 0) << one.err;
+  const auto two = test::run_stoss({"run", scene, "-o", (dir.path() / "two").string(), "--ranks", "2"},
+                                   std::chrono::minutes(2));
+  EXPECT_EQ(two.exit_code, 0) << two.out << two.err;
+  if (one.exit_code != 0 || two.exit_code != 0) return std::nullopt;
+  return two.out + two.err;
+}
+
 TEST(Ranks, TwoRanksGiveTheSeedExampleOfOneRankThroughItsImpact) {
   if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: --ranks 2 is refused here";
   test::TempDir dir;
   const PrivateTemp temp(dir);
-  const std::string scene = seed_in_contact(dir, "petsc_gamg");
-  const auto one =
-      test::run_stoss({"run", scene, "-o", (dir.path() / "one").string()}, std::chrono::minutes(2));
-  ASSERT_EQ(one.exit_code, 0) << one.err;
-  const auto two = test::run_stoss({"run", scene, "-o", (dir.path() / "two").string(), "--ranks", "2"},
-                                   std::chrono::minutes(2));
-  ASSERT_EQ(two.exit_code, 0) << two.out << two.err;
-  const std::string printed = two.out + two.err;
+  const auto ran = run_on_one_and_two_ranks(dir, seed_in_contact(dir, "petsc_gamg"));
+  ASSERT_TRUE(ran);
+  const std::string& printed = *ran;
   EXPECT_NE(printed.find("on 2 MPI ranks"), std::string::npos) << "the solver spans both ranks: " << printed;
   EXPECT_EQ(printed.find("on 2 MPI ranks"), printed.rfind("on 2 MPI ranks")) << "rank 1 prints nothing";
   EXPECT_EQ(printed.find("verdict: ok"), printed.rfind("verdict: ok")) << "rank 1 prints nothing";
@@ -175,14 +184,9 @@ TEST(Ranks, TheDirectSolverOnTwoRanksIsMumpsAndGivesTheAnswersOfUmfpack) {
   if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: --ranks 2 is refused here";
   test::TempDir dir;
   const PrivateTemp temp(dir);
-  const std::string scene = seed_in_contact(dir, "direct");
-  const auto one =
-      test::run_stoss({"run", scene, "-o", (dir.path() / "one").string()}, std::chrono::minutes(2));
-  ASSERT_EQ(one.exit_code, 0) << one.err;
-  const auto two = test::run_stoss({"run", scene, "-o", (dir.path() / "two").string(), "--ranks", "2"},
-                                   std::chrono::minutes(2));
-  ASSERT_EQ(two.exit_code, 0) << two.out << two.err;
-  const std::string printed = two.out + two.err;
+  const auto ran = run_on_one_and_two_ranks(dir, seed_in_contact(dir, "direct"));
+  ASSERT_TRUE(ran);
+  const std::string& printed = *ran;
   EXPECT_NE(printed.find("MUMPS LU through PETSc"), std::string::npos) << printed;
   EXPECT_NE(printed.find("on 2 MPI ranks"), std::string::npos) << printed;
   EXPECT_EQ(printed.find("Krylov solves"), std::string::npos) << "an LU is no Krylov method: " << printed;
