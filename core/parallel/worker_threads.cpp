@@ -14,10 +14,14 @@ int threads_from_environment() {
     const int n = std::atoi(text);
     if (n > 0) return n;
   }
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return machine_cores();
 }
 
 }  // namespace
+
+int machine_cores() {
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
 
 int worker_threads() {
   static const int from_environment = threads_from_environment();

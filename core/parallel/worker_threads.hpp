@@ -16,6 +16,8 @@ namespace stoss::parallel {
 /// its workers). Results do not depend on it: each thread computes whole items into buffers and one thread
 /// sums them in item order.
 int worker_threads();
+/// The hardware threads of this machine, at least 1.
+int machine_cores();
 /// Overrides worker_threads() for this process (0: back to STOSS_THREADS or the cores).
 void set_worker_threads(int threads);
 

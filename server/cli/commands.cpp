@@ -8,10 +8,10 @@
 #include <iostream>
 #include <optional>
 #include <sstream>
-#include <thread>
 
 #include "core/output/durable_file.hpp"
 #include "core/output/result_writer.hpp"
+#include "core/parallel/worker_threads.hpp"
 #include "core/scene/scene.hpp"
 #include "core/scene/warnings.hpp"
 #include "core/simulate.hpp"
@@ -296,8 +296,7 @@ int run_command(const std::vector<std::string>& args) {
   const std::optional<RunOptions> options = parse_run_options(args);
   if (!options) return usage(text);
   if (options->ranks) {
-    const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-    if (const auto problem = ranks_problem(*options->ranks, cores)) {
+    if (const auto problem = ranks_problem(*options->ranks, parallel::machine_cores())) {
       std::cerr << "stoss run: " << *problem << "\n";
       return invalid_scene;
     }

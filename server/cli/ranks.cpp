@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <thread>
 
 #include "core/output/result_writer.hpp"
 #include "core/parallel/element_share.hpp"
@@ -84,8 +83,7 @@ void RankRun::prepare(model::Model& m) const {
                                 std::to_string(place_.size) +
                                 " MPI ranks it must be \"petsc_gamg\", \"direct\" (MUMPS) or \"auto\"");
   if (!std::getenv("STOSS_THREADS")) {
-    const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-    parallel::set_worker_threads(std::max(1, cores / place_.size));
+    parallel::set_worker_threads(std::max(1, parallel::machine_cores() / place_.size));
   }
   solve::synchronize_ranks();
   parallel::set_element_share({place_.rank, place_.size, solve::sum_over_ranks});

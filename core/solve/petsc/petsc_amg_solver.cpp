@@ -102,20 +102,10 @@ class PetscAmgSolver final : public AmgSolver {
   ~PetscAmgSolver() override { destroy(); }
 
   bool factorize(const SparseMatrix& A, int generation, const Eigen::VectorXd& positions) override {
-    const RowMajorMatrix R = A;  // PETSc's AIJ is CSR
-    if (ranks_ > 1) full_ = A;   // matrix(): the ranks hold only their rows
-    const int m = positions.size() % 3 == 0 && positions.size() <= R.rows() ? int(positions.size()) : 0;
-    if (generation != generation_ || R.rows() != rows_ || R.nonZeros() != nonzeros_ || m != positions_) {
-      destroy();
-      if (create(R, positions.head(m)) != success) return destroy(), false;
-      generation_ = generation;
-    } else if (refill(R) != success) {
-      return false;
-    } else if (!lu_ && preconditioner_still_good()) {
-      ++reuses_;
-      return KSPSetReusePreconditioner(ksp_, PETSC_TRUE) == success;
-    }
-    return setup() == success;
+    RowMajorMatrix R = A;  // PETSc's AIJ is CSR
+    const bool ok = factorize_rows(R, generation, positions);
+    if (ranks_ > 1) full_ = std::move(R);  // matrix(): PETSc holds only this rank's rows
+    return ok;
   }
 
   void set_tolerance(double relative) override {
@@ -164,6 +154,22 @@ class PetscAmgSolver final : public AmgSolver {
   }
 
  private:
+  /// factorize on R, A in PETSc's row order.
+  bool factorize_rows(const RowMajorMatrix& R, int generation, const Eigen::VectorXd& positions) {
+    const int m = positions.size() % 3 == 0 && positions.size() <= R.rows() ? int(positions.size()) : 0;
+    if (generation != generation_ || R.rows() != rows_ || R.nonZeros() != nonzeros_ || m != positions_) {
+      destroy();
+      if (create(R, positions.head(m)) != success) return destroy(), false;
+      generation_ = generation;
+    } else if (refill(R) != success) {
+      return false;
+    } else if (!lu_ && preconditioner_still_good()) {
+      ++reuses_;
+      return KSPSetReusePreconditioner(ksp_, PETSC_TRUE) == success;
+    }
+    return setup() == success;
+  }
+
   /// Counts a setup and describes it (GAMG levels exist only once set up).
   void describe_setup() {
     const std::string smoother = finest_sor_ ? ", SOR on the finest level" : "";
@@ -456,7 +462,7 @@ class PetscAmgSolver final : public AmgSolver {
   int ranks_ = 1;                              ///< MPI ranks, after PETSc's initialisation
   int first_ = 0, last_ = 0;                   ///< this rank's rows (own_rows)
   std::vector<PetscInt> local_ia_, local_ja_;  ///< this rank's rows of the pattern, global columns
-  SparseMatrix full_;                          ///< several ranks: the last matrix, for matrix()
+  RowMajorMatrix full_;                        ///< several ranks: the last matrix, for matrix()
   IS fields_[2] = {nullptr, nullptr};
   MatNullSpace near_null_ = nullptr;
   int generation_ = -1, rows_ = -1, positions_ = -1;
