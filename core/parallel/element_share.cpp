@@ -23,4 +23,13 @@ void set_element_share(ElementShare share) {
   current() = std::move(share);
 }
 
+double total_over_ranks(double value) {
+  if (current().shared()) current().sum(&value, 1);
+  return value;
+}
+
+bool on_any_rank(bool asked) {
+  return total_over_ranks(asked ? 1.0 : 0.0) > 0;
+}
+
 }  // namespace stoss::parallel

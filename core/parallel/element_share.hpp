@@ -24,7 +24,14 @@ struct ElementShare {
 
 /// The share the element loops of this process use; {0, 1, none} until set.
 const ElementShare& element_share();
-/// Set once the ranks of a launch have met (server/cli/ranks.cpp); {} to compute every element again.
+/// Set once the ranks of a launch have met (core/run/ranks.cpp); {} to compute every element again.
 void set_element_share(ElementShare share);
+
+/// `value` summed over the ranks of the share (`value` itself on a process of its own): the run's peak
+/// memory is that of all its ranks. Every rank must call it at the same point of the run.
+double total_over_ranks(double value);
+/// True on every rank when `asked` is true on any: a cancel that reached one rank first stops every rank at
+/// the same step. Every rank must call it at the same point of the run.
+bool on_any_rank(bool asked);
 
 }  // namespace stoss::parallel

@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 
+#include "core/parallel/element_share.hpp"
 #include "core/run/checkpoint_schedule.hpp"
 #include "core/run/checks.hpp"
 #include "core/run/landings.hpp"
@@ -310,7 +311,7 @@ model::Summary simulate(const model::Model& m, model::Observer& observer, const 
   Run run(m, observer, checkpoints);
   run.begin();
   for (int n = run.first_step(); !run.done(); ++n) {
-    if (cancel && cancel->load()) return run.finish(false);
+    if (parallel::on_any_rank(cancel && cancel->load())) return run.finish(false);
     run.advance(n);
   }
   return run.finish(true);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/model/observer.hpp"
+#include "core/parallel/element_share.hpp"
 #include "core/run/problem.hpp"
 #include "core/time/integrator.hpp"
 
@@ -35,7 +36,7 @@ void add_timing(model::Summary& sum, const time::Integrator& integrator, const P
     (k < problem.first_contact_term() ? sum.assembly_seconds : sum.contact_seconds) +=
         integrator.term_seconds(k);
   sum.output_seconds = output_seconds;
-  sum.peak_memory_bytes = peak_resident_bytes();
+  sum.peak_memory_bytes = parallel::total_over_ranks(peak_resident_bytes());  // every rank's
 }
 
 }  // namespace stoss::run

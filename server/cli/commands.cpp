@@ -11,7 +11,9 @@
 
 #include "core/output/durable_file.hpp"
 #include "core/output/result_writer.hpp"
+#include "core/parallel/mpi_place.hpp"
 #include "core/parallel/worker_threads.hpp"
+#include "core/run/ranks.hpp"
 #include "core/scene/scene.hpp"
 #include "core/scene/warnings.hpp"
 #include "core/simulate.hpp"
@@ -217,10 +219,10 @@ bool refuses_default_output(const RunOptions& o) {
 }
 
 /// Simulates (or resumes) into o.out_dir and prints the summary and the verdict; the exit code. On rank k > 0
-/// of an MPI launch, into a private directory (server/cli/ranks.hpp).
+/// of an MPI launch, into a private directory (core/run/ranks.hpp).
 int simulate_into(RunOptions o) {
   const std::string given_dir = o.out_dir;  // every rank's: rank k > 0 writes elsewhere
-  std::optional<RankRun> rank;
+  std::optional<stoss::run::RankRun> rank;
   try {
     rank.emplace(parallel::mpi_place(), o.out_dir, o.resume);
   } catch (const std::exception& e) {

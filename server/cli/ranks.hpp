@@ -6,13 +6,9 @@
 /// (core/solve/petsc/petsc_amg_solver.cpp), and hands every rank the whole solution. Rank 0 writes the
 /// result; the others write into a private directory, removed at the end.
 
-#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include "core/model/model.hpp"
-#include "core/parallel/mpi_place.hpp"
 
 namespace stoss::cli {
 
@@ -27,28 +23,5 @@ std::vector<std::string> mpiexec_command(const std::vector<std::string>& run_arg
 
 /// Replaces this process by mpiexec_command; returns only when it cannot, with the reason.
 std::string launch_ranks(const std::vector<std::string>& run_args, int ranks);
-
-/// What one rank of a launch changes in its run; nothing for a process of its own.
-class RankRun {
- public:
-  /// `out_dir`: the run's directory; on rank k > 0 it becomes a private one (with a copy of the checkpoint
-  /// of `out_dir` when resuming) and stdout is silenced.
-  RankRun(parallel::MpiPlace place, std::string& out_dir, bool resume);
-  ~RankRun();
-  RankRun(const RankRun&) = delete;
-  RankRun& operator=(const RankRun&) = delete;
-  /// Rank 0, or a process of its own: prints and writes the run's result.
-  bool reports() const { return place_.rank == 0; }
-  /// Sets the model for the launch: solver.linear "auto" becomes "petsc_gamg" ("direct" solves with MUMPS,
-  /// core/run/solver_choice.cpp), and each rank runs cores / ranks element threads unless STOSS_THREADS says
-  /// otherwise. Then waits for every rank (core/solve/petsc_solver.hpp, synchronize_ranks) and shares the
-  /// element loop with them.
-  /// @throws std::invalid_argument when the scene asks for a solver that runs on one rank.
-  void prepare(model::Model& m) const;
-
- private:
-  parallel::MpiPlace place_;
-  std::filesystem::path private_dir_;
-};
 
 }  // namespace stoss::cli

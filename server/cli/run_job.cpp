@@ -14,7 +14,9 @@ std::optional<server::jobs::JobProcessOptions> parse_run_job(const std::vector<s
   std::string data_dir, id_text;
   std::size_t memory = 0;
   long parent = 0;
-  int attempt = 0;
+  int attempt = 0, ranks = 1;
+  std::string launcher;
+  bool launched = false;
   try {
     for (std::size_t i = 0; i < args.size(); ++i) {
       const bool has_value = i + 1 < args.size();
@@ -24,6 +26,12 @@ std::optional<server::jobs::JobProcessOptions> parse_run_job(const std::vector<s
         attempt = std::stoi(args[++i]);
       else if (args[i] == "--parent" && has_value)
         parent = std::stol(args[++i]);
+      else if (args[i] == "--ranks" && has_value)
+        ranks = std::stoi(args[++i]);
+      else if (args[i] == "--launcher" && has_value)
+        launcher = args[++i];
+      else if (args[i] == "--launched")
+        launched = true;
       else if (data_dir.empty())
         data_dir = args[i];
       else if (id_text.empty())
@@ -35,8 +43,8 @@ std::optional<server::jobs::JobProcessOptions> parse_run_job(const std::vector<s
     return std::nullopt;
   }
   const auto id = server::jobs::JobId::parse(id_text);
-  if (data_dir.empty() || !id || attempt < 1) return std::nullopt;
-  return server::jobs::JobProcessOptions{data_dir, *id, attempt, memory, parent};
+  if (data_dir.empty() || !id || attempt < 1 || ranks < 1) return std::nullopt;
+  return server::jobs::JobProcessOptions{data_dir, *id, attempt, memory, parent, ranks, launcher, launched};
 }
 
 }  // namespace
@@ -46,7 +54,8 @@ int run_job_command(const std::vector<std::string>& args) {
   if (!options) {
     std::fprintf(
         stderr,
-        "usage: stoss run-job DATA_DIR JOB_ID --attempt N [--memory BYTES] [--parent PID] (internal)\n");
+        "usage: stoss run-job DATA_DIR JOB_ID --attempt N [--memory BYTES] [--parent PID] [--ranks N "
+        "--launcher TEMPLATE | --launched] (internal)\n");
     return 2;
   }
   return server::jobs::run_job_process(*options);

@@ -58,7 +58,8 @@ Outcome InProcessExecutor::adopt_or_run(const Job& job, const AttemptFiles& file
         << std::flush;
     return *earlier;
   }
-  const model::Model model = scene::load_resolved(job.scene, files_.mesh_files());  // validated at POST
+  model::Model model = scene::load_resolved(job.scene, files_.mesh_files());  // validated at POST
+  if (prepare_model_) prepare_model_(model);
   if (job.kind == Kind::study)
     return run_study_job(job, model, {files, clock_, progress_interval_, log, cancel, progress});
   return simulate_job(job, files, model, log, cancel, progress);

@@ -6,6 +6,7 @@
 /// outcome is adopted instead of running again.
 
 #include <fstream>
+#include <functional>
 
 #include "core/model/model.hpp"
 #include "server/jobs/clock.hpp"
@@ -22,17 +23,24 @@ class InProcessExecutor : public Executor {
 
   Outcome run(const Job& job, const std::atomic<bool>& cancel, const ProgressSink& progress) override;
 
+  /// Called with the model once the attempt is set to run it (not when it adopts an earlier run or cannot
+  /// load the scene): rank 0 of a launch prepares it for the ranks (job_process.cpp).
+  void on_model(std::function<void(model::Model&)> prepare) { prepare_model_ = std::move(prepare); }
+
+  /// One simulation of the scene into `files` (result.h5 and result.xdmf, the checkpoint resumed from): what
+  /// run does once the model is loaded, and what rank k > 0 of a launch does in its private folder.
+  Outcome simulate_job(const Job& job, const AttemptFiles& files, const model::Model& model,
+                       std::ofstream& log, const std::atomic<bool>& cancel, const ProgressSink& progress);
+
  private:
   /// An earlier attempt's completed run (result_attempt set), else a run of this attempt.
   Outcome adopt_or_run(const Job& job, const AttemptFiles& files, std::ofstream& log,
                        const std::atomic<bool>& cancel, const ProgressSink& progress);
-  /// One simulation of the scene, its result written to result.h5 and result.xdmf.
-  Outcome simulate_job(const Job& job, const AttemptFiles& files, const model::Model& model,
-                       std::ofstream& log, const std::atomic<bool>& cancel, const ProgressSink& progress);
 
   JobFiles files_;
   const Clock& clock_;
   Millis progress_interval_;
+  std::function<void(model::Model&)> prepare_model_;
 };
 
 }  // namespace stoss::server::jobs

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -17,6 +18,8 @@
 
 #include "core/output/durable_file.hpp"
 #include "server/jobs/reporting/series_recorder.hpp"
+#include "server/jobs/running/job_process.hpp"
+#include "server/jobs/running/launcher.hpp"
 
 extern char** environ;
 
@@ -92,6 +95,23 @@ class ProgressRelay {
   std::string pending_;
 };
 
+/// The first paragraph of the launcher's messages (Open MPI frames its own in dashes), on one line.
+std::string launcher_message(const std::filesystem::path& log) {
+  std::ifstream in(log);
+  std::string message, line;
+  while (std::getline(in, line)) {
+    const bool frame = line.find_first_not_of("- \t") == std::string::npos;
+    if (frame && !message.empty() && line.find('-') == std::string::npos) break;  // a blank line ends it
+    if (frame || line.rfind("mpiexec: Forwarding signal", 0) == 0) continue;
+    if (!message.empty()) message += ' ';
+    message += line.substr(line.find_first_not_of(" \t"));
+  }
+  constexpr std::size_t longest = 400;
+  if (message.size() > longest) message = message.substr(0, longest) + " …";
+  if (message.empty()) return "no message (" + log.filename().string() + " is empty)";
+  return message + " (" + log.filename().string() + ")";
+}
+
 }  // namespace
 
 std::string signal_reason(int signal) {
@@ -116,6 +136,14 @@ Millis ProcessExecutor::wall_limit(const Job& job, Millis server_limit) {
     }
   }
   return limit;
+}
+
+int ProcessExecutor::ranks(const Job& job) {
+  if (job.kind != Kind::simulation || !job.scene.is_object()) return 1;
+  const auto solver = job.scene.find("solver");
+  if (solver == job.scene.end() || !solver->is_object()) return 1;
+  const auto ranks = solver->find("ranks");
+  return ranks != solver->end() && ranks->is_number_integer() ? std::max(1, ranks->get<int>()) : 1;
 }
 
 Outcome ProcessExecutor::failed(const Job& job, const std::string& reason) const {
@@ -160,19 +188,25 @@ Outcome ProcessExecutor::supervise(const Job& job, const std::atomic<bool>& canc
   } catch (...) {
   }
   const Millis wall = wall_limit(job, limits_.wall);
-  const Watched watched = watch(pid, read_end, wall, cancel, progress);
+  const bool launched = ranks(job) > 1;
+  const Watched watched = watch(pid, read_end, wall, launched ? SIGUSR1 : SIGTERM, cancel, progress);
   ::close(read_end);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   std::filesystem::remove(dir / job_pid_file, ignored);
-  return ended(job, dir, watched, status, wall);
+  return launched ? launch_ended(job, dir, watched, status, wall) : ended(job, dir, watched, status, wall);
 }
 
 pid_t ProcessExecutor::spawn(const Job& job, int write_end) const {
   std::vector<std::string> args = {binary_.string(), "run-job", data_dir_.string(), job.id.str()};
   args.insert(args.end(), {"--attempt", std::to_string(job.attempt), "--parent", std::to_string(getpid())});
   if (limits_.memory > 0) args.insert(args.end(), {"--memory", std::to_string(limits_.memory)});
+  if (const int n = ranks(job); n > 1) {
+    const std::string launcher =
+        limits_.launcher.empty() ? default_launcher(geteuid() == 0) : limits_.launcher;
+    args.insert(args.end(), {"--ranks", std::to_string(n), "--launcher", launcher});
+  }
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -195,7 +229,7 @@ pid_t ProcessExecutor::spawn(const Job& job, int write_end) const {
   return pid;
 }
 
-ProcessExecutor::Watched ProcessExecutor::watch(pid_t pid, int read_end, Millis wall,
+ProcessExecutor::Watched ProcessExecutor::watch(pid_t pid, int read_end, Millis wall, int cancel_signal,
                                                 const std::atomic<bool>& cancel,
                                                 const ProgressSink& progress) const {
   const auto started = Steady::now();
@@ -216,7 +250,7 @@ ProcessExecutor::Watched ProcessExecutor::watch(pid_t pid, int read_end, Millis 
     }
     const auto now = Steady::now();
     if (cancel.load() && !watched.terminated) {
-      ::kill(pid, SIGTERM);
+      ::kill(pid, cancel_signal);
       watched.terminated = true;
       terminated_at = now;
     }
@@ -250,6 +284,21 @@ Outcome ProcessExecutor::ended(const Job& job, const std::filesystem::path& dir,
   } catch (const std::exception& e) {
     return failed(job, std::string("the job process left no outcome: ") + e.what());
   }
+}
+
+Outcome ProcessExecutor::launch_ended(const Job& job, const std::filesystem::path& dir,
+                                      const Watched& watched, int status, Millis wall) const {
+  if (!watched.over_time) {
+    try {
+      return outcome_from_json(nlohmann::json::parse(read_text(dir / outcome_file_name)));
+    } catch (const std::exception&) {  // none: the launch ended before rank 0 could write one
+    }
+  }
+  if (watched.over_time || watched.killed || (WIFEXITED(status) && WEXITSTATUS(status) == 0))
+    return ended(job, dir, watched, status, wall);
+  const std::string how = WIFSIGNALED(status) ? signal_reason(WTERMSIG(status))
+                                              : "exited with status " + std::to_string(WEXITSTATUS(status));
+  return failed(job, "the launcher " + how + ": " + launcher_message(dir / launcher_log_file));
 }
 
 }  // namespace stoss::server::jobs
