@@ -17,6 +17,7 @@
 #include "core/output/result_reader.hpp"
 #include "server/cli/ranks.hpp"
 #include "tests/server/live_server.hpp"
+#include "tests/server/rank_answers.hpp"
 
 namespace stoss {
 namespace {
@@ -56,69 +57,9 @@ TEST(Ranks, TheCommandLineRefusesRanksOutsideOneToTheCoresWithExit2) {
   EXPECT_NE(word.err.find("--ranks N"), std::string::npos) << "the usage names it: " << word.err;
 }
 
-/// The seed's example (api/examples/hollow_ball_plate.json) with the ball 0.005 above the plate: its 20
-/// steps of 0.01 all have the ball in contact. solver.linear as given.
-std::string seed_in_contact(const test::TempDir& dir, const std::string& linear, int checkpoint_every = 0) {
-  std::ifstream in(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json");
-  nlohmann::json scene = nlohmann::json::parse(in);
-  scene["bodies"][0]["mesh"]["hollow_sphere"]["center"][2] = 1.005;
-  scene["time"]["end"] = 0.2;
-  scene["solver"]["linear"] = linear;
-  if (checkpoint_every > 0) scene["output"]["checkpoint_every"] = checkpoint_every;
-  const fs::path path = dir.path() / ("seed_" + linear + ".json");
-  std::ofstream(path) << scene.dump(1);
-  return path.string();
-}
-
-double relative_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
-  return (a - b).cwiseAbs().maxCoeff() / a.cwiseAbs().maxCoeff();
-}
-
-double largest_energy_step(const output::ResultFile& r) {
-  const Eigen::VectorXd H = r.series("total_energy").col(0);
-  double largest = 0;
-  for (Eigen::Index n = 1; n < H.size(); ++n)
-    largest = std::max(largest, std::abs(H(n) - H(n - 1)) / std::abs(H(0)));
-  return largest;
-}
-
-/// The results of one rank and of two agree as §3 asks, and both keep energy per step.
-void expect_the_same_answers(const fs::path& one, const fs::path& two) {
-  const auto a = output::ResultFile::open(one / "result.h5");
-  const auto b = output::ResultFile::open(two / "result.h5");
-  ASSERT_EQ(a.series("time").rows(), 21);
-  ASSERT_EQ(b.series("time").rows(), 21);
-  EXPECT_GT(b.series("contact_area").col(0).tail(20).minCoeff(), 0) << "every step in contact";
-  for (const std::string name : {"total_energy", "linear_momentum", "angular_momentum"})
-    EXPECT_LT(relative_difference(a.series(name), b.series(name)), 1e-9) << name;
-  const Eigen::MatrixXd x = a.frame_positions(a.frame_count() - 1),
-                        y = b.frame_positions(b.frame_count() - 1);
-  const double size = (x.colwise().maxCoeff() - x.colwise().minCoeff()).maxCoeff();
-  EXPECT_LT((x - y).cwiseAbs().maxCoeff(), 1e-9 * size);
-  EXPECT_LT(largest_energy_step(a), 1e-10);
-  EXPECT_LT(largest_energy_step(b), 1e-10);
-}
-
-/// TMPDIR for the test's runs, which rank 1 makes its private directory in (server/cli/ranks.hpp); empty
-/// again once they ended. Restored by the destructor.
-class PrivateTemp {
- public:
-  explicit PrivateTemp(const test::TempDir& dir) : path_(dir.path() / "tmp") {
-    fs::create_directories(path_);
-    setenv("TMPDIR", path_.c_str(), 1);
-  }
-  ~PrivateTemp() { unsetenv("TMPDIR"); }
-  /// What rank 1 left behind: nothing.
-  std::vector<std::string> rank_directories_left() const {
-    std::vector<std::string> left;
-    for (const auto& entry : fs::directory_iterator(path_))
-      if (entry.path().filename().string().rfind("stoss-rank-", 0) == 0) left.push_back(entry.path());
-    return left;
-  }
-
- private:
-  fs::path path_;
-};
+using test::expect_the_same_answers;
+using test::PrivateTemp;
+using test::seed_in_contact;
 
 /// `scene` run on 1 rank into dir/one and on 2 into dir/two, both ending with exit 0 (asserted); what the
 /// 2-rank run printed (stdout and stderr), or nothing when a run failed.

@@ -1,0 +1,142 @@
+// Jobs on several MPI ranks through the service (issue 27 §5, docs/many_machines.md "Jobs on several
+// ranks"): a scene's solver.ranks runs under the launcher on a worker that may run it, with the answers of
+// one rank and the memory of every rank; cancel, the wall-time limit and kill -9 of the server leave no rank
+// running; a launch that cannot start fails the job with the launcher's message.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <thread>
+
+#include "tests/server/live_server.hpp"
+#include "tests/server/rank_answers.hpp"
+
+namespace stoss::test {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+std::string id_of(const httplib::Result& r) {
+  return body_json(r)["id"].get<std::string>();
+}
+
+/// The processes whose command line names `job_id`: the launcher and the ranks of that job.
+int processes_of(const std::string& job_id) {
+  int found = 0;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    std::ifstream in(entry.path() / "cmdline", std::ios::binary);
+    const std::string command(std::istreambuf_iterator<char>(in), {});
+    if (command.find(job_id) != std::string::npos) ++found;
+  }
+  return found;
+}
+
+/// The server flags of a service that runs jobs of up to 2 ranks.
+std::vector<std::string> two_rank_service(std::vector<std::string> more = {}) {
+  std::vector<std::string> flags{"--workers", "1", "--max-ranks-per-job", "2", "--ranks-per-job", "2"};
+  flags.insert(flags.end(), more.begin(), more.end());
+  return flags;
+}
+
+/// box_scene for minutes on 2 ranks.
+nlohmann::json long_two_rank_scene() {
+  nlohmann::json scene = box_scene(6, 100'000, {1, 0, 0}, 2.0);
+  scene["solver"]["ranks"] = 2;
+  return scene;
+}
+
+bool skip_on_one_core() {
+  return std::thread::hardware_concurrency() < 2;
+}
+
+TEST(JobRanks, ATwoRankJobGivesTheAnswersOfOneRankAndCountsTheMemoryOfBoth) {
+  if (skip_on_one_core()) GTEST_SKIP() << "one core: mpiexec has one slot";
+  TempDir dir;
+  const PrivateTemp temp(dir);
+  const fs::path data = dir.path() / "data";
+  LiveServer server(data, two_rank_service());
+  auto c = server.client();
+  nlohmann::json scene = seed_in_contact_scene("petsc_gamg");
+  const std::string one = id_of(submit(c, scene));
+  scene["solver"]["ranks"] = 2;
+  const std::string two = id_of(submit(c, scene));
+  const auto a = wait_for_status(c, one, {"succeeded", "failed", "canceled"}, 180s);
+  const auto b = wait_for_status(c, two, {"succeeded", "failed", "canceled"}, 180s);
+  ASSERT_EQ(a["status"], "succeeded") << a.dump();
+  ASSERT_EQ(b["status"], "succeeded") << b.dump() << c.Get("/v1/jobs/" + two + "/log")->body;
+  EXPECT_EQ(b["ranks"], 2);
+  EXPECT_EQ(b["progress"]["step"], 20) << "rank 0's progress reached the server through the launcher";
+  EXPECT_NE(c.Get("/v1/jobs/" + two + "/log")->body.find("on 2 MPI ranks"), std::string::npos);
+  expect_the_same_answers(data / "jobs" / one / "attempt-1", data / "jobs" / two / "attempt-1");
+  // Each rank holds the whole model: the two together use well over what one does.
+  EXPECT_GT(b["summary"]["peak_memory_mb"].get<double>(), 1.5 * a["summary"]["peak_memory_mb"].get<double>());
+  EXPECT_EQ(temp.rank_directories_left(), std::vector<std::string>{}) << "rank 1's private folder is removed";
+}
+
+TEST(JobRanks, AWorkerClaimsOnlyJobsOfAtMostItsRanks) {
+  TempDir dir;
+  LiveServer server(dir.path() / "data", {"--workers", "1", "--max-ranks-per-job", "2"});  // 1 rank per job
+  auto c = server.client();
+  nlohmann::json scene = box_scene(2, 10);
+  scene["solver"]["ranks"] = 2;
+  const std::string waiting = id_of(submit(c, scene));
+  const std::string after = id_of(submit(c, box_scene(2, 10)));
+  EXPECT_EQ(wait_for_status(c, after, {"succeeded", "failed"}, 60s)["status"], "succeeded");
+  EXPECT_EQ(job(c, waiting)["status"], "queued") << "no worker here runs 2 ranks";
+}
+
+TEST(JobRanks, ACanceledTwoRankJobStopsEveryRankAtOneStep) {
+  if (skip_on_one_core()) GTEST_SKIP() << "one core: mpiexec has one slot";
+  TempDir dir;
+  const PrivateTemp temp(dir);
+  LiveServer server(dir.path() / "data", two_rank_service());
+  auto c = server.client();
+  const std::string id = id_of(submit(c, long_two_rank_scene()));
+  ASSERT_TRUE(eventually([&] { return job(c, id)["progress"]["step"].get<int>() >= 2; }, 120s));
+  EXPECT_EQ(processes_of(id), 3) << "the launcher and two ranks";
+  ASSERT_EQ(c.Post("/v1/jobs/" + id + "/cancel")->status, 202);
+  const auto canceled = wait_for_status(c, id, {"canceled", "failed", "succeeded"}, 60s);
+  EXPECT_EQ(canceled["status"], "canceled") << canceled.dump();
+  EXPECT_GE(canceled["summary"]["steps"].get<int>(), 2) << canceled.dump();
+  EXPECT_NE(c.Get("/v1/jobs/" + id + "/log")->body.find("canceled at step"), std::string::npos);
+  EXPECT_TRUE(eventually([&] { return processes_of(id) == 0; }, 10s)) << "no rank is left running";
+  EXPECT_EQ(temp.rank_directories_left(), std::vector<std::string>{});
+}
+
+TEST(JobRanks, TheWallTimeLimitAndKillNineOfTheServerLeaveNoRankRunning) {
+  if (skip_on_one_core()) GTEST_SKIP() << "one core: mpiexec has one slot";
+  TempDir dir;
+  LiveServer server(dir.path() / "data", two_rank_service({"--job-timeout", "6"}));
+  auto c = server.client();
+  const std::string timed = id_of(submit(c, long_two_rank_scene()));
+  const auto failed = wait_for_status(c, timed, {"canceled", "failed", "succeeded"}, 60s);
+  EXPECT_EQ(failed["error"], "exceeded wall-time limit 6 s") << failed.dump();
+  EXPECT_TRUE(eventually([&] { return processes_of(timed) == 0; }, 10s)) << "no rank is left running";
+
+  const std::string orphaned = id_of(submit(c, long_two_rank_scene()));
+  ASSERT_TRUE(eventually([&] { return job(c, orphaned)["progress"]["step"].get<int>() >= 1; }, 60s));
+  ASSERT_EQ(processes_of(orphaned), 3);
+  server.kill9();
+  EXPECT_TRUE(eventually([&] { return processes_of(orphaned) == 0; }, 10s))
+      << "the launcher dies with the server, the ranks with the launcher";
+}
+
+TEST(JobRanks, ALaunchThatCannotStartFailsTheJobWithTheLaunchersMessage) {
+  TempDir dir;
+  LiveServer server(dir.path() / "data",
+                    two_rank_service({"--launcher", "mpiexec -n {ranks} --no-such-option …"}));
+  auto c = server.client();
+  nlohmann::json scene = box_scene(2, 10);
+  scene["solver"]["ranks"] = 2;
+  const std::string id = id_of(submit(c, scene));
+  const auto failed = wait_for_status(c, id, {"canceled", "failed", "succeeded"}, 60s);
+  EXPECT_EQ(failed["status"], "failed");
+  EXPECT_EQ(failed["error"].get<std::string>().rfind("the launcher exited with status 1: ", 0), 0)
+      << failed.dump();
+  EXPECT_NE(failed["error"].get<std::string>().find("unknown option \"--no-such-option\""), std::string::npos)
+      << failed.dump();
+  EXPECT_EQ(processes_of(id), 0);
+}
+
+}  // namespace
+}  // namespace stoss::test

@@ -1,0 +1,37 @@
+#pragma once
+/// @file Test support for runs on several MPI ranks (issue 27 §3): the seed's example in contact, the
+/// comparison of a run of one rank with a run of two, and a TMPDIR whose rank folders can be counted.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tests/server/live_server.hpp"
+
+namespace stoss::test {
+
+/// The seed's example (api/examples/hollow_ball_plate.json) with the ball 0.005 above the plate: its 20
+/// steps of 0.01 all have the ball in contact. solver.linear as given.
+nlohmann::json seed_in_contact_scene(const std::string& linear, int checkpoint_every = 0);
+/// seed_in_contact_scene written to dir/seed_<linear>.json; its path.
+std::string seed_in_contact(const TempDir& dir, const std::string& linear, int checkpoint_every = 0);
+
+/// The results in `one` and `two` (folders of result.h5) agree as §3 asks: energy and momentum series within
+/// 1e-9 relative, final positions within 1e-9 of the scene's size; both keep energy per step within 1e-10;
+/// 20 steps, every one in contact.
+void expect_the_same_answers(const std::filesystem::path& one, const std::filesystem::path& two);
+
+/// TMPDIR for the test's runs, which rank k > 0 makes its private directory in (core/run/ranks.hpp); empty
+/// again once they ended. Restored by the destructor.
+class PrivateTemp {
+ public:
+  explicit PrivateTemp(const TempDir& dir);
+  ~PrivateTemp();
+  /// What ranks left behind: nothing.
+  std::vector<std::string> rank_directories_left() const;
+
+ private:
+  std::filesystem::path path_;
+};
+
+}  // namespace stoss::test
