@@ -167,7 +167,7 @@ TEST(PgNotify, QueuedJobsAndCancelsPostedThroughAnotherConnectionReachTheSubscri
       if (heard.wait_for(lock, std::chrono::milliseconds(200), [&] { return wakes > 0; })) break;
     }
     EXPECT_GT(wakes, 0) << "NOTIFY stoss_jobs reached the LISTEN connection";
-    const auto running = worker.claim("w", 10'000);
+    const auto running = worker.claim("w", 10'000, 1);
     ASSERT_TRUE(running);
     EXPECT_EQ(api.request_cancel(running->id).outcome, server::jobs::CancelResult::Outcome::requested);
     std::unique_lock lock(mutex);
