@@ -166,6 +166,7 @@ struct SolverSpec {
   double tolerance = 1e-10;  ///< relative residual and increment tolerance of Newton
   int max_iterations = 25;
   LinearSolver linear = LinearSolver::automatic;  ///< solver.linear
+  int ranks = 1;  ///< solver.ranks: the MPI ranks the run asks for (1 when the scene does not say)
   /// auto picks petsc_gamg from this many elements on in a scene without contact: the tumbling sphere's
   /// crossover, measured on a quiet machine between 3,456 (UMFPACK 1.3× faster) and 5,880 elements (GAMG
   /// 1.3× faster) (docs/measurements.md, "Growth with size").

@@ -171,6 +171,7 @@ model::Model build_model(const json& scene, const MeshFiles& mesh_files) {
     pair.closes_touching = m.time.scheme == model::Scheme::equilibrium;
   m.solver = {scene["solver"]["tolerance"].get<double>(), scene["solver"]["max_iterations"].get<int>(),
               model::linear_solver_from_string(scene["solver"]["linear"].get<std::string>()).value()};
+  m.solver.ranks = scene["solver"].value("ranks", 1);
   const json& output = scene["output"];
   m.output.every = output.value("every", 1);
   if (output.contains("interval")) m.output.interval = output["interval"].get<double>();

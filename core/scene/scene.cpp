@@ -89,6 +89,7 @@ Summary summarize(const model::Model& model) {
   s.nodes = model.mesh.node_count();
   s.elements = model.mesh.element_count();
   s.dofs = model.dof_count();
+  s.ranks = model.solver.ranks;
   const model::TimeSpec& t = model.time;
   s.steps = static_cast<int>(std::min<long long>(
       model::step_bound(t.end, t.step, t.adaptive() ? std::optional(t.min_step) : std::nullopt,

@@ -21,6 +21,9 @@ namespace stoss::scene {
 /// (a guard against runaway allocations; the server's own, configurable limits are lower).
 inline constexpr long long max_generated_nodes = 10'000'000;
 
+/// Most MPI ranks a scene may ask for (solver.ranks), and the bound of the service's rank flags.
+inline constexpr int max_ranks = 4096;
+
 /// One problem with a scene: where (RFC 6901 JSON pointer, "" = the whole document) and which rule
 /// it breaks, with the offending value, e.g. {"/bodies/1/material/poisson_ratio",
 /// "must be in (-1, 0.5), got 0.5"}.
@@ -96,6 +99,7 @@ struct Summary {
   int dofs = 0;
   int steps = 0;   ///< the time steps; with time.tolerance at most end/min_step (model::step_bound)
   int frames = 0;  ///< frames written: step 0, every output.every-th step (or each output.interval), the last
+  int ranks = 1;   ///< solver.ranks: the MPI ranks the run asks for
   std::vector<Warning> warnings;        ///< scene::warnings (warnings.hpp)
   std::vector<ResolvedChoice> choices;  ///< scene::resolved_choices
   Estimates estimates;                  ///< scales and the run-time estimate (estimates.hpp)

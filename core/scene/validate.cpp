@@ -505,7 +505,7 @@ void check_static_bodies(const json& scene, Checker& c) {
 }
 
 void check_solver(json& s, const std::string& p, Checker& c) {
-  if (!object_with(s, p, {"tolerance", "max_iterations", "max_wall_seconds", "linear"}, c)) return;
+  if (!object_with(s, p, {"tolerance", "max_iterations", "max_wall_seconds", "linear", "ranks"}, c)) return;
   std::vector<std::string> names;
   for (model::LinearSolver l : model::all_linear_solvers) names.push_back(model::to_string(l));
   choice_field(s, "linear", p, Presence::or_default("auto"), {names.begin(), names.end()}, c);
@@ -513,6 +513,8 @@ void check_solver(json& s, const std::string& p, Checker& c) {
   integer_field(s, "max_iterations", p, Presence::or_default(25), between(1, 200, true, true), c);
   // Read by the job service only (a job's wall-time limit); the core ignores it.
   number_field(s, "max_wall_seconds", p, Presence::may(), between(0, 1e7, false, true, "0, 1e7"), c);
+  // Absent means one rank, and is not filled in: the resolved scene of a one-rank run stays as it was.
+  integer_field(s, "ranks", p, Presence::may(), between(1, max_ranks, true, true), c);
 }
 
 void check_output(json& o, const std::string& p, Checker& c) {

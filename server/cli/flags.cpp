@@ -3,6 +3,8 @@
 #include <cmath>
 #include <iostream>
 
+#include "core/scene/scene.hpp"
+
 namespace stoss::cli {
 
 namespace jobs = server::jobs;
@@ -53,6 +55,10 @@ const FlagTable<RunnerFlags>& runner_flags() {
       {"--workers", [](auto& f, auto& v, auto& o) { o.pool.workers = int(parse_integer(f, v, 0, 256)); }},
       {"--lease-seconds", [](auto& f, auto& v, auto& o) { o.pool.lease = parse_seconds(f, v); }},
       {"--renew-seconds", [](auto& f, auto& v, auto& o) { o.pool.renew_every = parse_seconds(f, v); }},
+      {"--ranks-per-job",
+       [](auto& f, auto& v, auto& o) {
+         o.pool.ranks_per_job = int(parse_integer(f, v, 1, scene::max_ranks));
+       }},
       {"--max-attempts",
        [](auto& f, auto& v, auto& o) { o.max_attempts = int(parse_integer(f, v, 1, 100)); }},
       {"--job-timeout",
@@ -81,6 +87,8 @@ const char* runner_flags_usage() {
   --lease-seconds S      a running job's lease; a job whose worker died reruns after it (default 10)
   --renew-seconds S      lease renewal interval (default 2)
   --max-attempts N       runs a job may start before an expired lease fails it (default 3)
+  --ranks-per-job N      MPI ranks one job may use here: only jobs whose scene's solver.ranks is at most
+                         N are claimed, bigger ones wait for a worker started with more (default 1)
 )";
 }
 

@@ -2,7 +2,7 @@
 /// @file Flags shared by the subcommands that run jobs (`stoss serve`, `stoss worker`): the parsing of
 /// `--flag value` and `--flag=value`, the numbers and durations, and RunnerFlags, what a process's job
 /// runner needs (--data, --store, --workers, --lease-seconds, --renew-seconds, --max-attempts,
-/// --job-timeout, --job-memory).
+/// --job-timeout, --job-memory, --ranks-per-job).
 
 #include <filesystem>
 #include <functional>
@@ -32,7 +32,7 @@ server::jobs::Millis parse_seconds(const std::string& flag, const std::string& t
 struct RunnerFlags {
   std::filesystem::path data = "var";                ///< --data DIR: jobs.db and jobs/<id>/
   std::optional<server::jobs::StoreLocation> store;  ///< --store; unset: sqlite:DATA/jobs.db
-  server::jobs::WorkerPoolOptions pool;              ///< --workers, --lease-seconds, --renew-seconds
+  server::jobs::WorkerPoolOptions pool;  ///< --workers, --lease-seconds, --renew-seconds, --ranks-per-job
   int max_attempts = 3;                  ///< --max-attempts: runs before an expired lease fails a job
   server::jobs::Millis job_timeout = 0;  ///< --job-timeout: wall-time limit of one job attempt (0: none)
   std::size_t job_memory = 0;            ///< --job-memory: address-space limit of a job's process (0: none)
@@ -83,7 +83,7 @@ server::jobs::StoreLocation store_location(const RunnerFlags& flags);
 server::jobs::JobRunnerOptions job_runner_options(const RunnerFlags& flags,
                                                   const server::jobs::StoreLocation& location);
 
-/// The usage lines of the lease flags and --job-memory, the same for serve and worker.
+/// The usage lines of the lease flags, --job-memory and --ranks-per-job, the same for serve and worker.
 const char* runner_flags_usage();
 
 /// Runs `stoss <name>` (serve, worker): `--help` prints `usage` (exit 0); otherwise the exit code of `run`,

@@ -2,6 +2,7 @@
 
 #include <iostream>
 
+#include "core/scene/scene.hpp"
 #include "server/common/stop_signals.hpp"
 
 namespace stoss::cli {
@@ -33,6 +34,10 @@ FlagTable<ServeOptions> http_flags() {
        [](auto& f, auto& v, auto& o) { o.limits.max_steps = int(parse_integer(f, v, 1, 1'000'000'000)); }},
       {"--max-frames",
        [](auto& f, auto& v, auto& o) { o.limits.max_frames = int(parse_integer(f, v, 1, 1'000'000'000)); }},
+      {"--max-ranks-per-job",
+       [](auto& f, auto& v, auto& o) {
+         o.limits.max_ranks_per_job = int(parse_integer(f, v, 1, scene::max_ranks));
+       }},
       {"--http-threads",
        [](auto& f, auto& v, auto& o) { o.http_threads = int(parse_integer(f, v, 4, 4096)); }},
       {"--max-connections-per-client",
@@ -95,6 +100,7 @@ Runs the job service (HTTP/JSON, see api/openapi.yaml) until SIGINT or SIGTERM.
   --max-nodes N          most mesh nodes in a scene (default 200000)
   --max-steps N          most time steps in a scene (default 100000)
   --max-frames N         most output frames in a scene (default 2000)
+  --max-ranks-per-job N  most MPI ranks a scene may ask for (solver.ranks); more is 422 (default 1)
   --max-queue N          most queued jobs; more submissions get 503 (default 1000)
   --max-mesh-store-bytes N
                          bytes of all meshes POST /v1/meshes stores; an upload beyond is 413 (default

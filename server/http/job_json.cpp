@@ -44,6 +44,7 @@ nlohmann::json job_json(const jobs::Job& job, const nlohmann::json& before_run) 
                       {"started", time_or_null(job.started)},
                       {"finished", time_or_null(job.finished)},
                       {"attempt", job.attempt},
+                      {"ranks", job.ranks},
                       {"cancel_requested", job.cancel_requested},
                       {"progress", jobs::to_json(job.progress)},
                       {"effects", job.effects},

@@ -19,6 +19,7 @@ struct Limits {
   int max_nodes = 200'000;                 ///< --max-nodes: mesh nodes of all bodies
   int max_steps = 100'000;                 ///< --max-steps: time steps to reach time.end
   int max_frames = 2'000;                  ///< --max-frames: output frames
+  int max_ranks_per_job = 1;               ///< --max-ranks-per-job: MPI ranks a scene may ask for (422 above)
   int max_queued = 1'000;                  ///< --max-queue: queued jobs before submissions get 503
   /// --request-timeout: longest time from a request's head to the last byte of its body.
   std::chrono::milliseconds request_timeout{60'000};

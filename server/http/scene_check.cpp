@@ -31,6 +31,17 @@ Problem invalid_scene(nlohmann::json errors) {
   return {422, "urn:stoss:problem:invalid-scene", "Invalid scene", detail, {{"errors", std::move(errors)}}};
 }
 
+/// 422 at /solver/ranks when the scene asks for more MPI ranks than --max-ranks-per-job: no worker of this
+/// service would ever claim it.
+void check_ranks(const scene::Summary& summary, const Limits& limits) {
+  if (summary.ranks <= limits.max_ranks_per_job) return;
+  const std::string limit = std::to_string(limits.max_ranks_per_job);
+  throw ProblemError(invalid_scene(nlohmann::json::array(
+      {{{"pointer", "/solver/ranks"},
+        {"message", "must be at most " + limit + " on this service (stoss serve --max-ranks-per-job " +
+                        limit + "), got " + std::to_string(summary.ranks)}}})));
+}
+
 }  // namespace
 
 std::string declared_content_type(const httplib::Request& req) {
@@ -111,6 +122,7 @@ scene::Summary check_scene(const nlohmann::json& scene, const Limits& limits,
     throw ProblemError(
         invalid_scene(nlohmann::json::array({{{"pointer", ""}, {"message", plain_message(e)}}})));
   }
+  check_ranks(summary, limits);
   if (auto problem = check_scene_limits(summary, limits)) throw ProblemError(*problem);
   return summary;
 }

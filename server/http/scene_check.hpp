@@ -28,7 +28,8 @@ Problem body_too_large(std::size_t limit, std::optional<unsigned long long> valu
 nlohmann::json parse_json_body(const httplib::Request& req, const Limits& limits);
 
 /// Validates a scene and checks it against the limits; "mesh": {"id": ...} is resolved by `mesh_files`.
-/// Throws ProblemError: 422 listing every scene error with its JSON pointer, 413 naming each exceeded limit.
+/// Throws ProblemError: 422 listing every scene error with its JSON pointer (also /solver/ranks above
+/// max_ranks_per_job), 413 naming each exceeded limit.
 /// `resolved`, when given, receives the scene with every default filled in (model::Model::scene): what a
 /// job stores and its worker runs with scene::load_resolved, so that a scene is validated once per job.
 scene::Summary check_scene(const nlohmann::json& scene, const Limits& limits,

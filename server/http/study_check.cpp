@@ -143,7 +143,8 @@ int check_repeat(const nlohmann::json& body, nlohmann::json& errors) {
   return 1;
 }
 
-/// Checks the scene (its own step and frames aside); its 422 errors are added under /scene, a 413 is thrown.
+/// Checks the scene (its own step and frames aside, on one rank); its 422 errors are added under /scene, a
+/// 413 is thrown.
 scene::Summary check_study_scene(const nlohmann::json& body, const Limits& limits,
                                  const scene::MeshFiles& mesh_files, nlohmann::json& resolved,
                                  nlohmann::json& errors) {
@@ -154,8 +155,14 @@ scene::Summary check_study_scene(const nlohmann::json& body, const Limits& limit
   Limits relaxed = limits;
   relaxed.max_steps = INT_MAX;
   relaxed.max_frames = INT_MAX;
+  relaxed.max_ranks_per_job = scene::max_ranks;  // the rule below is stricter: one rank
   try {
-    return check_scene(body["scene"], relaxed, mesh_files, &resolved);
+    scene::Summary summary = check_scene(body["scene"], relaxed, mesh_files, &resolved);
+    // Every run of a study is a call in the study's one process (study::run), not a process of its own.
+    if (summary.ranks > 1)
+      add(errors, "/scene/solver/ranks",
+          "must be 1: a study runs its runs on one rank, got " + std::to_string(summary.ranks));
+    return summary;
   } catch (const ProblemError& e) {
     if (e.problem().status != 422) throw;
     for (const auto& error : e.problem().extra.value("errors", nlohmann::json::array()))

@@ -23,11 +23,12 @@ struct StudyRequest {
 
 /// Validates `{"scene": {...}, "steps": [h...], "tolerances": [TOL...]?, "schemes": [...]?, "reference_step":
 /// H?, "repeat": N?}`. Throws ProblemError: 422 (`urn:stoss:problem:invalid-study`) listing every error by
-/// JSON pointer into the body (scene errors under `/scene`, `/steps/i`, `/tolerances/i`, `/schemes/i`,
-/// `/reference_step`, unknown members); 413 naming the limit when the scene exceeds max_nodes or the study's
-/// finest run (the reference, a finer swept step, or with tolerances end/min_step) exceeds max_steps. The
-/// scene's own time.step and output frames are not checked against max_steps and max_frames: a study replaces
-/// the step and writes no frames. Mesh ids of the scene are resolved by `mesh_files`.
+/// JSON pointer into the body (scene errors under `/scene`, `/scene/solver/ranks` above 1: a study runs on
+/// one rank, `/steps/i`, `/tolerances/i`, `/schemes/i`, `/reference_step`, unknown members); 413 naming the
+/// limit when the scene exceeds max_nodes or the study's finest run (the reference, a finer swept step, or
+/// with tolerances end/min_step) exceeds max_steps. The scene's own time.step and output frames are not
+/// checked against max_steps and max_frames: a study replaces the step and writes no frames. Mesh ids of the
+/// scene are resolved by `mesh_files`.
 StudyRequest check_study(const nlohmann::json& body, const Limits& limits,
                          const scene::MeshFiles& mesh_files = {});
 

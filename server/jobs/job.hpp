@@ -73,6 +73,9 @@ struct Job {
   /// A study's parameters as accepted (steps, schemes, reference_step, defaults filled in); unset for a
   /// simulation.
   std::optional<nlohmann::json> study;
+  /// The MPI ranks the run asks for: its scene's solver.ranks, 1 when the scene does not say. Only a worker
+  /// started with --ranks-per-job at least this claims the job.
+  int ranks = 1;
 };
 
 }  // namespace stoss::server::jobs

@@ -224,6 +224,33 @@ TEST_F(BadInput, AStudyWhoseFinestRunExceedsMaxStepsIs413NamingTheLimit) {
   EXPECT_EQ(submit_study(c, body)->status, 201);
 }
 
+// Issue 27 §5: a scene asking for more MPI ranks than --max-ranks-per-job (1 here, the default) is refused by
+// every route that takes a scene, at /solver/ranks; a study's scene may ask for one rank only.
+TEST_F(BadInput, MoreRanksThanMaxRanksPerJobAre422AtSolverRanks) {
+  auto c = client();
+  nlohmann::json scene = box_scene(2, 10);
+  scene["solver"]["ranks"] = 2;
+  const auto jobs_before = body_json(c.Get("/v1/jobs?limit=200"))["jobs"].size();
+  for (const char* path : {"/v1/jobs", "/v1/validate"}) {
+    const auto p = problem(c.Post(path, scene.dump(), "application/json"), 422);
+    EXPECT_EQ(p["type"], "urn:stoss:problem:invalid-scene");
+    ASSERT_EQ(p["errors"].size(), 1u) << p.dump();
+    EXPECT_EQ(p["errors"][0]["pointer"], "/solver/ranks");
+    EXPECT_EQ(p["errors"][0]["message"],
+              "must be at most 1 on this service (stoss serve --max-ranks-per-job 1), got 2");
+  }
+  nlohmann::json study = tiny_study();
+  study["scene"]["solver"]["ranks"] = 2;
+  const auto p = problem(submit_study(c, study), 422);
+  EXPECT_EQ(p["type"], "urn:stoss:problem:invalid-study");
+  EXPECT_EQ(error_pointers(p), std::set<std::string>{"/scene/solver/ranks"}) << p.dump();
+  EXPECT_EQ(body_json(c.Get("/v1/jobs?limit=200"))["jobs"].size(), jobs_before);  // nothing was queued
+  scene["solver"]["ranks"] = 1;
+  const auto accepted = submit(c, scene);
+  ASSERT_EQ(accepted->status, 201) << accepted->body;
+  EXPECT_EQ(body_json(accepted)["ranks"], 1);
+}
+
 TEST_F(BadInput, AQueuedStudyCancelsAndItsTableIs409UntilItSucceeds) {
   auto c = client();
   auto r = submit_study(c, tiny_study(), "study-1");
@@ -320,6 +347,32 @@ TEST_F(BadInput, APostWithoutContentLengthHasAnEmptyBody) {
       server_->port(), "POST /v1/jobs/0123456789abcdef0123456789abcdef/cancel HTTP/1.1\r\nHost: x\r\n\r\n",
       false, 3);
   EXPECT_EQ(reply.substr(0, 22), "HTTP/1.1 404 Not Found") << reply;
+}
+
+// Issue 27 §5: a service started with --max-ranks-per-job 2 queues a two-rank scene and shows its ranks; its
+// own workers (--ranks-per-job 1, the default) leave that job queued and run a younger one-rank job.
+TEST(MaxRanksPerJob, ABiggerJobIsQueuedWithItsRanksAndWaitsForAWorkerWithThem) {
+  TempDir dir;
+  LiveServer server(dir.path() / "data", {"--workers", "1", "--max-ranks-per-job", "2"});
+  auto c = server.client();
+  nlohmann::json scene = box_scene(2, 10);
+  scene["solver"]["ranks"] = 3;
+  const auto refused = body_json(submit(c, scene));
+  EXPECT_EQ(refused["status"], 422);
+  EXPECT_EQ(refused["errors"][0]["message"],
+            "must be at most 2 on this service (stoss serve --max-ranks-per-job 2), got 3");
+  scene["solver"]["ranks"] = 2;
+  const auto big = submit(c, scene);
+  ASSERT_EQ(big->status, 201) << big->body;
+  const std::string big_id = body_json(big)["id"];
+  EXPECT_EQ(body_json(big)["ranks"], 2);
+  scene["solver"]["ranks"] = 1;
+  const std::string small_id = body_json(submit(c, scene))["id"];
+  EXPECT_EQ(wait_for_status(c, small_id, {"succeeded", "failed"})["status"], "succeeded");
+  const nlohmann::json waiting = job(c, big_id);
+  EXPECT_EQ(waiting["status"], "queued") << "the older job asks for more ranks than this worker has";
+  EXPECT_EQ(waiting["attempt"], 0);
+  EXPECT_EQ(waiting["ranks"], 2);
 }
 
 TEST(Auth, WithATokenFileEveryRouteButHealthzNeedsTheBearerToken) {

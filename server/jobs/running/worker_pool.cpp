@@ -71,7 +71,7 @@ int WorkerPool::running() const {
 
 std::optional<Job> WorkerPool::claim(const std::string& worker) {
   try {
-    return store_.claim(worker, options_.lease);
+    return store_.claim(worker, options_.lease, options_.ranks_per_job);
   } catch (const std::exception& e) {
     warn("claim", e);
     return std::nullopt;

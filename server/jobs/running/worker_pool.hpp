@@ -25,6 +25,8 @@ struct WorkerPoolOptions {
   /// An idle worker looks for work this often even when not notified (a store that announces queued jobs
   /// itself, PostgreSQL's NOTIFY, needs only a rare fallback: pool_options_for).
   Millis idle_poll = 500;
+  /// --ranks-per-job: the MPI ranks one job may use here; a worker claims only jobs asking for at most this.
+  int ranks_per_job = 1;
 };
 
 class WorkerPool {

@@ -59,6 +59,11 @@ const std::vector<std::string> migrations = {
     R"sql(
     ALTER TABLE stoss_jobs ADD COLUMN result_attempt INTEGER;
     )sql",
+    // 3: the MPI ranks a job asks for (its scene's solver.ranks); a claim takes only jobs within the
+    // worker's --ranks-per-job. Every job that existed before asks for one.
+    R"sql(
+    ALTER TABLE stoss_jobs ADD COLUMN ranks INTEGER NOT NULL DEFAULT 1 CHECK (ranks >= 1);
+    )sql",
 };
 
 /// Advisory lock keys (pg_advisory_xact_lock): one migration at a time; one submission at a time, so that
@@ -70,7 +75,7 @@ constexpr const char* create_lock = "SELECT pg_advisory_xact_lock(7461636800002)
 const std::string job_columns =
     "seq, id, status, created_ms, started_ms, finished_ms, attempt, worker, lease_expires_ms, "
     "cancel_requested, idempotency_key, body_hash, effects, progress_step, progress_steps, progress_time, "
-    "progress_end, progress_eta, summary, error, kind, study, name, result_attempt";
+    "progress_end, progress_eta, summary, error, kind, study, name, result_attempt, ranks";
 
 Param text(const std::string& s) {
   return s;
@@ -118,7 +123,8 @@ Job read_job(const Result& r, int row, bool with_scene = false) {
   job.study = json_column(r, row, 21);
   job.name = r.optional_text(row, 22);
   if (auto attempt = r.optional_int64(row, 23)) job.result_attempt = static_cast<int>(*attempt);
-  if (with_scene) job.scene = nlohmann::json::parse(r.text(row, 24));
+  job.ranks = static_cast<int>(r.int64(row, 24));
+  if (with_scene) job.scene = nlohmann::json::parse(r.text(row, 25));
   return job;
 }
 
@@ -314,12 +320,13 @@ CreateResult PgStore::create(const NewJob& job, int max_queued) {
     return {CreateResult::Outcome::queue_full, std::nullopt};
   Result r = c->exec(
       "INSERT INTO stoss_jobs (id, status, created_ms, idempotency_key, body_hash, scene, effects,"
-      " progress_steps, progress_end, kind, study, name)"
-      " VALUES ($1, 'queued', $2, $3, $4, $5, $6, $7, $8, $9, $10, $11) RETURNING " +
+      " progress_steps, progress_end, kind, study, name, ranks)"
+      " VALUES ($1, 'queued', $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12) RETURNING " +
           job_columns,
       {JobId::random().str(), integer(impl_->clock.now()), job.idempotency_key, job.body_hash,
        job.scene.dump(), nlohmann::json(job.effects).dump(), integer(job.progress.steps),
-       pg::number(job.progress.end), to_string(job.kind), optional_json(job.study), scene_name(job.scene)});
+       pg::number(job.progress.end), to_string(job.kind), optional_json(job.study), scene_name(job.scene),
+       integer(scene_ranks(job.scene))});
   Job created = read_job(r, 0);
   c->exec("SELECT pg_notify($1, '')", {text(channel)});  // delivered on commit
   tx.commit();
@@ -354,18 +361,19 @@ Page PgStore::list(std::optional<Status> status, int limit, std::optional<std::i
   return page;
 }
 
-std::optional<Job> PgStore::claim(const std::string& worker, Millis lease) {
+std::optional<Job> PgStore::claim(const std::string& worker, Millis lease, int max_ranks) {
   auto c = impl_->borrow();
   const Millis now = impl_->clock.now();
-  // One statement, one short transaction: the subquery locks the oldest queued row that no other claim
-  // holds (SKIP LOCKED: concurrent claims take different rows instead of waiting for each other).
+  // One statement, one short transaction: the subquery locks the oldest queued row within `max_ranks` that
+  // no other claim holds (SKIP LOCKED: concurrent claims take different rows instead of waiting for each
+  // other).
   Result r = c->exec(
       "UPDATE stoss_jobs SET status = 'running', worker = $1, attempt = attempt + 1, lease_expires_ms = $2,"
       " started_ms = $3, progress_step = 0, progress_time = 0, progress_eta = NULL"
-      " WHERE seq = (SELECT seq FROM stoss_jobs WHERE status = 'queued' ORDER BY seq LIMIT 1"
-      " FOR UPDATE SKIP LOCKED) AND status = 'queued' RETURNING " +
+      " WHERE seq = (SELECT seq FROM stoss_jobs WHERE status = 'queued' AND ranks <= $4::int ORDER BY seq"
+      " LIMIT 1 FOR UPDATE SKIP LOCKED) AND status = 'queued' RETURNING " +
           job_columns + ", scene",
-      {worker, integer(now + lease), integer(now)});
+      {worker, integer(now + lease), integer(now), integer(max_ranks)});
   if (r.rows() == 0) return std::nullopt;
   return read_job(r, 0, true);
 }

@@ -64,13 +64,18 @@ const std::vector<std::string> migrations = {
     R"sql(
     ALTER TABLE jobs ADD COLUMN result_attempt INTEGER;
     )sql",
+    // 6: the MPI ranks a job asks for (its scene's solver.ranks); a claim takes only jobs within the
+    // worker's --ranks-per-job. Every job that existed before asks for one.
+    R"sql(
+    ALTER TABLE jobs ADD COLUMN ranks INTEGER NOT NULL DEFAULT 1 CHECK (ranks >= 1);
+    )sql",
 };
 
 /// Every column but `scene` (scenes can be megabytes; only a worker needs one).
 const std::string job_columns =
     "seq, id, status, created_ms, started_ms, finished_ms, attempt, worker, lease_expires_ms, "
     "cancel_requested, idempotency_key, body_hash, effects, progress_step, progress_steps, progress_time, "
-    "progress_end, progress_eta, summary, error, kind, study, name, result_attempt";
+    "progress_end, progress_eta, summary, error, kind, study, name, result_attempt, ranks";
 
 Status status_column(const Statement& s, int col) {
   auto status = parse_status(s.text(col));
@@ -112,7 +117,8 @@ Job read_job(const Statement& s, bool with_scene = false) {
   job.study = json_column(s, 21);
   job.name = s.optional_text(22);
   if (auto attempt = s.optional_int64(23)) job.result_attempt = static_cast<int>(*attempt);
-  if (with_scene) job.scene = nlohmann::json::parse(s.text(24));
+  job.ranks = static_cast<int>(s.int64(24));
+  if (with_scene) job.scene = nlohmann::json::parse(s.text(25));
   return job;
 }
 
@@ -243,8 +249,8 @@ CreateResult SqliteStore::create(const NewJob& job, int max_queued) {
 
   Statement insert(*c,
                    "INSERT INTO jobs (id, status, created_ms, idempotency_key, body_hash, scene, effects, "
-                   "progress_steps, progress_end, kind, study, name)"
-                   " VALUES (?1, 'queued', ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)"
+                   "progress_steps, progress_end, kind, study, name, ranks)"
+                   " VALUES (?1, 'queued', ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)"
                    " RETURNING " +
                        job_columns);
   insert.bind(1, JobId::random().str())
@@ -259,7 +265,8 @@ CreateResult SqliteStore::create(const NewJob& job, int max_queued) {
       .bind(10, job.study ? std::optional(job.study->dump()) : std::nullopt)
       .bind(11, job.scene.is_object() && job.scene.contains("name") && job.scene["name"].is_string()
                     ? std::optional(job.scene["name"].get<std::string>())
-                    : std::nullopt);
+                    : std::nullopt)
+      .bind(12, scene_ranks(job.scene));
   insert.step();
   Job created = read_job(insert);
   insert.run();
@@ -295,18 +302,19 @@ Page SqliteStore::list(std::optional<Status> status, int limit, std::optional<st
   return page;
 }
 
-std::optional<Job> SqliteStore::claim(const std::string& worker, Millis lease) {
+std::optional<Job> SqliteStore::claim(const std::string& worker, Millis lease, int max_ranks) {
   std::lock_guard write(impl_->write_mutex);
   auto c = impl_->borrow();
   Transaction tx(*c);
   const Millis now = impl_->clock.now();
-  Statement s(*c,
-              "UPDATE jobs SET status = 'running', worker = ?1, attempt = attempt + 1, lease_expires_ms = ?2,"
-              " started_ms = ?3, progress_step = 0, progress_time = 0, progress_eta = NULL"
-              " WHERE seq = (SELECT seq FROM jobs WHERE status = 'queued' ORDER BY seq LIMIT 1)"
-              " RETURNING " +
-                  job_columns + ", scene");
-  s.bind(1, worker).bind(2, now + lease).bind(3, now);
+  Statement s(
+      *c,
+      "UPDATE jobs SET status = 'running', worker = ?1, attempt = attempt + 1, lease_expires_ms = ?2,"
+      " started_ms = ?3, progress_step = 0, progress_time = 0, progress_eta = NULL"
+      " WHERE seq = (SELECT seq FROM jobs WHERE status = 'queued' AND ranks <= ?4 ORDER BY seq LIMIT 1)"
+      " RETURNING " +
+          job_columns + ", scene");
+  s.bind(1, worker).bind(2, now + lease).bind(3, now).bind(4, max_ranks);
   if (!s.step()) return std::nullopt;
   Job job = read_job(s, true);
   s.run();

@@ -28,7 +28,7 @@ class SqliteStore : public JobStore {
   std::optional<Job> get(const JobId& id) override;
   std::optional<nlohmann::json> scene(const JobId& id) override;
   Page list(std::optional<Status> status, int limit, std::optional<std::int64_t> cursor) override;
-  std::optional<Job> claim(const std::string& worker, Millis lease) override;
+  std::optional<Job> claim(const std::string& worker, Millis lease, int max_ranks) override;
   Lease renew(const Claim& claim, Millis lease) override;
   bool progress(const Claim& claim, const Progress& p) override;
   bool finish(const Claim& claim, const Outcome& outcome) override;

@@ -1,5 +1,8 @@
 #include "server/jobs/store/store.hpp"
 
+#include <algorithm>
+#include <limits>
+
 namespace stoss::server::jobs {
 
 namespace {
@@ -16,6 +19,14 @@ bool names_mesh(const nlohmann::json& scene, const std::string& mesh_id) {
 }
 
 }  // namespace
+
+int scene_ranks(const nlohmann::json& scene) {
+  if (!scene.is_object() || !scene.contains("solver") || !scene["solver"].is_object()) return 1;
+  const nlohmann::json& solver = scene["solver"];
+  const auto ranks = solver.find("ranks");
+  if (ranks == solver.end() || !ranks->is_number_integer()) return 1;
+  return static_cast<int>(std::clamp<long long>(ranks->get<long long>(), 1, std::numeric_limits<int>::max()));
+}
 
 std::vector<JobId> JobStore::active_jobs_using_mesh(const std::string& mesh_id) {
   std::vector<JobId> users;

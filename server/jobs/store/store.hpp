@@ -41,7 +41,11 @@ struct StoreEvents {
   std::function<void(const JobId&)> cancel_requested;  ///< a cancel was posted for job `id`, which runs
 };
 
-/// What POST /v1/jobs (or POST /v1/studies) asks the store to keep.
+/// The MPI ranks `scene` asks for (solver.ranks), 1 when it does not say: what the store keeps as Job::ranks
+/// at submission.
+int scene_ranks(const nlohmann::json& scene);
+
+/// What POST /v1/jobs (or POST /v1/studies) asks the store to keep (Job::ranks comes from the scene).
 struct NewJob {
   std::optional<std::string> idempotency_key;
   std::string body_hash;  ///< of the whole request body: a key reused with another body is a conflict
@@ -137,8 +141,9 @@ class JobStore {
   /// Newest first; `cursor` continues a previous page.
   virtual Page list(std::optional<Status> status, int limit, std::optional<std::int64_t> cursor) = 0;
 
-  /// Takes the oldest queued job: running, attempt + 1, lease until now + `lease`.
-  virtual std::optional<Job> claim(const std::string& worker, Millis lease) = 0;
+  /// Takes the oldest queued job that asks for at most `max_ranks` MPI ranks (Job::ranks): running,
+  /// attempt + 1, lease until now + `lease`. A job asking for more stays queued for a worker that has them.
+  virtual std::optional<Job> claim(const std::string& worker, Millis lease, int max_ranks) = 0;
   /// Extends the lease to now + `lease` if `claim` still holds it.
   virtual Lease renew(const Claim& claim, Millis lease) = 0;
   /// Records progress; false when the lease is lost.

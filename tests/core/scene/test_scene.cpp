@@ -448,6 +448,7 @@ TEST(SceneSchema, EveryFieldTheValidatorAcceptsIsDeclared) {
                        {"tangential_stiffness", 1}}};
   scene["boundary"] = {{{"surface", "plate/bottom"}}};
   scene["time"]["scheme"] = "hht";
+  scene["solver"]["ranks"] = 2;  // optional, not filled in: declared all the same
   expect_declared(s, s, load(scene).scene, "");
 }
 

@@ -256,6 +256,10 @@ INSTANTIATE_TEST_SUITE_P(Rules, SceneRule, ::testing::Values(
   Violation{"solver object", {{"/solver", "newton"}}, "/solver", R"(must be an object, got "newton")"},
   Violation{"linear solver name", {{"/solver/linear", "amg"}}, "/solver/linear",
             R"(must be one of auto, direct, iterative, petsc_gamg, got "amg")"},
+  Violation{"ranks at least 1", {{"/solver/ranks", 0}}, "/solver/ranks", "must be in [1, 4096], got 0"},
+  Violation{"ranks at most 4096", {{"/solver/ranks", 4097}}, "/solver/ranks", "must be in [1, 4096], got 4097"},
+  Violation{"ranks integer", {{"/solver/ranks", 2.5}}, "/solver/ranks", "must be an integer, got 2.5"},
+  Violation{"ranks number", {{"/solver/ranks", "two"}}, "/solver/ranks", R"(must be an integer, got "two")"},
   Violation{"output every", {{"/output/every", 0}}, "/output/every", "must be >= 1, got 0"},
   // steps chosen by a tolerance, frames at an interval (issue 22 "Bad input")
   Violation{"time tolerance > 0", {{"/time/tolerance", 0}}, "/time/tolerance", "must be > 0, got 0"},
@@ -307,6 +311,22 @@ TEST(SceneValidation, ATolerancesStepBoundsAndAnIntervalsFramesAreResolved) {
   const model::Model fixed = load(full_scene());
   EXPECT_FALSE(fixed.time.adaptive());
   EXPECT_FALSE(fixed.scene["time"].contains("min_step"));
+}
+
+// solver.ranks (issue 27 §5): read into the model; absent means one rank and is not filled in, so the
+// resolved scene (and the digests of results written from it) of a scene without it does not change.
+TEST(SceneValidation, SolverRanksIsReadAndAbsentIsOneRankNotFilledIn) {
+  const model::Model one = load(full_scene());
+  EXPECT_EQ(one.solver.ranks, 1);
+  EXPECT_FALSE(one.scene["solver"].contains("ranks")) << one.scene["solver"].dump();
+  json scene = full_scene();
+  apply(scene, {"/solver/ranks", 2});
+  const model::Model two = load(scene);
+  EXPECT_EQ(two.solver.ranks, 2);
+  EXPECT_EQ(two.scene["solver"]["ranks"], 2);
+  EXPECT_EQ(load_resolved(two.scene, MeshFiles{}).solver.ranks, 2) << "the worker's path reads it too";
+  apply(scene, {"/solver/ranks", 4.0});  // an integral number, as every integer field takes it
+  EXPECT_EQ(load(scene).solver.ranks, 4);
 }
 
 TEST(SceneValidation, ReportsEveryProblemAtOnce) {

@@ -20,6 +20,8 @@ TEST(ServeOptions, HasDocumentedDefaults) {
   EXPECT_EQ(o.limits.max_steps, 100'000);
   EXPECT_EQ(o.limits.max_frames, 2'000);
   EXPECT_EQ(o.limits.max_queued, 1'000);
+  EXPECT_EQ(o.limits.max_ranks_per_job, 1);
+  EXPECT_EQ(o.pool.ranks_per_job, 1);
   EXPECT_FALSE(o.token_file);
 }
 
@@ -46,7 +48,10 @@ TEST(ServeOptions, ParsesEveryFlag) {
                                                         "--renew-seconds",
                                                         "0.25",
                                                         "--max-attempts",
-                                                        "5"});
+                                                        "5",
+                                                        "--max-ranks-per-job",
+                                                        "8",
+                                                        "--ranks-per-job=4"});
   EXPECT_EQ(o.host, "0.0.0.0");
   EXPECT_EQ(o.port, 9000);
   EXPECT_EQ(o.data, "/tmp/x");
@@ -60,6 +65,8 @@ TEST(ServeOptions, ParsesEveryFlag) {
   EXPECT_EQ(o.pool.lease, 1'500);
   EXPECT_EQ(o.pool.renew_every, 250);
   EXPECT_EQ(o.max_attempts, 5);
+  EXPECT_EQ(o.limits.max_ranks_per_job, 8);
+  EXPECT_EQ(o.pool.ranks_per_job, 4);
 }
 
 TEST(ServeOptions, NamesTheFlagThatIsWrong) {
@@ -75,6 +82,11 @@ TEST(ServeOptions, NamesTheFlagThatIsWrong) {
   EXPECT_EQ(message({"--workers"}), "--workers needs a value");
   EXPECT_EQ(message({"--workers", "two"}), "--workers needs an integer in [0, 256], got 'two'");
   EXPECT_EQ(message({"--listen", "8080"}), "--listen needs HOST:PORT, got '8080'");
+  EXPECT_EQ(message({"--max-ranks-per-job", "0"}),
+            "--max-ranks-per-job needs an integer in [1, 4096], got '0'");
+  EXPECT_EQ(message({"--ranks-per-job", "4097"}),
+            "--ranks-per-job needs an integer in [1, 4096], got '4097'");
+  EXPECT_EQ(message({"--ranks-per-job", "2.5"}), "--ranks-per-job needs an integer in [1, 4096], got '2.5'");
   EXPECT_EQ(message({"--lease-seconds", "1", "--renew-seconds", "2"}),
             "--renew-seconds must be shorter than --lease-seconds");
 }

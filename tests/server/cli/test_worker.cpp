@@ -9,6 +9,7 @@
 #include <mutex>
 #include <vector>
 
+#include "server/cli/worker.hpp"
 #include "server/jobs/store/pg.hpp"
 #include "server/jobs/store/pg_store.hpp"
 #include "tests/server/live_server.hpp"
@@ -53,6 +54,18 @@ TEST(PgCli, AWorkerTakesOnlyTheFlagsThatConcernRunningJobs) {
   const CommandResult help = run_stoss({"worker", "--help"});
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_NE(help.out.find("--store STORE"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("--ranks-per-job N"), std::string::npos) << help.out;
+}
+
+// Issue 27 §5: a worker claims only jobs within --ranks-per-job (a runner flag, shared with serve).
+TEST(WorkerOptions, RanksPerJobSetsThePoolsClaimBound) {
+  EXPECT_EQ(cli::parse_worker_options({"--store", "sqlite:jobs.db"}).pool.ranks_per_job, 1);
+  EXPECT_EQ(
+      cli::parse_worker_options({"--store", "sqlite:jobs.db", "--ranks-per-job", "16"}).pool.ranks_per_job,
+      16);
+  EXPECT_THROW(cli::parse_worker_options({"--ranks-per-job", "0"}), cli::UsageError);
+  EXPECT_THROW(cli::parse_worker_options({"--max-ranks-per-job", "2"}), cli::UsageError)
+      << "serve's, not a worker's";
 }
 
 TEST(PgCli, AnUnreachableDatabaseOrWrongCredentialsExit2AndCreateNothing) {
@@ -167,7 +180,7 @@ TEST(PgNotify, QueuedJobsAndCancelsPostedThroughAnotherConnectionReachTheSubscri
       if (heard.wait_for(lock, std::chrono::milliseconds(200), [&] { return wakes > 0; })) break;
     }
     EXPECT_GT(wakes, 0) << "NOTIFY stoss_jobs reached the LISTEN connection";
-    const auto running = worker.claim("w", 10'000);
+    const auto running = worker.claim("w", 10'000, 1);
     ASSERT_TRUE(running);
     EXPECT_EQ(api.request_cancel(running->id).outcome, server::jobs::CancelResult::Outcome::requested);
     std::unique_lock lock(mutex);

@@ -164,5 +164,23 @@ TEST(StudyCheck, ALiveStudyWithRepeat3KeepsThreeTimingsAndTheirMedian) {
   EXPECT_EQ(test::job(c, id)["summary"]["runs_done"], 4) << "the reference and the point 3 times";
 }
 
+// Issue 27 §5: a study runs all its runs in one process, on one rank, whatever --max-ranks-per-job allows.
+TEST(StudyCheck, AStudyWhoseSceneAsksForMoreThanOneRankIs422AtItsSolverRanks) {
+  nlohmann::json body = tolerance_study();
+  body["scene"]["solver"]["ranks"] = 2;
+  Limits generous;
+  generous.max_ranks_per_job = 8;
+  const Problem p = problem_of(body, generous);
+  EXPECT_EQ(p.status, 422);
+  EXPECT_EQ(p.type, "urn:stoss:problem:invalid-study");
+  const nlohmann::json& errors = p.extra.at("errors");
+  ASSERT_EQ(errors.size(), 1u) << errors.dump();
+  EXPECT_EQ(errors[0]["pointer"], "/scene/solver/ranks");
+  EXPECT_EQ(errors[0]["message"], "must be 1: a study runs its runs on one rank, got 2");
+  ASSERT_EQ(problem_of(body, Limits{}).extra.at("errors").size(), 1u) << "one error, not the service's too";
+  body["scene"]["solver"]["ranks"] = 1;
+  EXPECT_EQ(check_study(body, Limits{}).summary.ranks, 1);
+}
+
 }  // namespace
 }  // namespace stoss::server::http

@@ -34,7 +34,7 @@ INSTANTIATE_TEST_SUITE_P(BothStores, RescuerTest,
 
 TEST_P(RescuerTest, LeavesLiveLeasesAlone) {
   const JobId id = queue_one();
-  store.claim("w", lease);
+  store.claim("w", lease, 1);
   clock.advance(lease - 1);
   EXPECT_EQ(rescuer.run_once().total(), 0);
   EXPECT_EQ(store.get(id)->status, Status::running);
@@ -42,7 +42,7 @@ TEST_P(RescuerTest, LeavesLiveLeasesAlone) {
 
 TEST_P(RescuerTest, RenewedLeasesSurvivePastTheFirstExpiry) {
   const JobId id = queue_one();
-  store.claim("w", lease);
+  store.claim("w", lease, 1);
   for (int i = 0; i < 10; ++i) {
     clock.advance(lease / 2);
     ASSERT_EQ(store.renew({id, "w", 1}, lease), Lease::held);
@@ -53,7 +53,7 @@ TEST_P(RescuerTest, RenewedLeasesSurvivePastTheFirstExpiry) {
 
 TEST_P(RescuerTest, RequeuesAJobWhoseLeaseExpired) {
   const JobId id = queue_one();
-  store.claim("dead worker", lease);
+  store.claim("dead worker", lease, 1);
   store.progress({id, "dead worker", 1}, {7, 30, 0.07, 0.3, 2.0});
   clock.advance(lease + 1);
   const Rescued r = rescuer.run_once();
@@ -65,7 +65,7 @@ TEST_P(RescuerTest, RequeuesAJobWhoseLeaseExpired) {
   // The dead worker cannot report any more; a new claim is attempt 2.
   EXPECT_FALSE(store.finish({id, "dead worker", 1}, {Status::succeeded, std::nullopt, std::nullopt}));
   EXPECT_EQ(store.renew({id, "dead worker", 1}, lease), Lease::lost);
-  const Job again = *store.claim("new worker", lease);
+  const Job again = *store.claim("new worker", lease, 1);
   EXPECT_EQ(again.id, id);
   EXPECT_EQ(again.attempt, 2);
 }
@@ -73,7 +73,7 @@ TEST_P(RescuerTest, RequeuesAJobWhoseLeaseExpired) {
 TEST_P(RescuerTest, FailsAJobWithTheReasonAfterMaxAttempts) {
   const JobId id = queue_one();
   for (int attempt = 1; attempt <= 3; ++attempt) {
-    ASSERT_EQ(store.claim(std::string("w").append(std::to_string(attempt)), lease)->attempt, attempt);
+    ASSERT_EQ(store.claim(std::string("w").append(std::to_string(attempt)), lease, 1)->attempt, attempt);
     clock.advance(lease + 1);
     const Rescued r = rescuer.run_once();
     EXPECT_EQ(r.requeued, attempt < 3 ? 1 : 0);
@@ -84,12 +84,12 @@ TEST_P(RescuerTest, FailsAJobWithTheReasonAfterMaxAttempts) {
   EXPECT_EQ(*job.error,
             "the worker stopped renewing its lease (process killed or hung) on attempt 3 of 3; not retried");
   EXPECT_EQ(job.finished, clock.now());
-  EXPECT_FALSE(store.claim("w4", lease));
+  EXPECT_FALSE(store.claim("w4", lease, 1));
 }
 
 TEST_P(RescuerTest, CancelsAnExpiredJobWhoseCancelWasRequested) {
   const JobId id = queue_one();
-  store.claim("w", lease);
+  store.claim("w", lease, 1);
   store.request_cancel(id);
   clock.advance(lease + 1);
   EXPECT_EQ(rescuer.run_once().canceled, 1);
@@ -117,7 +117,7 @@ INSTANTIATE_TEST_SUITE_P(BothStores, AdoptingRescuerTest,
 
 TEST_P(AdoptingRescuerTest, PublishesAnExpiredAttemptsCompletedRunWithoutSpendingAnAttempt) {
   const JobId id = queue_one();
-  store.claim("away", lease);
+  store.claim("away", lease, 1);
   leave_run(files, id, 1, Status::succeeded, true);
   clock.advance(lease + 1);
   const Rescued r = adopting.run_once();
@@ -136,7 +136,7 @@ TEST_P(AdoptingRescuerTest, PublishesAnExpiredAttemptsCompletedRunWithoutSpendin
 TEST_P(AdoptingRescuerTest, OnTheLastAttemptACompletedRunSucceedsInsteadOfFailing) {
   const JobId id = queue_one();
   for (int attempt = 1; attempt <= 3; ++attempt) {
-    ASSERT_EQ(store.claim("w" + std::to_string(attempt), lease)->attempt, attempt);
+    ASSERT_EQ(store.claim("w" + std::to_string(attempt), lease, 1)->attempt, attempt);
     // Attempts 1 and 2 stop mid-run (no outcome; a canceled one), attempt 3 completes.
     if (attempt == 2) leave_run(files, id, 2, Status::canceled, false);
     if (attempt == 3) leave_run(files, id, 3, Status::succeeded, true);
@@ -152,7 +152,7 @@ TEST_P(AdoptingRescuerTest, OnTheLastAttemptACompletedRunSucceedsInsteadOfFailin
 
 TEST_P(AdoptingRescuerTest, AnOutcomeWithoutItsResultIsNotAdopted) {
   const JobId id = queue_one();
-  store.claim("w", lease);
+  store.claim("w", lease, 1);
   leave_run(files, id, 1, Status::succeeded, false);  // result.h5 gone: nothing to serve
   clock.advance(lease + 1);
   const Rescued r = adopting.run_once();

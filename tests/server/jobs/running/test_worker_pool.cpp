@@ -56,8 +56,10 @@ class WorkerPoolTest : public ::testing::Test {
   SqliteStore store{dir.path() / "jobs.db", clock};
   ScriptedExecutor executor;
 
-  JobId queue_one() {
-    nlohmann::json scene = {{"name", "x"}};
+  JobId queue_one() { return queue_on_ranks(1); }
+  /// A job whose scene asks for `ranks` MPI ranks (solver.ranks).
+  JobId queue_on_ranks(int ranks) {
+    nlohmann::json scene = {{"name", "x"}, {"solver", {{"ranks", ranks}}}};
     return store.create({std::nullopt, "hash", scene, {}, {}, Kind::simulation, std::nullopt}, 100).job->id;
   }
   Status status(const JobId& id) { return store.get(id)->status; }
@@ -77,6 +79,27 @@ TEST_F(WorkerPoolTest, RunsAQueuedJobToSuccess) {
   executor.release_all();
   ASSERT_TRUE(reaches(id, Status::succeeded));
   EXPECT_EQ((*store.get(id)->summary)["completed"], true);
+}
+
+// Issue 27 §5: a pool claims only jobs within its ranks_per_job (--ranks-per-job); an older, bigger job waits
+// for a pool that has the ranks.
+TEST_F(WorkerPoolTest, ClaimsOnlyJobsWithinItsRanksPerJob) {
+  const JobId big = queue_on_ranks(2);
+  const JobId small = queue_one();
+  {
+    WorkerPool one_rank(store, executor, {1, 10'000, 2'000, 50, 1});
+    one_rank.start();
+    executor.wait_started(1);
+    EXPECT_EQ(status(small), Status::running);
+    EXPECT_EQ(status(big), Status::queued);
+    executor.release_all();
+    ASSERT_TRUE(reaches(small, Status::succeeded));
+  }
+  EXPECT_EQ(status(big), Status::queued);
+  EXPECT_EQ(store.get(big)->attempt, 0);
+  WorkerPool two_ranks(store, executor, {1, 10'000, 2'000, 50, 2});
+  two_ranks.start();
+  ASSERT_TRUE(reaches(big, Status::succeeded));
 }
 
 TEST_F(WorkerPoolTest, CancelStopsTheRunningJob) {
@@ -133,7 +156,7 @@ TEST_F(WorkerPoolTest, AWorkerThatLostItsLeaseReportsNothing) {
   executor.wait_started(1);
   manual.advance(60'000);  // the lease runs out; the rescuer gives the job to someone else
   ASSERT_EQ(fake_time_store.requeue_expired(manual.now(), 3).requeued, 1);
-  const Job stolen = *fake_time_store.claim("someone else", 10'000);
+  const Job stolen = *fake_time_store.claim("someone else", 10'000, 1);
   ASSERT_EQ(stolen.id, id);
   // The lease keeper notices within 50 ms and stops the run; the stale outcome is never written.
   ASSERT_TRUE(test::eventually(

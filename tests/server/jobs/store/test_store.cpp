@@ -29,6 +29,14 @@ NewJob new_job(const std::string& name, std::optional<std::string> key = std::nu
   return job;
 }
 
+/// new_job whose scene asks for `ranks` MPI ranks (solver.ranks).
+NewJob new_job_on_ranks(const std::string& name, int ranks) {
+  NewJob job = new_job(name);
+  job.scene["solver"] = {{"ranks", ranks}};
+  job.body_hash = sha256_hex(job.scene.dump());
+  return job;
+}
+
 using test::Backend;
 
 std::string backend_name(const ::testing::TestParamInfo<Backend>& info) {
@@ -70,8 +78,8 @@ TEST_P(StoreTest, KeepsTheKindAndTheStudyParameters) {
   const Job read = *store.get(id);
   EXPECT_EQ(read.kind, Kind::study);
   EXPECT_EQ(read.study, study.study);
-  store.claim("w", 10'000);  // the older simulation "a"
-  const Job claimed = *store.claim("w", 10'000);
+  store.claim("w", 10'000, 1);  // the older simulation "a"
+  const Job claimed = *store.claim("w", 10'000, 1);
   EXPECT_EQ(claimed.kind, Kind::study);
   EXPECT_EQ((*claimed.study)["schemes"][0], "midpoint");
   EXPECT_EQ(claimed.scene["name"], "s");
@@ -95,7 +103,7 @@ TEST_P(StoreTest, RefusesWhenTheQueueIsFull) {
   create("a");
   create("b");
   EXPECT_EQ(store.create(new_job("c"), 2).outcome, Outcome::queue_full);
-  store.claim("w", 10'000);  // a running job does not count as queued
+  store.claim("w", 10'000, 1);  // a running job does not count as queued
   EXPECT_EQ(store.create(new_job("c"), 2).outcome, Outcome::created);
 }
 
@@ -113,7 +121,7 @@ TEST_P(StoreTest, ListsNewestFirstInPagesAndByStatus) {
   ASSERT_EQ(last.jobs.size(), 1u);
   EXPECT_EQ(last.jobs[0].id, ids[0]);
   EXPECT_FALSE(last.next_cursor);
-  store.claim("w", 10'000);
+  store.claim("w", 10'000, 1);
   Page running = store.list(Status::running, 10, std::nullopt);
   ASSERT_EQ(running.jobs.size(), 1u);
   EXPECT_EQ(running.jobs[0].id, ids[0]);
@@ -123,20 +131,54 @@ TEST_P(StoreTest, ListsNewestFirstInPagesAndByStatus) {
 TEST_P(StoreTest, ClaimsOldestFirstWithALeaseAndTheScene) {
   const Job a = create("a");
   create("b");
-  const Job claimed = *store.claim("worker-1", 10'000);
+  const Job claimed = *store.claim("worker-1", 10'000, 1);
   EXPECT_EQ(claimed.id, a.id);
   EXPECT_EQ(claimed.status, Status::running);
   EXPECT_EQ(claimed.attempt, 1);
   EXPECT_EQ(claimed.worker, "worker-1");
   EXPECT_EQ(claimed.lease_expires, clock.now() + 10'000);
   EXPECT_EQ(claimed.scene["name"], "a");
-  EXPECT_TRUE(store.claim("worker-2", 10'000));
-  EXPECT_FALSE(store.claim("worker-3", 10'000));
+  EXPECT_TRUE(store.claim("worker-2", 10'000, 1));
+  EXPECT_FALSE(store.claim("worker-3", 10'000, 1));
+}
+
+// Issue 27 §5: a job keeps the ranks its scene asks for (1 when it does not say), and a claim within fewer
+// ranks leaves it queued, untouched, for a worker that has them.
+TEST_P(StoreTest, AJobAskingForMoreRanksStaysQueuedUntilAClaimWithThatManyTakesIt) {
+  const Job big = *store.create(new_job_on_ranks("big", 2), 10).job;
+  EXPECT_EQ(big.ranks, 2);
+  const Job plain = create("plain");
+  EXPECT_EQ(plain.ranks, 1) << "a scene without solver.ranks asks for one rank";
+  EXPECT_EQ(store.claim("one-rank worker", 10'000, 1)->id, plain.id);
+  EXPECT_FALSE(store.claim("one-rank worker", 10'000, 1));
+  const Job waiting = *store.get(big.id);
+  EXPECT_EQ(waiting.status, Status::queued);
+  EXPECT_EQ(waiting.attempt, 0);
+  EXPECT_EQ(waiting.ranks, 2);
+  EXPECT_EQ(store.list(Status::queued, 10, std::nullopt).jobs.at(0).ranks, 2);
+  const Job claimed = *store.claim("two-rank worker", 10'000, 2);
+  EXPECT_EQ(claimed.id, big.id);
+  EXPECT_EQ(claimed.ranks, 2);
+  EXPECT_EQ(claimed.worker, "two-rank worker");
+  EXPECT_EQ(claimed.scene["solver"]["ranks"], 2);
+}
+
+// Among the jobs within a claim's ranks the oldest goes first, a smaller job included; the ones above wait.
+TEST_P(StoreTest, AClaimTakesTheOldestJobWithinItsRanks) {
+  const JobId two = store.create(new_job_on_ranks("two", 2), 10).job->id;
+  const JobId a = create("a").id;
+  const JobId three = store.create(new_job_on_ranks("three", 3), 10).job->id;
+  const JobId b = create("b").id;
+  EXPECT_EQ(store.claim("w1", 10'000, 1)->id, a) << "the older two-rank job is skipped";
+  EXPECT_EQ(store.claim("w4", 10'000, 4)->id, two) << "the oldest job within 4 ranks, not the biggest";
+  EXPECT_EQ(store.claim("w2", 10'000, 2)->id, b) << "the older three-rank job is skipped";
+  EXPECT_FALSE(store.claim("w2", 10'000, 2));
+  EXPECT_EQ(store.claim("w3", 10'000, 3)->id, three);
 }
 
 TEST_P(StoreTest, OnlyTheLeaseHolderRenewsReportsAndFinishes) {
   const JobId id = create("a").id;
-  const Claim w1 = claim_of(*store.claim("w1", 10'000)), w2{id, "w2", 1};
+  const Claim w1 = claim_of(*store.claim("w1", 10'000, 1)), w2{id, "w2", 1};
   clock.advance(5'000);
   EXPECT_EQ(store.renew(w1, 10'000), Lease::held);
   EXPECT_EQ(store.get(id)->lease_expires, clock.now() + 10'000);
@@ -159,14 +201,14 @@ TEST_P(StoreTest, OnlyTheLeaseHolderRenewsReportsAndFinishes) {
 // again; the attempt that holds the lease may publish an earlier attempt's completed run.
 TEST_P(StoreTest, AnAttemptThatLostItsLeaseIsFencedOutByItsAttemptNumber) {
   const JobId id = create("a").id;
-  const Claim first = claim_of(*store.claim("w", 1'000));
+  const Claim first = claim_of(*store.claim("w", 1'000, 1));
   clock.advance(1'001);
   ASSERT_EQ(store.expired(clock.now()).size(), 1u);
   EXPECT_EQ(store.expired(clock.now())[0].attempt, 1);
   EXPECT_EQ(store.expired(clock.now())[0].worker, "w");
   ASSERT_EQ(store.requeue_expired(clock.now(), 3).requeued, 1);
   EXPECT_TRUE(store.expired(clock.now()).empty());
-  const Claim second = claim_of(*store.claim("w", 1'000));  // the same name, attempt 2
+  const Claim second = claim_of(*store.claim("w", 1'000, 1));  // the same name, attempt 2
   ASSERT_EQ(second.attempt, 2);
   EXPECT_EQ(store.renew(first, 1'000), Lease::lost);
   EXPECT_FALSE(store.progress(first, {5, 30, 0.05, 0.3, std::nullopt}));
@@ -187,11 +229,11 @@ TEST_P(StoreTest, AnAttemptThatLostItsLeaseIsFencedOutByItsAttemptNumber) {
 TEST_P(StoreTest, CancelStopsAQueuedJobAtOnceAndFlagsARunningOne) {
   const JobId queued = create("q").id;
   const JobId running = create("r").id;
-  ASSERT_EQ(store.claim("w", 10'000)->id, queued);  // oldest first: claim the first, requeue trick below
+  ASSERT_EQ(store.claim("w", 10'000, 1)->id, queued);  // oldest first: claim the first, requeue trick below
   // Put the first back so that `queued` is queued and `running` runs.
   store.release({queued, "w", 1});
   store.request_cancel(queued);
-  ASSERT_EQ(store.claim("w", 10'000)->id, running);
+  ASSERT_EQ(store.claim("w", 10'000, 1)->id, running);
 
   EXPECT_EQ(store.get(queued)->status, Status::canceled);
   EXPECT_EQ(store.get(queued)->attempt, 0);  // release does not count the attempt
@@ -218,7 +260,7 @@ TEST_P(StoreTest, RemovesOnlyFinishedJobs) {
 TEST_P(StoreTest, CountsJobsByStatus) {
   create("a");
   create("b");
-  store.claim("w", 10'000);
+  store.claim("w", 10'000, 1);
   auto counts = store.count_by_status();
   EXPECT_EQ(counts[Status::queued], 1);
   EXPECT_EQ(counts[Status::running], 1);
@@ -270,6 +312,8 @@ TEST(StoreMigration, MigratesAVersionOneDatabase) {
   ASSERT_TRUE(old);
   EXPECT_EQ(old->kind, Kind::simulation);  // every job from before study jobs is a simulation
   EXPECT_FALSE(old->study);
+  EXPECT_EQ(old->ranks, 1);  // every job from before solver.ranks asks for one rank
+  EXPECT_EQ(store.claim("w", 10'000, 1)->id, old->id);
   sqlite::Connection c(dir.path() / "jobs.db", 1000);
   sqlite::Statement index(
       c, "SELECT count(*) FROM sqlite_master WHERE type = 'index' AND name = 'jobs_by_lease'");
@@ -314,7 +358,7 @@ TEST_P(StoreConcurrency, EveryQueuedJobIsClaimedExactlyOnce) {
   std::vector<std::thread> workers;
   for (int t = 0; t < threads; ++t)
     workers.emplace_back([&, t] {
-      while (auto job = store.claim(std::string("w").append(std::to_string(t)), 10'000)) {
+      while (auto job = store.claim(std::string("w").append(std::to_string(t)), 10'000, 1)) {
         std::lock_guard lock(mutex);
         claimed.insert(job->id.str());
       }
@@ -340,6 +384,38 @@ TEST(PgStoreMigration, CreatesTheLatestSchemaOnceWhenManyProcessesStartTogether)
   pg::Connection c(cluster.url(db));
   EXPECT_EQ(c.exec("SELECT count(*) FROM stoss_schema_version").int64(0, 0),
             PgStore::latest_schema_version());
+  cluster.drop_database(db);
+}
+
+// What the previous release (schema version 2) left, one queued job in it: migration 3 adds `ranks`, 1 for
+// that job, and a one-rank worker claims it.
+TEST(PgStoreMigration, MigratesAVersionTwoDatabaseWhoseJobsAskForOneRank) {
+  test::PgCluster& cluster = test::PgCluster::shared();
+  const std::string db = cluster.create_database();
+  ManualClock clock;
+  pg::Connection(cluster.url(db))
+      .exec(
+          "CREATE TABLE stoss_schema_version (version INTEGER PRIMARY KEY, applied_ms BIGINT NOT NULL);"
+          "INSERT INTO stoss_schema_version VALUES (1, 0), (2, 0);"
+          "CREATE TABLE stoss_jobs (seq BIGSERIAL PRIMARY KEY, id TEXT NOT NULL UNIQUE,"
+          " kind TEXT NOT NULL DEFAULT 'simulation', status TEXT NOT NULL, created_ms BIGINT NOT NULL,"
+          " started_ms BIGINT, finished_ms BIGINT, attempt INTEGER NOT NULL DEFAULT 0, worker TEXT,"
+          " lease_expires_ms BIGINT, cancel_requested BOOLEAN NOT NULL DEFAULT false,"
+          " idempotency_key TEXT UNIQUE, body_hash TEXT NOT NULL, scene TEXT NOT NULL, name TEXT, study TEXT,"
+          " effects TEXT NOT NULL, progress_step INTEGER NOT NULL DEFAULT 0,"
+          " progress_steps INTEGER NOT NULL DEFAULT 0, progress_time DOUBLE PRECISION NOT NULL DEFAULT 0,"
+          " progress_end DOUBLE PRECISION NOT NULL DEFAULT 0, progress_eta DOUBLE PRECISION, summary TEXT,"
+          " error TEXT, result_attempt INTEGER);"
+          "INSERT INTO stoss_jobs (id, status, created_ms, body_hash, scene, effects)"
+          " VALUES ('0123456789abcdef0123456789abcdef', 'queued', 0, 'h', '{}', '[]');");
+  {
+    PgStore store(cluster.url(db), clock);
+    EXPECT_EQ(store.schema_version(), PgStore::latest_schema_version());
+    const auto old = store.get(*JobId::parse("0123456789abcdef0123456789abcdef"));
+    ASSERT_TRUE(old);
+    EXPECT_EQ(old->ranks, 1);
+    EXPECT_EQ(store.claim("w", 10'000, 1)->id, old->id);
+  }
   cluster.drop_database(db);
 }
 
