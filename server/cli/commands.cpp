@@ -66,7 +66,11 @@ void print_summary(const model::Model& m, const model::Summary& s) {
       "%.3f s, other %.3f s\n",
       s.assembly_seconds, s.contact_seconds, s.linear_solver_seconds, s.linear_factorization_seconds,
       s.linear_solve_seconds, s.output_seconds, other);
-  std::printf("peak memory %.1f MB (resident)\n", s.peak_memory_bytes / 1e6);
+  if (const int ranks = parallel::mpi_place().size; ranks > 1)
+    std::printf("peak memory %.1f MB (resident, the sum over %d MPI ranks)\n", s.peak_memory_bytes / 1e6,
+                ranks);
+  else
+    std::printf("peak memory %.1f MB (resident)\n", s.peak_memory_bytes / 1e6);
   if (s.krylov_iterations_per_solve > 0)
     std::printf("krylov iterations %.1f per solve (%d fell back to LU)\n", s.krylov_iterations_per_solve,
                 s.krylov_fallbacks);
@@ -165,6 +169,20 @@ model::Model resumed_model(const fs::path& out_dir) {
   scene::MeshFiles files;
   files.directory = fs::path(run.at("mesh_directory").get<std::string>());
   return scene::load_resolved(run.at("scene"), files);
+}
+
+/// The ranks the scene of a run asks for (solver.ranks; 1 when absent), read from the scene file or, with
+/// --resume, from DIR's run file; 1 when either cannot be read (the run reports why itself).
+int scene_ranks(const std::string& scene_path, const std::optional<fs::path>& resumed_dir) {
+  try {
+    std::ifstream in(resumed_dir ? run_file(*resumed_dir) : fs::path(scene_path), std::ios::binary);
+    const nlohmann::json file = nlohmann::json::parse(in);
+    const nlohmann::json& scene = resumed_dir ? file.at("scene") : file;
+    const int ranks = scene.at("solver").at("ranks").get<int>();
+    return ranks >= 1 ? ranks : 1;
+  } catch (const std::exception&) {
+    return 1;
+  }
 }
 
 /// The command line of `stoss run`.
@@ -289,7 +307,7 @@ int run_command(const std::vector<std::string>& args) {
       "  --resume DIR goes on from it after a crash and writes the result the run would have written.\n"
       "  It ends with the checks and the verdict (ok or suspect); --strict exits 3 on a suspect result.\n"
       "  --ranks N runs it on N MPI ranks of this machine (mpiexec; solver.linear petsc_gamg), as does\n"
-      "  `mpiexec -n N stoss run ...` (docs/many_machines.md).\n"
+      "  `mpiexec -n N stoss run ...` (docs/many_machines.md); without it, the scene's solver.ranks (1).\n"
       "  exit 0 success, 1 solver failure, 2 invalid scene or command line, 3 suspect result with --strict";
   if (wants_help(args)) {
     std::cout << "usage: " << text << "\n";
@@ -297,14 +315,18 @@ int run_command(const std::vector<std::string>& args) {
   }
   const std::optional<RunOptions> options = parse_run_options(args);
   if (!options) return usage(text);
-  if (options->ranks) {
-    if (const auto problem = ranks_problem(*options->ranks, parallel::machine_cores())) {
+  const int asked = options->ranks ? *options->ranks
+                                   : scene_ranks(options->scene_path,
+                                                 options->resume ? std::optional<fs::path>(options->out_dir)
+                                                                 : std::nullopt);
+  if (asked != 1 || options->ranks) {
+    if (const auto problem =
+            ranks_problem(asked, parallel::machine_cores(), options->ranks ? "--ranks" : "solver.ranks")) {
       std::cerr << "stoss run: " << *problem << "\n";
       return invalid_scene;
     }
-    if (*options->ranks > 1 && !parallel::mpi_place().several()) {
-      const std::string why_not =
-          launch_ranks(args, *options->ranks);  // returns only when mpiexec did not start
+    if (asked > 1 && !parallel::mpi_place().several()) {
+      const std::string why_not = launch_ranks(args, asked);  // returns only when mpiexec did not start
       std::cerr << "stoss run: " << why_not << "\n";
       return solver_failure;
     }

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "core/scene/scene.hpp"
+#include "server/jobs/running/launcher.hpp"
 
 namespace stoss::cli {
 
@@ -59,6 +60,11 @@ const FlagTable<RunnerFlags>& runner_flags() {
        [](auto& f, auto& v, auto& o) {
          o.pool.ranks_per_job = int(parse_integer(f, v, 1, scene::max_ranks));
        }},
+      {"--launcher",
+       [](auto&, auto& v, auto& o) {
+         if (const auto problem = jobs::launcher_problem(v)) throw UsageError(*problem);
+         o.launcher = v;
+       }},
       {"--max-attempts",
        [](auto& f, auto& v, auto& o) { o.max_attempts = int(parse_integer(f, v, 1, 100)); }},
       {"--job-timeout",
@@ -79,7 +85,9 @@ jobs::StoreLocation store_location(const RunnerFlags& flags) {
 }
 
 jobs::JobRunnerOptions job_runner_options(const RunnerFlags& flags, const jobs::StoreLocation& location) {
-  return {flags.data, location, {flags.job_timeout, flags.job_memory}, flags.pool, flags.max_attempts};
+  jobs::ProcessLimits limits{flags.job_timeout, flags.job_memory};
+  limits.launcher = flags.launcher;
+  return {flags.data, location, limits, flags.pool, flags.max_attempts};
 }
 
 const char* runner_flags_usage() {
@@ -89,6 +97,9 @@ const char* runner_flags_usage() {
   --max-attempts N       runs a job may start before an expired lease fails it (default 3)
   --ranks-per-job N      MPI ranks one job may use here: only jobs whose scene's solver.ranks is at most
                          N are claimed, bigger ones wait for a worker started with more (default 1)
+  --launcher TEMPLATE    starts a job's ranks: {ranks} becomes their number, the rank's command goes last
+                         (default "mpiexec -n {ranks} --use-hwthread-cpus --bind-to none", with
+                         --allow-run-as-root as root; on Slurm "srun -n {ranks} --kill-on-bad-exit=1 …")
 )";
 }
 

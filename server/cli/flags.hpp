@@ -2,7 +2,7 @@
 /// @file Flags shared by the subcommands that run jobs (`stoss serve`, `stoss worker`): the parsing of
 /// `--flag value` and `--flag=value`, the numbers and durations, and RunnerFlags, what a process's job
 /// runner needs (--data, --store, --workers, --lease-seconds, --renew-seconds, --max-attempts,
-/// --job-timeout, --job-memory, --ranks-per-job).
+/// --job-timeout, --job-memory, --ranks-per-job, --launcher).
 
 #include <filesystem>
 #include <functional>
@@ -36,6 +36,7 @@ struct RunnerFlags {
   int max_attempts = 3;                  ///< --max-attempts: runs before an expired lease fails a job
   server::jobs::Millis job_timeout = 0;  ///< --job-timeout: wall-time limit of one job attempt (0: none)
   std::size_t job_memory = 0;            ///< --job-memory: address-space limit of a job's process (0: none)
+  std::string launcher;                  ///< --launcher: starts a job's ranks (empty: the default mpiexec)
 };
 
 /// How one flag sets its value in `Options`.

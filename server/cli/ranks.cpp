@@ -6,10 +6,10 @@
 
 namespace stoss::cli {
 
-std::optional<std::string> ranks_problem(int ranks, int cores) {
-  if (ranks < 1) return "--ranks must be at least 1, got " + std::to_string(ranks);
+std::optional<std::string> ranks_problem(int ranks, int cores, const std::string& asked_by) {
+  if (ranks < 1) return asked_by + " must be at least 1, got " + std::to_string(ranks);
   if (ranks > cores)
-    return "--ranks must be at most the " + std::to_string(cores) + " cores of this machine, got " +
+    return asked_by + " must be at most the " + std::to_string(cores) + " cores of this machine, got " +
            std::to_string(ranks) +
            " (on a cluster, start the ranks with its launcher: docs/many_machines.md)";
   return std::nullopt;

@@ -12,9 +12,9 @@
 
 namespace stoss::cli {
 
-/// Why `--ranks N` cannot run here, or nothing: N must be at least 1 and at most the cores (hardware threads)
-/// of this machine, the slots mpiexec_command gives.
-std::optional<std::string> ranks_problem(int ranks, int cores);
+/// Why `--ranks N` (or the scene's solver.ranks: `asked_by`) cannot run here, or nothing: N must be at least
+/// 1 and at most the cores (hardware threads) of this machine, the slots mpiexec_command gives.
+std::optional<std::string> ranks_problem(int ranks, int cores, const std::string& asked_by = "--ranks");
 
 /// The command line that starts `stoss run ARGS` on N ranks: mpiexec -n N (with --allow-run-as-root as root,
 /// the hardware threads as slots, no binding) and this executable, ARGS without `--ranks N`.

@@ -233,10 +233,10 @@ int run_rank(const JobProcessOptions& options, parallel::MpiPlace place) {
   try {
     solve::synchronize_ranks();
   } catch (const std::exception& e) {
-    const std::string within =
-        options.memory > 0 ? " within " + std::to_string(options.memory) + " bytes of address space per rank (" +
-                                 "--job-memory shared by the ranks)"
-                           : "";
+    const std::string within = options.memory > 0 ? " within " + std::to_string(options.memory) +
+                                                        " bytes of address space per rank (" +
+                                                        "--job-memory shared by the ranks)"
+                                                  : "";
     return place.rank == 0 ? record_failure(attempt, "cannot start MPI" + within + ": " + e.what()) : 0;
   }
   if (place.size != options.ranks) {

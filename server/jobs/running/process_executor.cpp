@@ -139,11 +139,7 @@ Millis ProcessExecutor::wall_limit(const Job& job, Millis server_limit) {
 }
 
 int ProcessExecutor::ranks(const Job& job) {
-  if (job.kind != Kind::simulation || !job.scene.is_object()) return 1;
-  const auto solver = job.scene.find("solver");
-  if (solver == job.scene.end() || !solver->is_object()) return 1;
-  const auto ranks = solver->find("ranks");
-  return ranks != solver->end() && ranks->is_number_integer() ? std::max(1, ranks->get<int>()) : 1;
+  return job.kind == Kind::simulation ? std::max(1, job.ranks) : 1;
 }
 
 Outcome ProcessExecutor::failed(const Job& job, const std::string& reason) const {

@@ -45,7 +45,7 @@ class ProcessExecutor : public Executor {
   /// The wall-time limit of `job` in ms: the lower of `server_limit` and the scene's
   /// solver.max_wall_seconds (0: none).
   static Millis wall_limit(const Job& job, Millis server_limit);
-  /// The MPI ranks `job` runs on: its scene's solver.ranks for a simulation, else 1.
+  /// The MPI ranks `job` runs on: its ranks (the scene's solver.ranks) for a simulation, else 1.
   static int ranks(const Job& job);
 
  private:

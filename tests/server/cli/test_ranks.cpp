@@ -134,6 +134,30 @@ TEST(Ranks, TheDirectSolverOnTwoRanksIsMumpsAndGivesTheAnswersOfUmfpack) {
   expect_the_same_answers(dir.path() / "one", dir.path() / "two");
 }
 
+TEST(Ranks, TheScenesSolverRanksStartsThatManyUnlessRanksSaysOtherwise) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: 2 ranks are refused here";
+  test::TempDir dir;
+  const PrivateTemp temp(dir);
+  nlohmann::json scene = test::seed_in_contact_scene("petsc_gamg");
+  scene["time"]["end"] = 0.03;
+  scene["solver"]["ranks"] = 2;
+  const fs::path path = dir.path() / "two.json";
+  std::ofstream(path) << scene.dump();
+  const auto two = test::run_stoss({"run", path.string(), "-o", (dir.path() / "a").string()});
+  ASSERT_EQ(two.exit_code, 0) << two.out << two.err;
+  EXPECT_NE((two.out + two.err).find("on 2 MPI ranks"), std::string::npos) << two.out << two.err;
+  EXPECT_NE(two.out.find("(resident, the sum over 2 MPI ranks)"), std::string::npos) << two.out;
+  const auto one = test::run_stoss({"run", path.string(), "-o", (dir.path() / "b").string(), "--ranks", "1"});
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_EQ((one.out + one.err).find("MPI ranks"), std::string::npos) << "--ranks 1 wins: " << one.out;
+
+  scene["solver"]["ranks"] = static_cast<int>(std::thread::hardware_concurrency()) + 1;
+  std::ofstream(path) << scene.dump();
+  const auto many = test::run_stoss({"run", path.string(), "-o", (dir.path() / "c").string()});
+  EXPECT_EQ(many.exit_code, 2);
+  EXPECT_NE(many.err.find("solver.ranks must be at most the"), std::string::npos) << many.err;
+}
+
 TEST(Ranks, ASceneAskingForASolverOfOneRankIsRefusedAtItsPointer) {
   if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: --ranks 2 is refused here";
   test::TempDir dir;

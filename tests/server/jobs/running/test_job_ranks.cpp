@@ -73,18 +73,6 @@ TEST(JobRanks, ATwoRankJobGivesTheAnswersOfOneRankAndCountsTheMemoryOfBoth) {
   EXPECT_EQ(temp.rank_directories_left(), std::vector<std::string>{}) << "rank 1's private folder is removed";
 }
 
-TEST(JobRanks, AWorkerClaimsOnlyJobsOfAtMostItsRanks) {
-  TempDir dir;
-  LiveServer server(dir.path() / "data", {"--workers", "1", "--max-ranks-per-job", "2"});  // 1 rank per job
-  auto c = server.client();
-  nlohmann::json scene = box_scene(2, 10);
-  scene["solver"]["ranks"] = 2;
-  const std::string waiting = id_of(submit(c, scene));
-  const std::string after = id_of(submit(c, box_scene(2, 10)));
-  EXPECT_EQ(wait_for_status(c, after, {"succeeded", "failed"}, 60s)["status"], "succeeded");
-  EXPECT_EQ(job(c, waiting)["status"], "queued") << "no worker here runs 2 ranks";
-}
-
 TEST(JobRanks, ACanceledTwoRankJobStopsEveryRankAtOneStep) {
   if (skip_on_one_core()) GTEST_SKIP() << "one core: mpiexec has one slot";
   TempDir dir;
