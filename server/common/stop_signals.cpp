@@ -17,25 +17,24 @@ extern "C" void pass_on_to_waiting_thread(int signal) {
 
 }  // namespace
 
-StopSignalRoute::StopSignalRoute(const sigset_t& signals) {
+StopSignalRoute::StopSignalRoute() {
   waiting_thread = gettid();
   struct sigaction action {};
   action.sa_handler = pass_on_to_waiting_thread;
   sigemptyset(&action.sa_mask);
   action.sa_flags = SA_RESTART;
-  for (int s = 1; s < NSIG; ++s)
-    if (sigismember(&signals, s) == 1) sigaction(s, &action, nullptr);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
 }
 
 StopSignalRoute::~StopSignalRoute() {
   waiting_thread = 0;
 }
 
-StopSignals::StopSignals(std::initializer_list<int> also) {
+StopSignals::StopSignals() {
   sigemptyset(&signals_);
   sigaddset(&signals_, SIGINT);
   sigaddset(&signals_, SIGTERM);
-  for (int s : also) sigaddset(&signals_, s);
   pthread_sigmask(SIG_BLOCK, &signals_, &previous_);
   signal(SIGPIPE, SIG_IGN);
 }
@@ -46,7 +45,7 @@ StopSignals::~StopSignals() {
 }
 
 int StopSignals::wait() {
-  const StopSignalRoute route(signals_);  // signals a library's own threads receive come here
+  const StopSignalRoute route;  // signals a library's own threads receive come here
   int received = 0;
   sigwait(&signals_, &received);
   return received;

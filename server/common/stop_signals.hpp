@@ -11,7 +11,6 @@
 #include <atomic>
 #include <csignal>
 #include <functional>
-#include <initializer_list>
 #include <thread>
 
 namespace stoss::server {
@@ -21,8 +20,7 @@ namespace stoss::server {
 /// as they stay pending unseen in the threads that block them (a second SIGTERM while stopping).
 class StopSignalRoute {
  public:
-  /// For the signals of `signals`.
-  explicit StopSignalRoute(const sigset_t& signals);
+  StopSignalRoute();
   ~StopSignalRoute();
   StopSignalRoute(const StopSignalRoute&) = delete;
   StopSignalRoute& operator=(const StopSignalRoute&) = delete;
@@ -33,13 +31,12 @@ class StopSignalRoute {
 /// thread (wait) or in a thread of its own (on_stop).
 class StopSignals {
  public:
-  /// `also`: more signals that stop (SIGUSR1, the cancel a launcher passes on to a job's ranks).
-  explicit StopSignals(std::initializer_list<int> also = {});
+  StopSignals();
   ~StopSignals();
   StopSignals(const StopSignals&) = delete;
   StopSignals& operator=(const StopSignals&) = delete;
 
-  /// Blocks until SIGINT, SIGTERM or one of `also` arrives and returns it.
+  /// Blocks until SIGINT or SIGTERM arrives and returns it.
   int wait();
   /// Starts a thread that waits for SIGINT or SIGTERM and calls `stop` with it (unless stop_waiting came
   /// first).

@@ -8,11 +8,13 @@
 
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <new>
 #include <system_error>
+#include <thread>
 #include <vector>
 
 #include "core/parallel/mpi_place.hpp"
@@ -160,6 +162,27 @@ int launch_ranks(const JobProcessOptions& options) {
                         "cannot start the job's " + std::to_string(options.ranks) + " ranks: " + reason);
 }
 
+/// Sets the cancel flag once the parent wrote the attempt's cancel file (the cancel of a launch), looking
+/// every 100 ms while it lives.
+class CancelFileWatch {
+ public:
+  explicit CancelFileWatch(std::filesystem::path file)
+      : thread_([this, file = std::move(file)] {
+          for (std::error_code error; !done_; std::this_thread::sleep_for(std::chrono::milliseconds(100)))
+            if (std::filesystem::exists(file, error)) child_cancel.store(true);
+        }) {}
+  ~CancelFileWatch() {
+    done_ = true;
+    thread_.join();
+  }
+  CancelFileWatch(const CancelFileWatch&) = delete;
+  CancelFileWatch& operator=(const CancelFileWatch&) = delete;
+
+ private:
+  std::atomic<bool> done_{false};
+  std::thread thread_;
+};
+
 /// Rank 0's word to every rank: a sum over the ranks to which only rank 0 adds.
 bool word_of_rank_zero(parallel::MpiPlace place, bool word) {
   double value = place.rank == 0 && word ? 1.0 : 0.0;
@@ -184,7 +207,11 @@ int lead_ranks(const JobProcessOptions& options, parallel::MpiPlace place) {
   });
   const ProgressSink report = [](const Progress& p) { write_all(STDOUT_FILENO, progress_line(p)); };
   bool recorded = false;
-  const Outcome outcome = run_attempt(options, executor, attempt, report, recorded);
+  Outcome outcome;
+  {
+    const CancelFileWatch watch(attempt.dir() / cancel_file);
+    outcome = run_attempt(options, executor, attempt, report, recorded);
+  }
   if (!started) word_of_rank_zero(place, false);
   const int code = record(attempt, outcome, recorded);
   // A failure of this rank alone (a full disk) leaves the others waiting in a sum: leave without MPI's
@@ -256,8 +283,7 @@ int run_job_process(const JobProcessOptions& options) {
   // kept) and one thread waits for it. A handler missed it while a library had its own in place: METIS,
   // which UMFPACK's ordering calls, installs a SIGTERM handler around each call, and a cancel landing there
   // was lost (the job ran on and was killed 30 s later, "did not stop within 30 s of the cancel").
-  // A launcher passes SIGUSR1 on to the ranks (SIGTERM it answers by ending them itself).
-  server::StopSignals signals({SIGUSR1});
+  server::StopSignals signals;
   signals.on_stop([](int) { child_cancel.store(true); });
   if (!enter_job_process(options)) return 3;
   if (options.launched) return run_rank(options, parallel::mpi_place());

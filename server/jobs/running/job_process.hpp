@@ -8,8 +8,9 @@
 /// the launcher (launcher.hpp), its stdout the progress pipe and its stderr the attempt's launcher.log,
 /// keeping the signal that kills it with its parent. Each rank the launcher starts runs `stoss run-job`
 /// again: rank 0 runs the attempt in its folder, reports progress on stdout (which the launcher passes on)
-/// and writes outcome.json; rank k > 0 runs the same steps in a private folder. SIGUSR1, which launchers pass
-/// on to every rank, cancels, and the ranks stop at the same step (parallel::on_any_rank).
+/// and writes outcome.json; rank k > 0 runs the same steps in a private folder. The parent cancels a launch
+/// by writing the attempt's file `cancel` (job_protocol.hpp), which rank 0 looks for; the ranks stop at the
+/// same step (parallel::on_any_rank).
 
 #include <cstddef>
 #include <filesystem>

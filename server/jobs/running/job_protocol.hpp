@@ -15,6 +15,8 @@ namespace stoss::server::jobs {
 
 inline constexpr const char* job_request_file = "job.json";  ///< what the child runs
 inline constexpr const char* job_pid_file = "process.pid";   ///< the child's pid while it runs
+/// Written by the parent to cancel a job on several ranks: rank 0 looks for it (job_process.hpp).
+inline constexpr const char* cancel_file = "cancel";
 /// The child writes one JSON line per progress report to this descriptor.
 inline constexpr int progress_fd = 3;
 

@@ -112,6 +112,19 @@ std::string launcher_message(const std::filesystem::path& log) {
   return message + " (" + log.filename().string() + ")";
 }
 
+/// Cancels the job process: SIGTERM, or for a launch the file rank 0 looks for (a signal the launcher passes
+/// on could reach a rank before it can take it, and kill it).
+void cancel_process(pid_t pid, const std::filesystem::path& cancel_by_file) {
+  if (cancel_by_file.empty()) {
+    ::kill(pid, SIGTERM);
+    return;
+  }
+  try {
+    output::write_durably(cancel_by_file, "");
+  } catch (const std::exception&) {  // no cancel then: the grace ends with SIGKILL
+  }
+}
+
 }  // namespace
 
 std::string signal_reason(int signal) {
@@ -169,6 +182,7 @@ Outcome ProcessExecutor::supervise(const Job& job, const std::atomic<bool>& canc
   std::filesystem::create_directories(dir);
   std::error_code ignored;
   std::filesystem::remove(dir / outcome_file_name, ignored);
+  std::filesystem::remove(dir / cancel_file, ignored);  // of an earlier run of this attempt, released
   write_job_request(dir, job);
 
   const auto [read_end, write_end] = progress_pipe();
@@ -185,7 +199,7 @@ Outcome ProcessExecutor::supervise(const Job& job, const std::atomic<bool>& canc
   }
   const Millis wall = wall_limit(job, limits_.wall);
   const bool launched = ranks(job) > 1;
-  const Watched watched = watch(pid, read_end, wall, launched ? SIGUSR1 : SIGTERM, cancel, progress);
+  const Watched watched = watch(pid, read_end, wall, launched ? dir / cancel_file : "", cancel, progress);
   ::close(read_end);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
@@ -225,7 +239,8 @@ pid_t ProcessExecutor::spawn(const Job& job, int write_end) const {
   return pid;
 }
 
-ProcessExecutor::Watched ProcessExecutor::watch(pid_t pid, int read_end, Millis wall, int cancel_signal,
+ProcessExecutor::Watched ProcessExecutor::watch(pid_t pid, int read_end, Millis wall,
+                                                const std::filesystem::path& cancel_by_file,
                                                 const std::atomic<bool>& cancel,
                                                 const ProgressSink& progress) const {
   const auto started = Steady::now();
@@ -246,7 +261,7 @@ ProcessExecutor::Watched ProcessExecutor::watch(pid_t pid, int read_end, Millis 
     }
     const auto now = Steady::now();
     if (cancel.load() && !watched.terminated) {
-      ::kill(pid, cancel_signal);
+      cancel_process(pid, cancel_by_file);
       watched.terminated = true;
       terminated_at = now;
     }

@@ -8,7 +8,7 @@
 /// signal, a limit) fails that job alone, with the reason: the server, and every other job, go on.
 ///
 /// A simulation whose scene asks for solver.ranks > 1 runs under the launcher (job_process.hpp): the child
-/// becomes the launcher, cancel is SIGUSR1 (which launchers pass on to every rank), SIGKILL past the grace
+/// becomes the launcher, cancel is the attempt's file `cancel` (rank 0 looks for it), SIGKILL past the grace
 /// or the limit kills the launcher and with it every rank on this machine, and a launch that ends without
 /// an outcome fails with the launcher's own message (launcher.log).
 
@@ -51,7 +51,7 @@ class ProcessExecutor : public Executor {
  private:
   /// What the parent did to a running child, and why it stopped watching.
   struct Watched {
-    bool terminated = false;  ///< SIGTERM sent (cancel; SIGUSR1 to a launcher)
+    bool terminated = false;  ///< SIGTERM sent (cancel; to a launch, the cancel file written)
     bool killed = false;      ///< SIGKILL sent (grace over, or wall-time limit)
     bool over_time = false;   ///< killed for the wall-time limit
   };
@@ -60,8 +60,9 @@ class ProcessExecutor : public Executor {
   /// Starts `stoss run-job` for `job` with `write_end` as its progress_fd (closed here); returns its pid.
   pid_t spawn(const Job& job, int write_end) const;
   /// Relays the child's progress from `read_end` until it closes, enforcing cancel and the limits.
-  Watched watch(pid_t pid, int read_end, Millis wall, int cancel_signal, const std::atomic<bool>& cancel,
-                const ProgressSink& progress) const;
+  /// `cancel_by_file`: for a launch, the file that cancels it (empty: SIGTERM cancels).
+  Watched watch(pid_t pid, int read_end, Millis wall, const std::filesystem::path& cancel_by_file,
+                const std::atomic<bool>& cancel, const ProgressSink& progress) const;
   /// How the attempt ended: from the child's exit `status` and what was done to it, else its outcome.json.
   Outcome ended(const Job& job, const std::filesystem::path& dir, const Watched& watched, int status,
                 Millis wall) const;

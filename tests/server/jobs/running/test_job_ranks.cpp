@@ -73,7 +73,7 @@ TEST(JobRanks, ATwoRankJobGivesTheAnswersOfOneRankAndCountsTheMemoryOfBoth) {
   EXPECT_EQ(temp.rank_directories_left(), std::vector<std::string>{}) << "rank 1's private folder is removed";
 }
 
-TEST(JobRanks, ACanceledTwoRankJobStopsEveryRankAtOneStep) {
+TEST(JobRanks, ACanceledTwoRankJobStopsEveryRankAtOneStepEvenWhileItStarts) {
   if (skip_on_one_core()) GTEST_SKIP() << "one core: mpiexec has one slot";
   TempDir dir;
   const PrivateTemp temp(dir);
@@ -89,6 +89,13 @@ TEST(JobRanks, ACanceledTwoRankJobStopsEveryRankAtOneStep) {
   EXPECT_NE(c.Get("/v1/jobs/" + id + "/log")->body.find("canceled at step"), std::string::npos);
   EXPECT_TRUE(eventually([&] { return processes_of(id) == 0; }, 10s)) << "no rank is left running";
   EXPECT_EQ(temp.rank_directories_left(), std::vector<std::string>{});
+
+  // A cancel while the launcher or the ranks start is a cancel too.
+  const std::string early = id_of(submit(c, long_two_rank_scene()));
+  ASSERT_TRUE(eventually([&] { return job(c, early)["status"] == "running"; }, 60s));
+  ASSERT_EQ(c.Post("/v1/jobs/" + early + "/cancel")->status, 202);
+  EXPECT_EQ(wait_for_status(c, early, {"canceled", "failed", "succeeded"}, 20s)["status"], "canceled");
+  EXPECT_TRUE(eventually([&] { return processes_of(early) == 0; }, 10s)) << "no rank is left running";
 }
 
 TEST(JobRanks, TheWallTimeLimitAndKillNineOfTheServerLeaveNoRankRunning) {
