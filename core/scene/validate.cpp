@@ -515,6 +515,10 @@ void check_solver(json& s, const std::string& p, Checker& c) {
   number_field(s, "max_wall_seconds", p, Presence::may(), between(0, 1e7, false, true, "0, 1e7"), c);
   // Absent means one rank, and is not filled in: the resolved scene of a one-rank run stays as it was.
   integer_field(s, "ranks", p, Presence::may(), between(1, max_ranks, true, true), c);
+  if (s.contains("ranks") && s["ranks"].is_number_integer() && s["ranks"].get<long long>() > 1 &&
+      s["linear"] == "iterative")
+    c.fail(child(p, "linear"), "\"iterative\" solves on one rank; with solver.ranks " + shown(s["ranks"]) +
+                                   " it must be \"petsc_gamg\", \"direct\" (MUMPS) or \"auto\"");
 }
 
 void check_output(json& o, const std::string& p, Checker& c) {

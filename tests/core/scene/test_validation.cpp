@@ -260,6 +260,10 @@ INSTANTIATE_TEST_SUITE_P(Rules, SceneRule, ::testing::Values(
   Violation{"ranks at most 4096", {{"/solver/ranks", 4097}}, "/solver/ranks", "must be in [1, 4096], got 4097"},
   Violation{"ranks integer", {{"/solver/ranks", 2.5}}, "/solver/ranks", "must be an integer, got 2.5"},
   Violation{"ranks number", {{"/solver/ranks", "two"}}, "/solver/ranks", R"(must be an integer, got "two")"},
+  Violation{"iterative on several ranks",
+            {{"/solver/ranks", 2}, {"/solver/linear", "iterative"}},
+            "/solver/linear",
+            R"("iterative" solves on one rank; with solver.ranks 2 it must be "petsc_gamg", "direct" (MUMPS) or "auto")"},
   Violation{"output every", {{"/output/every", 0}}, "/output/every", "must be >= 1, got 0"},
   // steps chosen by a tolerance, frames at an interval (issue 22 "Bad input")
   Violation{"time tolerance > 0", {{"/time/tolerance", 0}}, "/time/tolerance", "must be > 0, got 0"},
