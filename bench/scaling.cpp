@@ -5,14 +5,15 @@
 // shares of the wall time (linear solver, assembly, output) from the run's summary.
 // Writes bench/results/scaling.csv and bench/results/scaling.png (gnuplot).
 // Run: ./build/bench_scaling [--linear direct|iterative|petsc_gamg] [--large | --only-large] [--steps N]
-//                            [--ranks N] [--stoss PATH]
+//                            [--ranks N [--oversubscribe]] [--stoss PATH]
 //   default sizes about 1k, 8k and 27k elements; --large adds 64k and 100k, --only-large runs just those
 //   (appending to the CSV). --linear sets the scene's solver.linear (default direct); other than direct
 //   the results go to scaling_<linear>.csv, with the Krylov iterations per solve and the most one took.
 //   scaling.png draws every scaling*.csv there is, one line per linear solver.
 //   --ranks N runs each size with `stoss run --ranks N` (solver.linear petsc_gamg; results to
-//   scaling_petsc_gamg_ranks<N>.csv); peak memory is then rank 0's, and every rank holds as much (the model
-//   is replicated, docs/many_machines.md, "One run on several MPI ranks").
+//   scaling_petsc_gamg_ranks<N>.csv); peak memory is then the sum over the ranks, each of which holds the
+//   whole model (docs/many_machines.md, "One run on several MPI ranks"). --oversubscribe starts the ranks
+//   with `mpiexec --oversubscribe` itself, so that N may exceed the cores (stoss run --ranks refuses that).
 //   stoss defaults to the stoss next to this executable (build it first: --target stoss).
 #include <unistd.h>
 
@@ -50,7 +51,16 @@ struct Options {
   std::string linear = "direct";
   int steps = 5;
   int ranks = 1;
+  bool oversubscribe = false;  ///< mpiexec --oversubscribe: more ranks than cores
 };
+
+/// The command that runs `stoss run ARGS` on o.ranks ranks.
+std::string run_command(const fs::path& stoss, const std::string& args, const Options& o) {
+  if (o.ranks > 1 && o.oversubscribe)
+    return "mpiexec -n " + std::to_string(o.ranks) + " --oversubscribe --bind-to none" +
+           (geteuid() == 0 ? " --allow-run-as-root " : " ") + stoss.string() + " run " + args;
+  return stoss.string() + " run " + args + (o.ranks > 1 ? " --ranks " + std::to_string(o.ranks) : "");
+}
 
 std::string run_capture(const std::string& command, int& status) {
   std::string out;
@@ -109,9 +119,7 @@ Row measure(const fs::path& stoss, const Size& size, const fs::path& work, const
   const fs::path out = work / ("out_" + std::to_string(size.divisions));
   // The log (stderr) carries the Krylov line; the progress line's carriage returns do no harm.
   const std::string ran =
-      run_capture(stoss.string() + " run " + scene.string() + " -o " + out.string() +
-                      (o.ranks > 1 ? " --ranks " + std::to_string(o.ranks) : "") + " 2>&1",
-                  status);
+      run_capture(run_command(stoss, scene.string() + " -o " + out.string(), o) + " 2>&1", status);
   if (status != 0) {
     std::cerr << "bench_scaling: stoss run failed (status " << status << "):\n" << ran;
     std::exit(1);
@@ -191,9 +199,11 @@ int main(int argc, char** argv) {
       stoss = argv[++i];
     else if (a == "--ranks" && i + 1 < argc)
       o.ranks = std::atoi(argv[++i]);
+    else if (a == "--oversubscribe")
+      o.oversubscribe = true;
     else {
       std::cerr << "usage: bench_scaling [--linear direct|iterative|petsc_gamg] [--large | --only-large] "
-                   "[--steps N] [--ranks N] "
+                   "[--steps N] [--ranks N [--oversubscribe]] "
                    "[--stoss PATH]\n";
       return 2;
     }

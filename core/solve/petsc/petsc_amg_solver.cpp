@@ -496,6 +496,15 @@ extern "C" void stoss_synchronize_ranks() {
 /// Sums `count` doubles over every rank in place: reduced to rank 0 and broadcast, so every rank gets the
 /// same bits (core/solve/petsc_solver.hpp, sum_over_ranks).
 extern "C" void stoss_sum_over_ranks(double* values, long count) {
+  // An event of its own, so that -log_view counts the element loop's sums beside PETSc's own messages.
+  static PetscLogEvent sum_event = [] {
+    PetscLogEvent event = 0;
+    PetscClassId id = 0;
+    PetscClassIdRegister("Stoss", &id);
+    PetscLogEventRegister("StossSumRanks", id, &event);
+    return event;
+  }();
+  PetscLogEventBegin(sum_event, 0, 0, 0, 0);
   const bool root = stoss::solve::world_rank() == 0;
   for (long done = 0; done < count;) {
     const int part = static_cast<int>(std::min<long>(count - done, 1L << 30));
@@ -506,4 +515,5 @@ extern "C" void stoss_sum_over_ranks(double* values, long count) {
     MPI_Bcast(values + done, part, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
     done += part;
   }
+  PetscLogEventEnd(sum_event, 0, 0, 0, 0);
 }
