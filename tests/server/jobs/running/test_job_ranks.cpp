@@ -98,22 +98,47 @@ TEST(JobRanks, ACanceledTwoRankJobStopsEveryRankAtOneStepEvenWhileItStarts) {
   EXPECT_TRUE(eventually([&] { return processes_of(early) == 0; }, 10s)) << "no rank is left running";
 }
 
-TEST(JobRanks, TheWallTimeLimitAndKillNineOfTheServerLeaveNoRankRunning) {
+TEST(JobRanks, TheWallTimeLimitLeavesNoRankRunning) {
   if (skip_on_one_core()) GTEST_SKIP() << "one core: mpiexec has one slot";
   TempDir dir;
-  LiveServer server(dir.path() / "data", two_rank_service({"--job-timeout", "6"}));
+  LiveServer server(dir.path() / "data", two_rank_service({"--job-timeout", "4"}));
   auto c = server.client();
   const std::string timed = id_of(submit(c, long_two_rank_scene()));
   const auto failed = wait_for_status(c, timed, {"canceled", "failed", "succeeded"}, 60s);
-  EXPECT_EQ(failed["error"], "exceeded wall-time limit 6 s") << failed.dump();
+  EXPECT_EQ(failed["error"], "exceeded wall-time limit 4 s") << failed.dump();
   EXPECT_TRUE(eventually([&] { return processes_of(timed) == 0; }, 10s)) << "no rank is left running";
+}
 
-  const std::string orphaned = id_of(submit(c, long_two_rank_scene()));
-  ASSERT_TRUE(eventually([&] { return job(c, orphaned)["progress"]["step"].get<int>() >= 1; }, 60s));
-  ASSERT_EQ(processes_of(orphaned), 3);
-  server.kill9();
-  EXPECT_TRUE(eventually([&] { return processes_of(orphaned) == 0; }, 10s))
-      << "the launcher dies with the server, the ranks with the launcher";
+TEST(JobRanks, KillNineOfTheServerLeavesNoRankRunningAndTheJobResumesOnTwoRanks) {
+  if (skip_on_one_core()) GTEST_SKIP() << "one core: mpiexec has one slot";
+  TempDir dir;
+  const PrivateTemp temp(dir);
+  const fs::path data = dir.path() / "data";
+  const auto flags = two_rank_service({"--lease-seconds", "1", "--renew-seconds", "0.2"});
+  nlohmann::json scene = box_scene(6, 300, {1, 0, 0}, 2.0);
+  scene["solver"]["ranks"] = 2;
+  scene["output"]["checkpoint_every"] = 10;
+  std::string id;
+  {
+    LiveServer server(data, flags);
+    auto c = server.client();
+    id = id_of(submit(c, scene));
+    ASSERT_TRUE(eventually([&] { return job(c, id)["progress"]["step"].get<int>() >= 25; }, 60s));
+    ASSERT_EQ(processes_of(id), 3);
+    server.kill9();
+    EXPECT_TRUE(eventually([&] { return processes_of(id) == 0; }, 10s))
+        << "the launcher dies with the server, the ranks with the launcher";
+  }
+  LiveServer again(data, flags);
+  auto c = again.client();
+  const auto done = wait_for_status(c, id, {"succeeded", "failed", "canceled"}, 120s);
+  ASSERT_EQ(done["status"], "succeeded") << done.dump();
+  EXPECT_EQ(done["attempt"], 2);
+  const std::string log = c.Get("/v1/jobs/" + id + "/log")->body;
+  EXPECT_NE(log.find("resumed from step"), std::string::npos) << log;
+  EXPECT_NE(log.find("on 2 MPI ranks"), std::string::npos) << log;
+  EXPECT_LT(done["summary"]["energy_drift"].get<double>(), 1e-9) << "resumed, the energy still holds";
+  EXPECT_EQ(temp.rank_directories_left(), std::vector<std::string>{});
 }
 
 TEST(JobRanks, ALaunchThatCannotStartFailsTheJobWithTheLaunchersMessage) {
