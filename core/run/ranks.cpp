@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 
@@ -37,8 +38,18 @@ namespace {
 
 constexpr const char* private_dir_prefix = "stoss-rank-";
 
+/// True when process `pid` has ended: no such process, or one that died and waits to be reaped (a zombie,
+/// whose orphaned rank no init process reaps in a container).
+bool process_ended(long pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+  const auto name_end = line.rfind(')');  // the state follows the command's name in parentheses
+  return name_end != std::string::npos && name_end + 2 < line.size() && line[name_end + 2] == 'Z';
+}
+
 /// Removes the private folders in `temp` of ranks that died without removing theirs (killed with their
-/// launcher): stoss-rank-<k>-<pid> whose process is gone.
+/// launcher): stoss-rank-<k>-<pid> whose process has ended.
 void remove_orphaned_private_dirs(const fs::path& temp) {
   std::error_code error;
   for (const auto& entry : fs::directory_iterator(temp, error)) {
@@ -46,7 +57,7 @@ void remove_orphaned_private_dirs(const fs::path& temp) {
     if (name.rfind(private_dir_prefix, 0) != 0) continue;
     const auto dash = name.rfind('-');
     const long pid = std::strtol(name.c_str() + dash + 1, nullptr, 10);
-    if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) fs::remove_all(entry, error);
+    if (pid > 0 && process_ended(pid)) fs::remove_all(entry, error);
   }
 }
 

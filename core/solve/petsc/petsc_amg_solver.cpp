@@ -1,4 +1,5 @@
 // The PETSc module (libstoss_petsc.so) behind core/solve/petsc_solver.hpp; loaded with dlopen.
+#include <dlfcn.h>
 #include <petscksp.h>
 
 #include <algorithm>
@@ -25,9 +26,25 @@ void initialize_petsc() {
   static char* arguments[] = {name, no_handler, left, no, nullptr};
   static int argc = 4;
   static char** argv = arguments;
+  // Scotch 7 partitions with threads unless told otherwise, and then not the same way twice: one thread, so
+  // that a run on several ranks repeats itself to the bit (node_parts).
+  setenv("SCOTCH_PTHREAD_NUMBER", "1", 0);
   if (PetscInitialize(&argc, &argv, nullptr, nullptr) != 0)
     throw std::runtime_error("PetscInitialize failed");
   std::atexit([] { PetscFinalize(); });
+}
+
+/// Scotch's random state set to a fixed seed: otherwise it seeds itself anew in each process, and a run's
+/// partition (and so its round-off) would change from run to run. Found in the PT-Scotch that PETSc loaded,
+/// without a link of our own to it.
+void reset_scotch_random() {
+  using Seed = void (*)(int);  // SCOTCH_Num: int in Debian's build (scotch/scotch.h)
+  using Reset = void (*)();
+  const auto seed = reinterpret_cast<Seed>(dlsym(RTLD_DEFAULT, "SCOTCH_randomSeed"));
+  const auto reset = reinterpret_cast<Reset>(dlsym(RTLD_DEFAULT, "SCOTCH_randomReset"));
+  if (!seed || !reset) return;
+  seed(1);
+  reset();
 }
 
 /// The MPI ranks of this run (`mpiexec -n N stoss run`, docs/many_machines.md): 1 for a process of its own.
@@ -259,42 +276,128 @@ class PetscAmgSolver final : public AmgSolver {
   /// system (each assembles it: the model is replicated) and passes PETSc its own rows (own_rows).
   MPI_Comm communicator() const { return ranks_ > 1 ? PETSC_COMM_WORLD : PETSC_COMM_SELF; }
 
-  /// This rank's rows [first_, last_): the position rows in whole nodes, split evenly over the ranks, and
-  /// the contact unknowns after them on the last rank (the field split's second block, MUMPS's there).
-  void own_rows() {
-    const int rank = ranks_ > 1 ? world_rank() : 0;
-    const int unit = positions_ > 0 ? 3 : 1;
-    const int units = positions_ > 0 ? positions_ / 3 : rows_;
-    const auto start = [&](int k) { return unit * (k * (units / ranks_) + std::min(k, units % ranks_)); };
-    first_ = start(rank);
-    last_ = rank == ranks_ - 1 ? rows_ : start(rank + 1);
+  /// This rank's rows [first_, last_) of PETSc's numbering. One process: the matrix's own rows. Several
+  /// ranks: the nodes partitioned by PT-Scotch (node_parts) and numbered part by part (order_), so that each
+  /// rank owns its part's position rows, with the contact unknowns after them on the last rank (the field
+  /// split's second block, MUMPS's there).
+  PetscErrorCode own_rows(const RowMajorMatrix& R) {
+    first_ = 0;
+    last_ = rows_;
+    if (ranks_ == 1) return success;
+    const int nodes = positions_ / 3, rank = world_rank();
+    if (int(parts_.size()) != nodes) PetscCall(node_parts(R, nodes));  // the elements' graph: computed once
+    std::vector<int> count(ranks_, 0);
+    for (int part : parts_) ++count[part];
+    order_.resize(rows_);
+    std::vector<int> next(ranks_, 0);  // the first new node of each part
+    for (int k = 1; k < ranks_; ++k) next[k] = next[k - 1] + count[k - 1];
+    first_ = 3 * next[rank];
+    last_ = rank == ranks_ - 1 ? rows_ : first_ + 3 * count[rank];
+    for (int node = 0; node < nodes; ++node) {  // each part's nodes in their order
+      const int slot = next[parts_[node]]++;
+      for (int c = 0; c < 3; ++c) order_[3 * slot + c] = 3 * node + c;
+    }
+    for (int row = positions_; row < rows_; ++row) order_[row] = row;
+    renumbered_.resize(rows_);
+    for (int row = 0; row < rows_; ++row) renumbered_[order_[row]] = row;
+    return success;
   }
-  int owned_positions() const { return std::max(0, std::min(last_, positions_) - first_); }
 
-  /// This rank's rows of R in CSR with global columns (kept for refill on several ranks).
+  /// The part of each node: PT-Scotch (PETSc's MatPartitioning) on the nodes' graph in R's pattern, its
+  /// parts as many as the ranks. Rank 0 computes it and every rank receives it, so that all agree.
+  PetscErrorCode node_parts(const RowMajorMatrix& R, int nodes) {
+    parts_.assign(nodes, 0);
+    if (world_rank() == 0 && nodes > 0) {
+      PetscInt *ia = nullptr, *ja = nullptr;  // MatCreateMPIAdj takes them (PetscMalloc'ed)
+      const auto neighbour = [&](Eigen::Index column, int node) {  // a node's first row holds its blocks
+        return column < positions_ && column % 3 == 0 && column / 3 != node;
+      };
+      PetscInt edges = 0;
+      for (int node = 0; node < nodes; ++node)
+        for (RowMajorMatrix::InnerIterator it(R, 3 * node); it; ++it) edges += neighbour(it.col(), node);
+      PetscCall(PetscMalloc1(nodes + 1, &ia));
+      PetscCall(PetscMalloc1(edges, &ja));
+      PetscInt at = 0;
+      ia[0] = 0;
+      for (int node = 0; node < nodes; ++node) {
+        for (RowMajorMatrix::InnerIterator it(R, 3 * node); it; ++it)
+          if (neighbour(it.col(), node)) ja[at++] = PetscInt(it.col() / 3);
+        ia[node + 1] = at;
+      }
+      Mat graph;
+      MatPartitioning partitioning;
+      IS part_of;
+      PetscCall(MatCreateMPIAdj(PETSC_COMM_SELF, nodes, nodes, ia, ja, nullptr, &graph));
+      PetscCall(MatPartitioningCreate(PETSC_COMM_SELF, &partitioning));
+      PetscCall(MatPartitioningSetAdjacency(partitioning, graph));
+      PetscCall(MatPartitioningSetNParts(partitioning, ranks_));
+      PetscCall(MatPartitioningSetType(partitioning, MATPARTITIONINGPTSCOTCH));
+      reset_scotch_random();
+      PetscCall(MatPartitioningApply(partitioning, &part_of));
+      const PetscInt* indices = nullptr;
+      PetscCall(ISGetIndices(part_of, &indices));
+      std::copy(indices, indices + nodes, parts_.begin());
+      PetscCall(ISRestoreIndices(part_of, &indices));
+      PetscCall(ISDestroy(&part_of));
+      PetscCall(MatPartitioningDestroy(&partitioning));
+      PetscCall(MatDestroy(&graph));
+    }
+    MPI_Bcast(parts_.data(), nodes, MPI_INT, 0, PETSC_COMM_WORLD);
+    return success;
+  }
+
+  int owned_positions() const { return std::max(0, std::min(last_, positions_) - first_); }
+  /// The matrix's row (or unknown) that row `row` of PETSc's numbering is.
+  int original(int row) const { return order_.empty() ? row : order_[row]; }
+
+  /// This rank's rows of R in CSR with PETSc's columns, sorted, and where each value comes from in R (kept
+  /// for refill on several ranks).
   void local_csr(const RowMajorMatrix& R) {
     const int* outer = R.outerIndexPtr();
-    local_ia_.resize(last_ - first_ + 1);
-    for (int k = 0; k <= last_ - first_; ++k) local_ia_[k] = outer[first_ + k] - outer[first_];
-    local_ja_.assign(R.innerIndexPtr() + outer[first_], R.innerIndexPtr() + outer[last_]);
+    if (ranks_ == 1) {  // R itself
+      local_ia_.assign(outer, outer + rows_ + 1);
+      local_ja_.assign(R.innerIndexPtr(), R.innerIndexPtr() + outer[rows_]);
+      return;
+    }
+    local_ia_.assign(1, 0);
+    local_ja_.clear();
+    value_from_.clear();
+    std::vector<std::pair<PetscInt, Eigen::Index>> row;
+    for (int k = first_; k < last_; ++k) {
+      const int from = original(k);
+      row.clear();
+      for (Eigen::Index at = outer[from]; at < outer[from + 1]; ++at) {
+        const int column = R.innerIndexPtr()[at];
+        row.emplace_back(renumbered_[column], at);
+      }
+      std::sort(row.begin(), row.end());
+      for (const auto& [column, at] : row) local_ja_.push_back(column), value_from_.push_back(at);
+      local_ia_.push_back(PetscInt(local_ja_.size()));
+    }
+    local_values_.resize(value_from_.size());
+  }
+
+  /// This rank's values of R in local_csr's order.
+  const PetscScalar* local_values(const RowMajorMatrix& R) {
+    for (std::size_t k = 0; k < value_from_.size(); ++k) local_values_[k] = R.valuePtr()[value_from_[k]];
+    return local_values_.data();
   }
 
   PetscErrorCode create(const RowMajorMatrix& R, const Eigen::VectorXd& positions) {
     rows_ = int(R.rows());
     nonzeros_ = R.nonZeros();
     positions_ = int(positions.size());
-    own_rows();
+    PetscCall(own_rows(R));
     const int local = last_ - first_;
     PetscCall(MatCreate(communicator(), &A_));
     PetscCall(MatSetSizes(A_, local, local, rows_, rows_));
     PetscCall(MatSetType(A_, ranks_ > 1 ? MATMPIAIJ : MATSEQAIJ));
     if (positions_ == rows_) PetscCall(MatSetBlockSize(A_, 3));
     local_csr(R);
-    const PetscScalar* values = R.valuePtr() + R.outerIndexPtr()[first_];
     if (ranks_ > 1)
-      PetscCall(MatMPIAIJSetPreallocationCSR(A_, local_ia_.data(), local_ja_.data(), values));
+      PetscCall(MatMPIAIJSetPreallocationCSR(A_, local_ia_.data(), local_ja_.data(), local_values(R)));
     else
-      PetscCall(MatSeqAIJSetPreallocationCSR(A_, local_ia_.data(), local_ja_.data(), values));
+      PetscCall(MatSeqAIJSetPreallocationCSR(A_, local_ia_.data(), local_ja_.data(), R.valuePtr()));
     // No node (inode) kernels for this matrix: measured on the tumbling sphere at 27,648 hex8 (3 steps,
     // quiet machine), its products and sweeps took the linear solver from 11.9 s without them to 18.5 s.
     PetscCall(MatSetOption(A_, MAT_USE_INODES, PETSC_FALSE));
@@ -346,7 +449,7 @@ class PetscAmgSolver final : public AmgSolver {
     PetscCall(VecSetBlockSize(coordinates, 3));
     PetscScalar* p = nullptr;
     PetscCall(VecGetArray(coordinates, &p));
-    std::copy(positions.data() + first_, positions.data() + first_ + owned_positions(), p);
+    for (int k = 0; k < owned_positions(); ++k) p[k] = positions[original(first_ + k)];
     PetscCall(VecRestoreArray(coordinates, &p));
     PetscCall(MatNullSpaceCreateRigidBody(coordinates, &near_null_));
     PetscCall(VecDestroy(&coordinates));
@@ -381,7 +484,7 @@ class PetscAmgSolver final : public AmgSolver {
     if (ranks_ > 1) {
       const int local = last_ - first_;
       PetscCall(MatUpdateMPIAIJWithArrays(A_, local, local, rows_, rows_, local_ia_.data(), local_ja_.data(),
-                                          R.valuePtr() + R.outerIndexPtr()[first_]));
+                                          local_values(R)));
       PetscCall(KSPSetOperators(ksp_, A_, A_));
       return success;
     }
@@ -413,7 +516,7 @@ class PetscAmgSolver final : public AmgSolver {
   PetscErrorCode run(const Eigen::VectorXd& b, Eigen::VectorXd& x, KrylovOutcome& outcome) {
     PetscScalar* p = nullptr;
     PetscCall(VecGetArray(b_, &p));
-    std::copy(b.data() + first_, b.data() + last_, p);
+    for (int k = first_; k < last_; ++k) p[k - first_] = b[original(k)];
     PetscCall(VecRestoreArray(b_, &p));
     PetscCall(KSPSolve(ksp_, b_, x_));
     KSPConvergedReason reason;
@@ -433,7 +536,7 @@ class PetscAmgSolver final : public AmgSolver {
     }
     const PetscScalar* q = nullptr;
     PetscCall(VecGetArrayRead(whole, &q));
-    std::copy(q, q + x.size(), x.data());
+    for (Eigen::Index k = 0; k < x.size(); ++k) x[original(int(k))] = q[k];
     PetscCall(VecRestoreArrayRead(whole, &q));
     return success;
   }
@@ -461,7 +564,11 @@ class PetscAmgSolver final : public AmgSolver {
   Vec all_ = nullptr;
   int ranks_ = 1;                              ///< MPI ranks, after PETSc's initialisation
   int first_ = 0, last_ = 0;                   ///< this rank's rows (own_rows)
-  std::vector<PetscInt> local_ia_, local_ja_;  ///< this rank's rows of the pattern, global columns
+  std::vector<PetscInt> local_ia_, local_ja_;  ///< this rank's rows of the pattern, PETSc's columns
+  std::vector<Eigen::Index> value_from_;       ///< where each of this rank's values is in R
+  std::vector<PetscScalar> local_values_;      ///< this rank's values, in local_ia_/local_ja_'s order
+  std::vector<int> parts_;                     ///< several ranks: each node's part (node_parts)
+  std::vector<int> order_, renumbered_;        ///< several ranks: PETSc's row → R's row, and back
   RowMajorMatrix full_;                        ///< several ranks: the last matrix, for matrix()
   IS fields_[2] = {nullptr, nullptr};
   MatNullSpace near_null_ = nullptr;

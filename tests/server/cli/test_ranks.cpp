@@ -92,6 +92,16 @@ TEST(Ranks, TwoRanksGiveTheSeedExampleOfOneRankThroughItsImpact) {
   EXPECT_EQ(again.exit_code, 0) << "every rank sees the run completed: " << again.err;
   EXPECT_NE(again.out.find("nothing to resume"), std::string::npos) << again.out;
   EXPECT_EQ(again.err, "");
+
+  // The same run on 2 ranks again gives the same bits: the nodes' partition (PT-Scotch) repeats itself.
+  const auto repeated = test::run_stoss(
+      {"run", seed_in_contact(dir, "petsc_gamg"), "-o", (dir.path() / "repeated").string(), "--ranks", "2"},
+      std::chrono::minutes(2));
+  ASSERT_EQ(repeated.exit_code, 0) << repeated.err;
+  const auto first = output::ResultFile::open(dir.path() / "two" / "result.h5");
+  const auto second = output::ResultFile::open(dir.path() / "repeated" / "result.h5");
+  for (const std::string name : {"total_energy", "linear_momentum", "angular_momentum"})
+    EXPECT_EQ(first.series(name), second.series(name)) << name;
 }
 
 TEST(Ranks, ARunOfOneRankKilledResumesOnTwo) {
