@@ -12,6 +12,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <regex>
 #include <thread>
 
 #include "core/output/result_reader.hpp"
@@ -141,6 +142,24 @@ TEST(Ranks, TheDirectSolverOnTwoRanksIsMumpsAndGivesTheAnswersOfUmfpack) {
   EXPECT_NE(printed.find("MUMPS LU through PETSc"), std::string::npos) << printed;
   EXPECT_NE(printed.find("on 2 MPI ranks"), std::string::npos) << printed;
   EXPECT_EQ(printed.find("Krylov solves"), std::string::npos) << "an LU is no Krylov method: " << printed;
+  expect_the_same_answers(dir.path() / "one", dir.path() / "two");
+}
+
+/// GMRES cut to one iteration (PETSC_OPTIONS), so that every solve falls back to the LU of the whole matrix,
+/// which each rank keeps: 2 ranks still give the answers of 1.
+TEST(Ranks, TheLuFallbackOnTwoRanksGivesTheAnswersOfOneRank) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: --ranks 2 is refused here";
+  test::TempDir dir;
+  const PrivateTemp temp(dir);
+  setenv("PETSC_OPTIONS", "-stoss_ksp_max_it 1", 1);
+  const auto ran = run_on_one_and_two_ranks(dir, seed_in_contact(dir, "petsc_gamg"));
+  unsetenv("PETSC_OPTIONS");
+  ASSERT_TRUE(ran);
+  const std::regex line(R"((\d+) Krylov solves, .* (\d+) fell back to LU)");
+  std::smatch counts;
+  ASSERT_TRUE(std::regex_search(*ran, counts, line)) << *ran;
+  EXPECT_GT(std::stoi(counts[1]), 20);
+  EXPECT_EQ(counts[1], counts[2]) << "every solve fell back: " << counts[0];
   expect_the_same_answers(dir.path() / "one", dir.path() / "two");
 }
 
