@@ -120,9 +120,7 @@ class PetscAmgSolver final : public AmgSolver {
 
   bool factorize(const SparseMatrix& A, int generation, const Eigen::VectorXd& positions) override {
     RowMajorMatrix R = A;  // PETSc's AIJ is CSR
-    const bool ok = factorize_rows(R, generation, positions);
-    if (ranks_ > 1) full_ = std::move(R);  // matrix(): PETSc holds only this rank's rows
-    return ok;
+    return factorize_rows(R, generation, positions);
   }
 
   void set_tolerance(double relative) override {
@@ -140,7 +138,7 @@ class PetscAmgSolver final : public AmgSolver {
   }
 
   SparseMatrix matrix() const override {
-    if (ranks_ > 1) return full_;
+    if (ranks_ > 1) return gathered_matrix();
     PetscInt n = 0;
     const PetscInt *ia = nullptr, *ja = nullptr;
     PetscBool done = PETSC_FALSE;
@@ -377,6 +375,40 @@ class PetscAmgSolver final : public AmgSolver {
     local_values_.resize(value_from_.size());
   }
 
+  /// Several ranks: the whole matrix on every rank, gathered from the ranks' rows. Only the LU fallback
+  /// asks for it, on every rank at once (whether GMRES converged is one answer for all), so no rank keeps a
+  /// copy of the whole matrix meanwhile.
+  SparseMatrix gathered_matrix() const {
+    const int local_rows = last_ - first_, local_entries = int(local_ja_.size());
+    std::vector<int> rows_of(ranks_), entries_of(ranks_);
+    MPI_Allgather(&local_rows, 1, MPI_INT, rows_of.data(), 1, MPI_INT, PETSC_COMM_WORLD);
+    MPI_Allgather(&local_entries, 1, MPI_INT, entries_of.data(), 1, MPI_INT, PETSC_COMM_WORLD);
+    std::vector<int> row_at(ranks_, 0), entry_at(ranks_, 0);
+    for (int k = 1; k < ranks_; ++k) {
+      row_at[k] = row_at[k - 1] + rows_of[k - 1];
+      entry_at[k] = entry_at[k - 1] + entries_of[k - 1];
+    }
+    std::vector<int> lengths(local_rows), columns(local_entries);
+    for (int k = 0; k < local_rows; ++k) lengths[k] = int(local_ia_[k + 1] - local_ia_[k]);
+    for (int e = 0; e < local_entries; ++e) columns[e] = original(int(local_ja_[e]));
+    std::vector<int> all_lengths(rows_), all_columns(entry_at.back() + entries_of.back());
+    std::vector<double> all_values(all_columns.size());
+    MPI_Allgatherv(lengths.data(), local_rows, MPI_INT, all_lengths.data(), rows_of.data(), row_at.data(),
+                   MPI_INT, PETSC_COMM_WORLD);
+    MPI_Allgatherv(columns.data(), local_entries, MPI_INT, all_columns.data(), entries_of.data(),
+                   entry_at.data(), MPI_INT, PETSC_COMM_WORLD);
+    MPI_Allgatherv(local_values_.data(), local_entries, MPI_DOUBLE, all_values.data(), entries_of.data(),
+                   entry_at.data(), MPI_DOUBLE, PETSC_COMM_WORLD);
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(all_values.size());
+    for (int row = 0, e = 0; row < rows_; ++row)  // PETSc's rows, rank by rank
+      for (int k = 0; k < all_lengths[row]; ++k, ++e)
+        entries.emplace_back(original(row), all_columns[e], all_values[e]);
+    SparseMatrix whole(rows_, rows_);
+    whole.setFromTriplets(entries.begin(), entries.end());
+    return whole;
+  }
+
   /// This rank's values of R in local_csr's order.
   const PetscScalar* local_values(const RowMajorMatrix& R) {
     for (std::size_t k = 0; k < value_from_.size(); ++k) local_values_[k] = R.valuePtr()[value_from_[k]];
@@ -569,7 +601,6 @@ class PetscAmgSolver final : public AmgSolver {
   std::vector<PetscScalar> local_values_;      ///< this rank's values, in local_ia_/local_ja_'s order
   std::vector<int> parts_;                     ///< several ranks: each node's part (node_parts)
   std::vector<int> order_, renumbered_;        ///< several ranks: PETSc's row → R's row, and back
-  RowMajorMatrix full_;                        ///< several ranks: the last matrix, for matrix()
   IS fields_[2] = {nullptr, nullptr};
   MatNullSpace near_null_ = nullptr;
   int generation_ = -1, rows_ = -1, positions_ = -1;
