@@ -14,10 +14,12 @@ namespace {
 using Factory = AmgSolver* (*)();
 using Barrier = void (*)();
 using Sum = void (*)(double*, long);
+using Place = void (*)(int*, int*);
 constexpr const char* factory_symbol = "stoss_make_petsc_amg_solver";
 constexpr const char* lu_factory_symbol = "stoss_make_petsc_lu_solver";
 constexpr const char* barrier_symbol = "stoss_synchronize_ranks";
 constexpr const char* sum_symbol = "stoss_sum_over_ranks";
+constexpr const char* place_symbol = "stoss_world_place";
 constexpr const char* module_name = "libstoss_petsc.so";
 
 /// Where the module is: beside the running executable (an installed or copied build), else where
@@ -80,6 +82,13 @@ void synchronize_ranks() {
 void sum_over_ranks(double* values, long count) {
   static const Sum sum = symbol<Sum>(sum_symbol);
   sum(values, count);
+}
+
+std::pair<int, int> world_place() {
+  static const Place place = symbol<Place>(place_symbol);
+  int rank = 0, size = 1;
+  place(&rank, &size);
+  return {rank, size};
 }
 
 }  // namespace stoss::solve

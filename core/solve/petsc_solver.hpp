@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "core/solve/block_pattern.hpp"
 
@@ -72,5 +73,10 @@ void synchronize_ranks();
 /// rank 0 and a broadcast); after synchronize_ranks. The element loops of a run on several ranks sum their
 /// shares with it (core/parallel/element_share.hpp).
 void sum_over_ranks(double* values, long count);
+
+/// {rank, number of ranks} of this process as MPI says, starting PETSc and MPI (through the module) if need
+/// be: a job's ranks take their place from it, so any launcher that starts MPI processes will do (mpiexec,
+/// srun with whichever PMI). Throws as make_petsc_amg_solver.
+std::pair<int, int> world_place();
 
 }  // namespace stoss::solve

@@ -1,5 +1,4 @@
 // The PETSc module (libstoss_petsc.so) behind core/solve/petsc_solver.hpp; loaded with dlopen.
-#include <dlfcn.h>
 #include <petscksp.h>
 
 #include <algorithm>
@@ -32,19 +31,6 @@ void initialize_petsc() {
   if (PetscInitialize(&argc, &argv, nullptr, nullptr) != 0)
     throw std::runtime_error("PetscInitialize failed");
   std::atexit([] { PetscFinalize(); });
-}
-
-/// Scotch's random state set to a fixed seed: otherwise it seeds itself anew in each process, and a run's
-/// partition (and so its round-off) would change from run to run. Found in the PT-Scotch that PETSc loaded,
-/// without a link of our own to it.
-void reset_scotch_random() {
-  using Seed = void (*)(int);  // SCOTCH_Num: int in Debian's build (scotch/scotch.h)
-  using Reset = void (*)();
-  const auto seed = reinterpret_cast<Seed>(dlsym(RTLD_DEFAULT, "SCOTCH_randomSeed"));
-  const auto reset = reinterpret_cast<Reset>(dlsym(RTLD_DEFAULT, "SCOTCH_randomReset"));
-  if (!seed || !reset) return;
-  seed(1);
-  reset();
 }
 
 /// The MPI ranks of this run (`mpiexec -n N stoss run`, docs/many_machines.md): 1 for a process of its own.
@@ -330,7 +316,6 @@ class PetscAmgSolver final : public AmgSolver {
       PetscCall(MatPartitioningSetAdjacency(partitioning, graph));
       PetscCall(MatPartitioningSetNParts(partitioning, ranks_));
       PetscCall(MatPartitioningSetType(partitioning, MATPARTITIONINGPTSCOTCH));
-      reset_scotch_random();
       PetscCall(MatPartitioningApply(partitioning, &part_of));
       const PetscInt* indices = nullptr;
       PetscCall(ISGetIndices(part_of, &indices));
@@ -629,6 +614,14 @@ extern "C" stoss::solve::AmgSolver* stoss_make_petsc_lu_solver() {
 extern "C" void stoss_synchronize_ranks() {
   stoss::solve::initialize_petsc();
   MPI_Barrier(PETSC_COMM_WORLD);
+}
+
+/// This process's rank and the number of ranks, as MPI says once started: whatever launched them (mpiexec,
+/// srun with any PMI), and whatever their environment says (core/solve/petsc_solver.hpp, world_place).
+extern "C" void stoss_world_place(int* rank, int* size) {
+  stoss::solve::initialize_petsc();
+  *rank = stoss::solve::world_rank();
+  *size = stoss::solve::world_size();
 }
 
 /// Sums `count` doubles over every rank in place: reduced to rank 0 and broadcast, so every rank gets the

@@ -15,6 +15,7 @@
 #include <new>
 #include <system_error>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 #include "core/parallel/mpi_place.hpp"
@@ -254,10 +255,13 @@ int follow_rank(const JobProcessOptions& options, parallel::MpiPlace place) {
   std::_Exit(1);
 }
 
-/// One rank of a launch: MPI started, the rank count checked, then rank 0 leads and the others follow.
-int run_rank(const JobProcessOptions& options, parallel::MpiPlace place) {
+/// One rank of a launch: MPI started, its place taken from MPI, the rank count checked, then rank 0 leads and
+/// the others follow.
+int run_rank(const JobProcessOptions& options) {
   const AttemptFiles attempt = JobFiles{options.data}.attempt(options.id, options.attempt);
+  parallel::MpiPlace place;
   try {
+    std::tie(place.rank, place.size) = solve::world_place();
     solve::synchronize_ranks();
   } catch (const std::exception& e) {
     const std::string within = options.memory > 0 ? " within " + std::to_string(options.memory) +
@@ -286,7 +290,7 @@ int run_job_process(const JobProcessOptions& options) {
   server::StopSignals signals;
   signals.on_stop([](int) { child_cancel.store(true); });
   if (!enter_job_process(options)) return 3;
-  if (options.launched) return run_rank(options, parallel::mpi_place());
+  if (options.launched) return run_rank(options);
   const JobFiles files{options.data};
   const AttemptFiles attempt = files.attempt(options.id, options.attempt);
   SystemClock clock;

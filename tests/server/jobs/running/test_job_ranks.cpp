@@ -3,6 +3,7 @@
 // one rank and the memory of every rank; cancel, the wall-time limit and kill -9 of the server leave no rank
 // running; a launch that cannot start fails the job with the launcher's message.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <fstream>
 #include <thread>
@@ -156,6 +157,21 @@ TEST(JobRanks, ALaunchThatCannotStartFailsTheJobWithTheLaunchersMessage) {
   EXPECT_NE(failed["error"].get<std::string>().find("unknown option \"--no-such-option\""), std::string::npos)
       << failed.dump();
   EXPECT_EQ(processes_of(id), 0);
+}
+
+TEST(JobRanks, ALauncherThatStartsAnotherCountOfRanksFailsTheJobNamingBoth) {
+  TempDir dir;
+  const std::string one_rank = std::string("mpiexec -n 1") + (geteuid() == 0 ? " --allow-run-as-root" : "");
+  LiveServer server(dir.path() / "data", two_rank_service({"--launcher", one_rank}));
+  auto c = server.client();
+  nlohmann::json scene = box_scene(2, 10);
+  scene["solver"]["ranks"] = 2;
+  const std::string id = id_of(submit(c, scene));
+  const auto failed = wait_for_status(c, id, {"canceled", "failed", "succeeded"}, 60s);
+  EXPECT_EQ(failed["error"],
+            "the launcher started 1 ranks, the job asks for 2 (solver.ranks): see --launcher's {ranks}")
+      << failed.dump();
+  EXPECT_TRUE(eventually([&] { return processes_of(id) == 0; }, 10s));
 }
 
 }  // namespace
