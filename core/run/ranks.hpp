@@ -20,8 +20,10 @@ namespace stoss::run {
 void prepare_for_ranks(model::Model& m, parallel::MpiPlace place);
 
 /// What one rank of a launch changes in its run; nothing for a process of its own. Rank 0 writes the run's
-/// files; rank k > 0 writes the same into a private directory ($TMPDIR/stoss-rank-k-PID), removed at its
-/// end (and by the next rank to start, when its rank was killed), and prints nothing on stdout.
+/// files; rank k > 0 keeps its checkpoints, and no result, in a private directory ($TMPDIR/stoss-rank-k-PID),
+/// removed at its end (and by the next rank to start, when its rank was killed), and prints nothing on
+/// stdout. Its checkpoints keep its Newton iterations those of rank 0: a step that may checkpoint refreshes
+/// the factorisation only where a checkpoint store exists (core/run/simulate.cpp, keep_checkpoint).
 class RankRun {
  public:
   /// `out_dir`: the run's directory; on rank k > 0 it becomes the private one, with a copy of the checkpoint

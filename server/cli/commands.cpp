@@ -267,8 +267,9 @@ int simulate_into(RunOptions o) {
     rank->prepare(model);
     output::ResultWriter writer(o.out_dir);
     ProgressObserver progress;
-    std::vector<model::Observer*> listeners{&writer};
-    if (rank->reports()) listeners.push_back(&progress);  // the other ranks' progress would repeat it
+    std::vector<model::Observer*> listeners;
+    // Rank 0 alone writes the result and the progress; the others keep checkpoints only (core/run/ranks.hpp).
+    if (rank->reports()) listeners = {&writer, &progress};
     model::ObserverList observers(listeners);
     const model::Summary summary = simulate(model, observers, nullptr, {checkpoint_dir, true});
     fs::remove_all(checkpoint_dir, error);  // result.h5 has it all

@@ -1,6 +1,7 @@
 #include "server/jobs/running/inprocess_executor.hpp"
 
 #include <fstream>
+#include <vector>
 
 #include "core/output/result_writer.hpp"
 #include "core/scene/scene.hpp"
@@ -90,7 +91,9 @@ Outcome InProcessExecutor::simulate_job(const Job& job, const AttemptFiles& file
     ProgressObserver reporter(progress, clock_, progress_interval_);
     LogObserver logger(log);
     // The series before the progress: a step the server has been told of is in the series stream.
-    model::ObserverList observers({&writer, &series, &reporter, &logger});
+    std::vector<model::Observer*> listeners{&series, &reporter, &logger};
+    if (writes_result_) listeners.insert(listeners.begin(), &writer);
+    model::ObserverList observers(listeners);
     const Checkpoints checkpoints{files.checkpoint(), true};
     try {
       summary = stoss::simulate(model, observers, &cancel, checkpoints);

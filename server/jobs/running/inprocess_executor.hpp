@@ -27,6 +27,10 @@ class InProcessExecutor : public Executor {
   /// load the scene): rank 0 of a launch prepares it for the ranks (job_process.cpp).
   void on_model(std::function<void(model::Model&)> prepare) { prepare_model_ = std::move(prepare); }
 
+  /// Runs without writing result.h5 (rank k > 0 of a launch: rank 0 writes it; the checkpoints stay, and with
+  /// them the steps that refresh the factorisation, so that every rank iterates alike).
+  void without_result() { writes_result_ = false; }
+
   /// One simulation of the scene into `files` (result.h5 and result.xdmf, the checkpoint resumed from): what
   /// run does once the model is loaded, and what rank k > 0 of a launch does in its private folder.
   Outcome simulate_job(const Job& job, const AttemptFiles& files, const model::Model& model,
@@ -41,6 +45,7 @@ class InProcessExecutor : public Executor {
   const Clock& clock_;
   Millis progress_interval_;
   std::function<void(model::Model&)> prepare_model_;
+  bool writes_result_ = true;
 };
 
 }  // namespace stoss::server::jobs

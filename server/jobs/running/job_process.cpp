@@ -235,6 +235,7 @@ Outcome follow_in_private(const JobProcessOptions& options, parallel::MpiPlace p
   std::ofstream log(own.log(), std::ios::app);
   SystemClock clock;
   InProcessExecutor executor(files, clock);
+  executor.without_result();
   return executor.simulate_job(job, own, model, log, child_cancel, [](const Progress&) {});
 }
 

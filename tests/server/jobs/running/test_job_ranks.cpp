@@ -83,6 +83,10 @@ TEST(JobRanks, ACanceledTwoRankJobStopsEveryRankAtOneStepEvenWhileItStarts) {
   const std::string id = id_of(submit(c, long_two_rank_scene()));
   ASSERT_TRUE(eventually([&] { return job(c, id)["progress"]["step"].get<int>() >= 2; }, 120s));
   EXPECT_EQ(processes_of(id), 3) << "the launcher and two ranks";
+  const auto folders = temp.rank_directories_left();
+  ASSERT_EQ(folders.size(), 1u) << "rank 1's private folder while it runs";
+  for (const char* name : {"result.h5.partial", "result.h5"})
+    EXPECT_FALSE(fs::exists(fs::path(folders[0]) / name)) << "rank 0 alone writes the result: " << name;
   ASSERT_EQ(c.Post("/v1/jobs/" + id + "/cancel")->status, 202);
   const auto canceled = wait_for_status(c, id, {"canceled", "failed", "succeeded"}, 60s);
   EXPECT_EQ(canceled["status"], "canceled") << canceled.dump();
