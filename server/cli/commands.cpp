@@ -316,17 +316,20 @@ int run_command(const std::vector<std::string>& args) {
   }
   const std::optional<RunOptions> options = parse_run_options(args);
   if (!options) return usage(text);
-  const int asked = options->ranks ? *options->ranks
-                                   : scene_ranks(options->scene_path,
-                                                 options->resume ? std::optional<fs::path>(options->out_dir)
-                                                                 : std::nullopt);
+  // Under a launch started by hand the launcher's count rules, not the scene's.
+  const bool launched = parallel::mpi_place().several();
+  const int asked =
+      options->ranks ? *options->ranks
+      : launched     ? 1
+                     : scene_ranks(options->scene_path,
+                               options->resume ? std::optional<fs::path>(options->out_dir) : std::nullopt);
   if (asked != 1 || options->ranks) {
     if (const auto problem =
             ranks_problem(asked, parallel::machine_cores(), options->ranks ? "--ranks" : "solver.ranks")) {
       std::cerr << "stoss run: " << *problem << "\n";
       return invalid_scene;
     }
-    if (asked > 1 && !parallel::mpi_place().several()) {
+    if (asked > 1 && !launched) {
       const std::string why_not = launch_ranks(args, asked);  // returns only when mpiexec did not start
       std::cerr << "stoss run: " << why_not << "\n";
       return solver_failure;
