@@ -7,8 +7,10 @@
 // and resumed on 2 (§4).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <csignal>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -185,6 +187,17 @@ TEST(Ranks, TheScenesSolverRanksStartsThatManyUnlessRanksSaysOtherwise) {
   const auto many = test::run_stoss({"run", path.string(), "-o", (dir.path() / "c").string()});
   EXPECT_EQ(many.exit_code, 2);
   EXPECT_NE(many.err.find("solver.ranks must be at most the"), std::string::npos) << many.err;
+
+  // Started by hand on 2 ranks, the launcher's count rules over the scene's.
+  const std::string command = "mpiexec -n 2 --bind-to none" +
+                              std::string(geteuid() == 0 ? " --allow-run-as-root " : " ") + STOSS_BINARY +
+                              " run " + path.string() + " -o " + (dir.path() / "d").string() + " 2>&1";
+  std::string printed;
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  for (char chunk[4096]; std::fgets(chunk, sizeof chunk, pipe);) printed += chunk;
+  EXPECT_EQ(pclose(pipe), 0) << printed;
+  EXPECT_NE(printed.find("on 2 MPI ranks"), std::string::npos) << printed;
 }
 
 TEST(Ranks, ASceneAskingForASolverOfOneRankIsRefusedAtItsPointer) {
