@@ -21,6 +21,7 @@
 #include "server/cli/progress.hpp"
 #include "server/cli/ranks.hpp"
 #include "server/common/json_input.hpp"
+#include "server/jobs/store/store.hpp"
 
 namespace stoss::cli {
 namespace {
@@ -177,9 +178,7 @@ int scene_ranks(const std::string& scene_path, const std::optional<fs::path>& re
   try {
     std::ifstream in(resumed_dir ? run_file(*resumed_dir) : fs::path(scene_path), std::ios::binary);
     const nlohmann::json file = nlohmann::json::parse(in);
-    const nlohmann::json& scene = resumed_dir ? file.at("scene") : file;
-    const int ranks = scene.at("solver").at("ranks").get<int>();
-    return ranks >= 1 ? ranks : 1;
+    return server::jobs::scene_ranks(resumed_dir ? file.at("scene") : file);
   } catch (const std::exception&) {
     return 1;
   }
@@ -265,11 +264,11 @@ int simulate_into(RunOptions o) {
       write_run_file(o.out_dir, model, o.scene_path);
     }
     rank->prepare(model);
-    output::ResultWriter writer(o.out_dir);
+    // Rank 0 alone writes the result and the progress; the others keep checkpoints only (core/run/ranks.hpp).
+    std::optional<output::ResultWriter> writer;
     ProgressObserver progress;
     std::vector<model::Observer*> listeners;
-    // Rank 0 alone writes the result and the progress; the others keep checkpoints only (core/run/ranks.hpp).
-    if (rank->reports()) listeners = {&writer, &progress};
+    if (rank->reports()) listeners = {&writer.emplace(o.out_dir), &progress};
     model::ObserverList observers(listeners);
     const model::Summary summary = simulate(model, observers, nullptr, {checkpoint_dir, true});
     fs::remove_all(checkpoint_dir, error);  // result.h5 has it all

@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <thread>
 
 #include "core/output/result_reader.hpp"
 
@@ -26,6 +27,10 @@ double largest_energy_step(const output::ResultFile& r) {
 }
 
 }  // namespace
+
+bool one_core() {
+  return std::thread::hardware_concurrency() < 2;
+}
 
 nlohmann::json seed_in_contact_scene(const std::string& linear, int checkpoint_every) {
   std::ifstream in(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json");

@@ -10,6 +10,10 @@
 
 namespace stoss::test {
 
+/// True on a machine of one hardware thread, where mpiexec has one slot and 2 ranks are refused: the rank
+/// tests skip there.
+bool one_core();
+
 /// The seed's example (api/examples/hollow_ball_plate.json) with the ball 0.005 above the plate: its 20
 /// steps of 0.01 all have the ball in contact. solver.linear as given.
 nlohmann::json seed_in_contact_scene(const std::string& linear, int checkpoint_every = 0);

@@ -1,6 +1,7 @@
 #include "server/jobs/running/inprocess_executor.hpp"
 
 #include <fstream>
+#include <optional>
 #include <vector>
 
 #include "core/output/result_writer.hpp"
@@ -87,12 +88,12 @@ Outcome InProcessExecutor::simulate_job(const Job& job, const AttemptFiles& file
   std::optional<model::Summary> summary;
   SeriesRecorder series(files.dir() / partial_series_file);
   try {
-    output::ResultWriter writer(files.dir());
+    std::optional<output::ResultWriter> writer;
     ProgressObserver reporter(progress, clock_, progress_interval_);
     LogObserver logger(log);
     // The series before the progress: a step the server has been told of is in the series stream.
     std::vector<model::Observer*> listeners{&series, &reporter, &logger};
-    if (writes_result_) listeners.insert(listeners.begin(), &writer);
+    if (writes_result_) listeners.insert(listeners.begin(), &writer.emplace(files.dir()));
     model::ObserverList observers(listeners);
     const Checkpoints checkpoints{files.checkpoint(), true};
     try {

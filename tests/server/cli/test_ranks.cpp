@@ -78,7 +78,7 @@ std::optional<std::string> run_on_one_and_two_ranks(const test::TempDir& dir, co
 }
 
 TEST(Ranks, TwoRanksGiveTheSeedExampleOfOneRankThroughItsImpact) {
-  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: --ranks 2 is refused here";
+  if (test::one_core()) GTEST_SKIP() << "one core: --ranks 2 is refused here";
   test::TempDir dir;
   const PrivateTemp temp(dir);
   const auto ran = run_on_one_and_two_ranks(dir, seed_in_contact(dir, "petsc_gamg"));
@@ -108,7 +108,7 @@ TEST(Ranks, TwoRanksGiveTheSeedExampleOfOneRankThroughItsImpact) {
 }
 
 TEST(Ranks, ARunOfOneRankKilledResumesOnTwo) {
-  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: --ranks 2 is refused here";
+  if (test::one_core()) GTEST_SKIP() << "one core: --ranks 2 is refused here";
   test::TempDir dir;
   const PrivateTemp temp(dir);
   const std::string scene = seed_in_contact(dir, "petsc_gamg", 2);
@@ -135,7 +135,7 @@ TEST(Ranks, ARunOfOneRankKilledResumesOnTwo) {
 }
 
 TEST(Ranks, TheDirectSolverOnTwoRanksIsMumpsAndGivesTheAnswersOfUmfpack) {
-  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: --ranks 2 is refused here";
+  if (test::one_core()) GTEST_SKIP() << "one core: --ranks 2 is refused here";
   test::TempDir dir;
   const PrivateTemp temp(dir);
   const auto ran = run_on_one_and_two_ranks(dir, seed_in_contact(dir, "direct"));
@@ -150,7 +150,7 @@ TEST(Ranks, TheDirectSolverOnTwoRanksIsMumpsAndGivesTheAnswersOfUmfpack) {
 /// GMRES cut to one iteration (PETSC_OPTIONS), so that every solve falls back to the LU of the whole matrix,
 /// which each rank keeps: 2 ranks still give the answers of 1.
 TEST(Ranks, TheLuFallbackOnTwoRanksGivesTheAnswersOfOneRank) {
-  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: --ranks 2 is refused here";
+  if (test::one_core()) GTEST_SKIP() << "one core: --ranks 2 is refused here";
   test::TempDir dir;
   const PrivateTemp temp(dir);
   setenv("PETSC_OPTIONS", "-stoss_ksp_max_it 1", 1);
@@ -166,7 +166,7 @@ TEST(Ranks, TheLuFallbackOnTwoRanksGivesTheAnswersOfOneRank) {
 }
 
 TEST(Ranks, TheScenesSolverRanksStartsThatManyUnlessRanksSaysOtherwise) {
-  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: 2 ranks are refused here";
+  if (test::one_core()) GTEST_SKIP() << "one core: 2 ranks are refused here";
   test::TempDir dir;
   const PrivateTemp temp(dir);
   nlohmann::json scene = test::seed_in_contact_scene("petsc_gamg");
@@ -201,7 +201,7 @@ TEST(Ranks, TheScenesSolverRanksStartsThatManyUnlessRanksSaysOtherwise) {
 }
 
 TEST(Ranks, ASceneAskingForASolverOfOneRankIsRefusedAtItsPointer) {
-  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: --ranks 2 is refused here";
+  if (test::one_core()) GTEST_SKIP() << "one core: --ranks 2 is refused here";
   test::TempDir dir;
   const auto r = test::run_stoss(
       {"run", seed_in_contact(dir, "iterative"), "-o", (dir.path() / "out").string(), "--ranks", "2"});

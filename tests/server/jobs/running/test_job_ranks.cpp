@@ -6,7 +6,6 @@
 #include <unistd.h>
 
 #include <fstream>
-#include <thread>
 
 #include "tests/server/live_server.hpp"
 #include "tests/server/rank_answers.hpp"
@@ -46,12 +45,8 @@ nlohmann::json long_two_rank_scene() {
   return scene;
 }
 
-bool skip_on_one_core() {
-  return std::thread::hardware_concurrency() < 2;
-}
-
 TEST(JobRanks, ATwoRankJobGivesTheAnswersOfOneRankAndCountsTheMemoryOfBoth) {
-  if (skip_on_one_core()) GTEST_SKIP() << "one core: mpiexec has one slot";
+  if (one_core()) GTEST_SKIP() << "one core: mpiexec has one slot";
   TempDir dir;
   const PrivateTemp temp(dir);
   const fs::path data = dir.path() / "data";
@@ -75,7 +70,7 @@ TEST(JobRanks, ATwoRankJobGivesTheAnswersOfOneRankAndCountsTheMemoryOfBoth) {
 }
 
 TEST(JobRanks, ACanceledTwoRankJobStopsEveryRankAtOneStepEvenWhileItStarts) {
-  if (skip_on_one_core()) GTEST_SKIP() << "one core: mpiexec has one slot";
+  if (one_core()) GTEST_SKIP() << "one core: mpiexec has one slot";
   TempDir dir;
   const PrivateTemp temp(dir);
   LiveServer server(dir.path() / "data", two_rank_service());
@@ -104,7 +99,7 @@ TEST(JobRanks, ACanceledTwoRankJobStopsEveryRankAtOneStepEvenWhileItStarts) {
 }
 
 TEST(JobRanks, TheWallTimeLimitLeavesNoRankRunning) {
-  if (skip_on_one_core()) GTEST_SKIP() << "one core: mpiexec has one slot";
+  if (one_core()) GTEST_SKIP() << "one core: mpiexec has one slot";
   TempDir dir;
   LiveServer server(dir.path() / "data", two_rank_service({"--job-timeout", "4"}));
   auto c = server.client();
@@ -115,7 +110,7 @@ TEST(JobRanks, TheWallTimeLimitLeavesNoRankRunning) {
 }
 
 TEST(JobRanks, KillNineOfTheServerLeavesNoRankRunningAndTheJobResumesOnTwoRanks) {
-  if (skip_on_one_core()) GTEST_SKIP() << "one core: mpiexec has one slot";
+  if (one_core()) GTEST_SKIP() << "one core: mpiexec has one slot";
   TempDir dir;
   const PrivateTemp temp(dir);
   const fs::path data = dir.path() / "data";
