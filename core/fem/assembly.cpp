@@ -83,15 +83,25 @@ void ElasticityTerm::element_stresses(const Eigen::VectorXd& x, Eigen::VectorXd&
 }
 
 void ElasticityTerm::register_blocks(solve::BlockPattern& pattern) {
-  block_.resize(hex8_.size());
-  for (size_t e = 0; e < hex8_.size(); ++e) block_[e] = pattern.add_block(element_dofs(hex8_[e]));
+  block_.assign(hex8_.size(), -1);
+  const parallel::ElementShare& share = parallel::element_share();
+  if (share.shared())  // add scatters these only: 2.5 kB of slots per element
+    for (int e : share.elements) block_[e] = pattern.add_block(element_dofs(hex8_[e]));
+  else
+    for (size_t e = 0; e < hex8_.size(); ++e) block_[e] = pattern.add_block(element_dofs(hex8_[e]));
 }
 
 void ElasticityTerm::begin_step(const time::StepContext& step, Eigen::VectorXd&) {
   if (step.rule.previous_weight == 0) return;
   force_n_.resize(hex8_.size());
-  for (size_t e = 0; e < hex8_.size(); ++e)
+  const auto cache = [&](int e) {
     internal_force(geometry_[e], *material_[e], gather(hex8_[e], step.x_n), force_n_[e], nullptr);
+  };
+  const parallel::ElementShare& share = parallel::element_share();
+  if (share.shared())
+    for (int e : share.elements) cache(e);  // add asks for these only
+  else
+    for (int e = 0; e < static_cast<int>(hex8_.size()); ++e) cache(e);
 }
 
 void ElasticityTerm::element_step(const time::StepContext& step, int e, const Eigen::VectorXd& x_1,
@@ -111,48 +121,44 @@ void ElasticityTerm::element_step(const time::StepContext& step, int e, const Ei
 void ElasticityTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
                          solve::BlockPattern* K) const {
   if (parallel::element_share().shared()) return add_shared(step, z, R, K);
-  add_elements(step, z, 0, static_cast<int>(hex8_.size()), R, K);
+  add_elements(step, z, nullptr, static_cast<int>(hex8_.size()), R, K);
 }
 
-void ElasticityTerm::add_elements(const time::StepContext& step, const Eigen::VectorXd& z, int first_element,
-                                  int last_element, Eigen::VectorXd& R, solve::BlockPattern* K) const {
+void ElasticityTerm::add_elements(const time::StepContext& step, const Eigen::VectorXd& z,
+                                  const int* elements, int count, Eigen::VectorXd& R,
+                                  solve::BlockPattern* K) const {
   // Threads compute whole elements into the chunk's buffers; this thread sums them in element order, so
   // R and K are the same bits for every thread count.
-  const int n = last_element - first_element, chunk = K ? tangent_chunk : force_chunk,
-            threads = parallel::worker_threads();
-  chunk_force_.resize(std::min(n, chunk));
-  if (K) chunk_tangent_.resize(std::min(n, chunk));
-  for (int first = first_element; first < last_element; first += chunk) {
-    const int last = std::min(last_element, first + chunk);
-    const std::function<void(int)> body = [&](int e) {
-      element_step(step, e, z, chunk_force_[e - first], K ? &chunk_tangent_[e - first] : nullptr);
+  const auto element = [elements](int i) { return elements ? elements[i] : i; };
+  const int chunk = K ? tangent_chunk : force_chunk, threads = parallel::worker_threads();
+  chunk_force_.resize(std::min(count, chunk));
+  if (K) chunk_tangent_.resize(std::min(count, chunk));
+  for (int first = 0; first < count; first += chunk) {
+    const int last = std::min(count, first + chunk);
+    const std::function<void(int)> body = [&](int i) {
+      element_step(step, element(i), z, chunk_force_[i - first], K ? &chunk_tangent_[i - first] : nullptr);
     };
     threads_->for_each(first, last, threads, 16, body);  // no thread for fewer than 16 elements
-    for (int e = first; e < last; ++e) {
-      const Vector24& f = chunk_force_[e - first];
+    for (int i = first; i < last; ++i) {
+      const int e = element(i);
+      const Vector24& f = chunk_force_[i - first];
       for (int I = 0; I < 8; ++I) R.segment<3>(3 * hex8_[e][I]) += step.force_factor * f.segment<3>(3 * I);
-      if (K) K->scatter(block_[e], step.force_factor * chunk_tangent_[e - first]);
+      if (K) K->scatter(block_[e], step.force_factor * chunk_tangent_[i - first]);
     }
   }
 }
 
 void ElasticityTerm::add_shared(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
                                 solve::BlockPattern* K) const {
+  // Every element with a node of this rank's, in element order: its own rows of R and K are the sums one
+  // process makes (core/parallel/element_share.hpp); the other rows of K stay partial, never read.
   const parallel::ElementShare& share = parallel::element_share();
-  const auto [first, last] = share.range(static_cast<int>(hex8_.size()));
-  // The other terms' entries are in K already, alike on every rank: set aside, so that only this term's
-  // shares are summed.
-  double* values = K ? K->matrix().valuePtr() : nullptr;
-  const long slots = K ? static_cast<long>(K->matrix().nonZeros()) : 0;
-  std::vector<double> others(values, values + slots);
-  std::fill(values, values + slots, 0.0);
-  Eigen::VectorXd forces = Eigen::VectorXd::Zero(R.size());
-  add_elements(step, z, first, last, forces, K);
-  share.sum(forces.data(), static_cast<long>(forces.size()));
-  R += forces;
-  if (!K) return;
-  share.sum(values, slots);
-  for (long i = 0; i < slots; ++i) values[i] += others[i];
+  add_elements(step, z, share.elements.data(), static_cast<int>(share.elements.size()), R, K);
+  // Each position row of R from its owner alone: x + 0 + … + 0 is x to the bit on every rank.
+  const int nodes = static_cast<int>(share.node_part.size());
+  for (int node = 0; node < nodes; ++node)
+    if (!share.owns(node)) R.segment<3>(3 * node).setZero();
+  share.sum(R.data(), 3L * nodes);
 }
 
 GravityTerm::GravityTerm(const solve::SparseMatrix& mass, const Eigen::Vector3d& g) {

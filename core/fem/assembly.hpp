@@ -42,10 +42,12 @@ class ElasticityTerm : public time::Term {
   void element_stresses(const Eigen::VectorXd& x, Eigen::VectorXd& cauchy, Eigen::VectorXd& von_mises) const;
 
  private:
-  /// add's forces and tangents of the elements [first, last), into R and K.
-  void add_elements(const time::StepContext& step, const Eigen::VectorXd& z, int first, int last,
+  /// add's forces and tangents of `count` elements, into R and K: elements[0 … count) (every element in
+  /// order when `elements` is null).
+  void add_elements(const time::StepContext& step, const Eigen::VectorXd& z, const int* elements, int count,
                     Eigen::VectorXd& R, solve::BlockPattern* K) const;
-  /// add on several ranks (parallel::element_share): this rank's elements, then the sum over the ranks.
+  /// add on several ranks (parallel::element_share): the elements with a node of this rank's, then each
+  /// position row of R from the rank that owns it.
   void add_shared(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
                   solve::BlockPattern* K) const;
   /// h·f_alg and h·∂f_alg/∂x_1 of element e under the step's force rule.

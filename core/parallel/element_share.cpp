@@ -10,9 +10,30 @@ ElementShare& current() {
 }
 }  // namespace
 
-std::pair<int, int> ElementShare::range(int n) const {
-  const auto start = [&](int k) { return k * (n / size) + std::min(k, n % size); };
-  return {start(rank), start(rank + 1)};
+ElementShare share_of(const Elements& hex8, std::vector<int> node_part, int rank, int size,
+                      std::function<void(double*, long)> sum) {
+  ElementShare share{rank, size, std::move(sum), std::move(node_part), {}};
+  for (int e = 0; e < static_cast<int>(hex8.size()); ++e)
+    if (std::any_of(hex8[e].begin(), hex8[e].end(), [&](int node) { return share.owns(node); }))
+      share.elements.push_back(e);
+  return share;
+}
+
+void node_graph(const Elements& hex8, int nodes, std::vector<int>& offsets, std::vector<int>& neighbours) {
+  std::vector<std::vector<int>> adjacent(nodes);
+  for (const std::array<int, 8>& hex : hex8)
+    for (int a : hex)
+      for (int b : hex)
+        if (a != b) adjacent[a].push_back(b);
+  offsets.assign(1, 0);
+  neighbours.clear();
+  for (std::vector<int>& list : adjacent) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    neighbours.insert(neighbours.end(), list.begin(), list.end());
+    offsets.push_back(static_cast<int>(neighbours.size()));
+    std::vector<int>().swap(list);
+  }
 }
 
 const ElementShare& element_share() {

@@ -1,15 +1,19 @@
 #pragma once
 /// @file How the ranks of a run on several MPI ranks share the element loop (docs/many_machines.md, "One run
-/// on several MPI ranks"): each rank computes a contiguous range of the elements, and the ranks' sums are
-/// summed over the ranks so that every rank holds the whole residual and matrix. A process of its own
-/// computes every element, as it always did.
+/// on several MPI ranks"): the nodes are partitioned among the ranks, the same partition by which PETSc owns
+/// the matrix rows; each rank computes every element with a node of its own, so that its own rows of the
+/// residual and the matrix are whole, the same sums in the same order as on one process. The residual's
+/// other rows come from their owners (a sum over the ranks to which only the owner adds); the matrix's other
+/// rows are left partial, since each rank passes PETSc only its own. A process of its own computes every
+/// element, as it always did.
 
+#include <array>
 #include <functional>
-#include <utility>
+#include <vector>
 
 namespace stoss::parallel {
 
-/// This rank's part of the elements and the sum over the ranks.
+/// This rank's part of the nodes and elements, and the sum over the ranks.
 struct ElementShare {
   int rank = 0;
   int size = 1;
@@ -17,10 +21,24 @@ struct ElementShare {
   /// broadcast: an all-reduce may associate differently on different ranks, and ranks that differ in a bit
   /// could take different Newton decisions).
   std::function<void(double* values, long count)> sum;
+  std::vector<int> node_part;  ///< the rank that owns each node (its position rows)
+  std::vector<int> elements;   ///< the elements with a node this rank owns, ascending
   bool shared() const { return size > 1 && sum != nullptr; }
-  /// [first, last) of n elements for this rank: n / size each, the first n % size ranks one more.
-  std::pair<int, int> range(int n) const;
+  bool owns(int node) const { return node_part[node] == rank; }
 };
+
+/// Node indices of each hex8 (mesh::Mesh::hex8).
+using Elements = std::vector<std::array<int, 8>>;
+
+/// The share of rank `rank` of `size` for the nodes' owners `node_part` of the mesh's `hex8`: its elements
+/// are those with a node it owns.
+ElementShare share_of(const Elements& hex8, std::vector<int> node_part, int rank, int size,
+                      std::function<void(double*, long)> sum);
+
+/// The graph of `nodes` nodes of the mesh's `hex8` in CSR (`offsets` of nodes + 1, `neighbours`), two nodes
+/// adjacent when an element holds both, each node's neighbours ascending: the graph the nodes are
+/// partitioned on.
+void node_graph(const Elements& hex8, int nodes, std::vector<int>& offsets, std::vector<int>& neighbours);
 
 /// The share the element loops of this process use; {0, 1, none} until set.
 const ElementShare& element_share();

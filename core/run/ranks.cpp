@@ -10,6 +10,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/output/result_writer.hpp"
 #include "core/parallel/element_share.hpp"
@@ -29,7 +30,11 @@ void prepare_for_ranks(model::Model& m, parallel::MpiPlace place) {
     parallel::set_worker_threads(std::max(1, parallel::machine_cores() / place.size));
   }
   solve::synchronize_ranks();
-  parallel::set_element_share({place.rank, place.size, solve::sum_over_ranks});
+  std::vector<int> offsets, neighbours;
+  parallel::node_graph(m.mesh.hex8, m.mesh.node_count(), offsets, neighbours);
+  std::vector<int> node_part = solve::partition_nodes(offsets, neighbours);
+  parallel::set_element_share(
+      parallel::share_of(m.mesh.hex8, std::move(node_part), place.rank, place.size, solve::sum_over_ranks));
 }
 
 namespace fs = std::filesystem;

@@ -14,8 +14,9 @@ namespace stoss::run {
 
 /// On several ranks: solver.linear "auto" becomes "petsc_gamg" ("direct" solves with MUMPS,
 /// core/run/solver_choice.cpp), and each rank runs cores / ranks element threads unless STOSS_THREADS says
-/// otherwise. Then waits for every rank (core/solve/petsc_solver.hpp, synchronize_ranks) and shares the
-/// element loop with them. Nothing on a process of its own.
+/// otherwise. Then waits for every rank (core/solve/petsc_solver.hpp, synchronize_ranks), partitions the
+/// nodes with them (partition_nodes) and shares the element loop by that partition. Nothing on a process of
+/// its own.
 /// @throws std::invalid_argument when the scene asks for a solver that runs on one rank.
 void prepare_for_ranks(model::Model& m, parallel::MpiPlace place);
 

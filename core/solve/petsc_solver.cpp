@@ -15,11 +15,13 @@ using Factory = AmgSolver* (*)();
 using Barrier = void (*)();
 using Sum = void (*)(double*, long);
 using Place = void (*)(int*, int*);
+using Partition = bool (*)(int, const int*, const int*, int*);
 constexpr const char* factory_symbol = "stoss_make_petsc_amg_solver";
 constexpr const char* lu_factory_symbol = "stoss_make_petsc_lu_solver";
 constexpr const char* barrier_symbol = "stoss_synchronize_ranks";
 constexpr const char* sum_symbol = "stoss_sum_over_ranks";
 constexpr const char* place_symbol = "stoss_world_place";
+constexpr const char* partition_symbol = "stoss_partition_nodes";
 constexpr const char* module_name = "libstoss_petsc.so";
 
 /// Where the module is: beside the running executable (an installed or copied build), else where
@@ -82,6 +84,15 @@ void synchronize_ranks() {
 void sum_over_ranks(double* values, long count) {
   static const Sum sum = symbol<Sum>(sum_symbol);
   sum(values, count);
+}
+
+std::vector<int> partition_nodes(const std::vector<int>& offsets, const std::vector<int>& neighbours) {
+  static const Partition partition = symbol<Partition>(partition_symbol);
+  const int nodes = static_cast<int>(offsets.size()) - 1;
+  std::vector<int> parts(nodes);
+  if (!partition(nodes, offsets.data(), neighbours.data(), parts.data()))
+    throw std::runtime_error("PETSc's partitioner (PT-Scotch) failed on the nodes' graph of the mesh");
+  return parts;
 }
 
 std::pair<int, int> world_place() {

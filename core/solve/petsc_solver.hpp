@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "core/solve/block_pattern.hpp"
 
@@ -73,6 +74,12 @@ void synchronize_ranks();
 /// rank 0 and a broadcast); after synchronize_ranks. The element loops of a run on several ranks sum their
 /// shares with it (core/parallel/element_share.hpp).
 void sum_over_ranks(double* values, long count);
+
+/// The rank that owns each node: PETSc's partitioner (PT-Scotch) on the nodes' graph in CSR (`offsets` of
+/// node count + 1, `neighbours`), computed on rank 0 and sent to every rank, which all call it at once. The
+/// module keeps it: each rank passes PETSc the position rows of its nodes. Throws when PETSc fails, and as
+/// make_petsc_amg_solver.
+std::vector<int> partition_nodes(const std::vector<int>& offsets, const std::vector<int>& neighbours);
 
 /// {rank, number of ranks} of this process as MPI says, starting PETSc and MPI (through the module) if need
 /// be: a job's ranks take their place from it, so any launcher that starts MPI processes will do (mpiexec,

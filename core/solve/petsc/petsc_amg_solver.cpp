@@ -26,7 +26,7 @@ void initialize_petsc() {
   static int argc = 4;
   static char** argv = arguments;
   // Scotch 7 partitions with threads unless told otherwise, and then not the same way twice: one thread, so
-  // that a run on several ranks repeats itself to the bit (node_parts).
+  // that a run on several ranks repeats itself to the bit (partition_graph).
   setenv("SCOTCH_PTHREAD_NUMBER", "1", 0);
   if (PetscInitialize(&argc, &argv, nullptr, nullptr) != 0)
     throw std::runtime_error("PetscInitialize failed");
@@ -43,6 +43,45 @@ int world_rank() {
   PetscMPIInt rank = 0;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   return rank;
+}
+
+/// The run's partition of the nodes among the ranks (partition_graph): every solver of the process numbers
+/// its rows by it.
+std::vector<int>& node_partition() {
+  static std::vector<int> parts;
+  return parts;
+}
+
+/// The part of each of `nodes` nodes: PT-Scotch (PETSc's MatPartitioning) on the nodes' graph in CSR, as many
+/// parts as ranks. Rank 0 computes it and every rank receives it, so that all agree.
+PetscErrorCode partition_graph(int nodes, const int* offsets, const int* neighbours,
+                               std::vector<int>& parts) {
+  parts.assign(nodes, 0);
+  if (world_rank() == 0 && nodes > 0) {
+    PetscInt *ia = nullptr, *ja = nullptr;  // MatCreateMPIAdj takes them (PetscMalloc'ed)
+    PetscCall(PetscMalloc1(nodes + 1, &ia));
+    PetscCall(PetscMalloc1(std::max(offsets[nodes], 1), &ja));
+    std::copy(offsets, offsets + nodes + 1, ia);
+    std::copy(neighbours, neighbours + offsets[nodes], ja);
+    Mat graph;
+    MatPartitioning partitioning;
+    IS part_of;
+    PetscCall(MatCreateMPIAdj(PETSC_COMM_SELF, nodes, nodes, ia, ja, nullptr, &graph));
+    PetscCall(MatPartitioningCreate(PETSC_COMM_SELF, &partitioning));
+    PetscCall(MatPartitioningSetAdjacency(partitioning, graph));
+    PetscCall(MatPartitioningSetNParts(partitioning, world_size()));
+    PetscCall(MatPartitioningSetType(partitioning, MATPARTITIONINGPTSCOTCH));
+    PetscCall(MatPartitioningApply(partitioning, &part_of));
+    const PetscInt* indices = nullptr;
+    PetscCall(ISGetIndices(part_of, &indices));
+    std::copy(indices, indices + nodes, parts.begin());
+    PetscCall(ISRestoreIndices(part_of, &indices));
+    PetscCall(ISDestroy(&part_of));
+    PetscCall(MatPartitioningDestroy(&partitioning));
+    PetscCall(MatDestroy(&graph));
+  }
+  MPI_Bcast(parts.data(), nodes, MPI_INT, 0, PETSC_COMM_WORLD);
+  return success;
 }
 
 /// Sets an option of this solver unless the user set it already (PETSC_OPTIONS="-stoss_...").
@@ -105,6 +144,7 @@ class PetscAmgSolver final : public AmgSolver {
   ~PetscAmgSolver() override { destroy(); }
 
   bool factorize(const SparseMatrix& A, int generation, const Eigen::VectorXd& positions) override {
+    if (ranks_ > 1) return factorize_rows(own_rows_of(A, positions.size()), generation, positions);
     RowMajorMatrix R = A;  // PETSc's AIJ is CSR
     return factorize_rows(R, generation, positions);
   }
@@ -169,6 +209,35 @@ class PetscAmgSolver final : public AmgSolver {
       return KSPSetReusePreconditioner(ksp_, PETSC_TRUE) == success;
     }
     return setup() == success;
+  }
+
+  /// Several ranks: A in CSR with this rank's rows alone (the others empty), the only ones it passes PETSc
+  /// and the only ones its element loop made whole (core/parallel/element_share.hpp); a whole copy would be
+  /// 12 bytes per entry on every rank. Its position rows are those of its nodes in the run's partition, the
+  /// contact unknowns are the last rank's (own_rows).
+  RowMajorMatrix own_rows_of(const SparseMatrix& A, Eigen::Index positions) const {
+    const std::vector<int>& parts = node_partition();
+    if (Eigen::Index(parts.size()) * 3 != positions || positions > A.rows()) return A;  // own_rows says why
+    const int rank = world_rank();
+    const auto mine = [&](Eigen::Index row) {
+      return row < positions ? parts[row / 3] == rank : rank == ranks_ - 1;
+    };
+    RowMajorMatrix R(A.rows(), A.cols());
+    int* outer = R.outerIndexPtr();  // zeros: the entries of each row, then where each row starts
+    for (Eigen::Index col = 0; col < A.outerSize(); ++col)
+      for (SparseMatrix::InnerIterator it(A, col); it; ++it)
+        if (mine(it.row())) ++outer[it.row() + 1];
+    for (Eigen::Index row = 0; row < A.rows(); ++row) outer[row + 1] += outer[row];
+    R.resizeNonZeros(outer[A.rows()]);
+    std::vector<int> next(outer, outer + A.rows());
+    for (Eigen::Index col = 0; col < A.outerSize(); ++col)  // column by column: each row's columns ascend
+      for (SparseMatrix::InnerIterator it(A, col); it; ++it)
+        if (mine(it.row())) {
+          const int at = next[it.row()]++;
+          R.innerIndexPtr()[at] = int(col);
+          R.valuePtr()[at] = it.value();
+        }
+    return R;
   }
 
   /// Counts a setup and describes it (GAMG levels exist only once set up).
@@ -261,71 +330,32 @@ class PetscAmgSolver final : public AmgSolver {
   MPI_Comm communicator() const { return ranks_ > 1 ? PETSC_COMM_WORLD : PETSC_COMM_SELF; }
 
   /// This rank's rows [first_, last_) of PETSc's numbering. One process: the matrix's own rows. Several
-  /// ranks: the nodes partitioned by PT-Scotch (node_parts) and numbered part by part (order_), so that each
-  /// rank owns its part's position rows, with the contact unknowns after them on the last rank (the field
-  /// split's second block, MUMPS's there).
+  /// ranks: the nodes in the run's partition (node_partition), the one by which the element loop is shared,
+  /// numbered part by part (order_), so that each rank owns its part's position rows, with the contact
+  /// unknowns after them on the last rank (the field split's second block, MUMPS's there).
   PetscErrorCode own_rows(const RowMajorMatrix& R) {
     first_ = 0;
     last_ = rows_;
     if (ranks_ == 1) return success;
     const int nodes = positions_ / 3, rank = world_rank();
-    if (int(parts_.size()) != nodes) PetscCall(node_parts(R, nodes));  // the elements' graph: computed once
+    const std::vector<int>& parts = node_partition();
+    if (int(parts.size()) != nodes)
+      SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_WRONGSTATE,
+              "several ranks: the nodes have no partition (stoss_partition_nodes, core/run/ranks.cpp)");
     std::vector<int> count(ranks_, 0);
-    for (int part : parts_) ++count[part];
+    for (int part : parts) ++count[part];
     order_.resize(rows_);
     std::vector<int> next(ranks_, 0);  // the first new node of each part
     for (int k = 1; k < ranks_; ++k) next[k] = next[k - 1] + count[k - 1];
     first_ = 3 * next[rank];
     last_ = rank == ranks_ - 1 ? rows_ : first_ + 3 * count[rank];
     for (int node = 0; node < nodes; ++node) {  // each part's nodes in their order
-      const int slot = next[parts_[node]]++;
+      const int slot = next[parts[node]]++;
       for (int c = 0; c < 3; ++c) order_[3 * slot + c] = 3 * node + c;
     }
     for (int row = positions_; row < rows_; ++row) order_[row] = row;
     renumbered_.resize(rows_);
     for (int row = 0; row < rows_; ++row) renumbered_[order_[row]] = row;
-    return success;
-  }
-
-  /// The part of each node: PT-Scotch (PETSc's MatPartitioning) on the nodes' graph in R's pattern, its
-  /// parts as many as the ranks. Rank 0 computes it and every rank receives it, so that all agree.
-  PetscErrorCode node_parts(const RowMajorMatrix& R, int nodes) {
-    parts_.assign(nodes, 0);
-    if (world_rank() == 0 && nodes > 0) {
-      PetscInt *ia = nullptr, *ja = nullptr;  // MatCreateMPIAdj takes them (PetscMalloc'ed)
-      const auto neighbour = [&](Eigen::Index column, int node) {  // a node's first row holds its blocks
-        return column < positions_ && column % 3 == 0 && column / 3 != node;
-      };
-      PetscInt edges = 0;
-      for (int node = 0; node < nodes; ++node)
-        for (RowMajorMatrix::InnerIterator it(R, 3 * node); it; ++it) edges += neighbour(it.col(), node);
-      PetscCall(PetscMalloc1(nodes + 1, &ia));
-      PetscCall(PetscMalloc1(edges, &ja));
-      PetscInt at = 0;
-      ia[0] = 0;
-      for (int node = 0; node < nodes; ++node) {
-        for (RowMajorMatrix::InnerIterator it(R, 3 * node); it; ++it)
-          if (neighbour(it.col(), node)) ja[at++] = PetscInt(it.col() / 3);
-        ia[node + 1] = at;
-      }
-      Mat graph;
-      MatPartitioning partitioning;
-      IS part_of;
-      PetscCall(MatCreateMPIAdj(PETSC_COMM_SELF, nodes, nodes, ia, ja, nullptr, &graph));
-      PetscCall(MatPartitioningCreate(PETSC_COMM_SELF, &partitioning));
-      PetscCall(MatPartitioningSetAdjacency(partitioning, graph));
-      PetscCall(MatPartitioningSetNParts(partitioning, ranks_));
-      PetscCall(MatPartitioningSetType(partitioning, MATPARTITIONINGPTSCOTCH));
-      PetscCall(MatPartitioningApply(partitioning, &part_of));
-      const PetscInt* indices = nullptr;
-      PetscCall(ISGetIndices(part_of, &indices));
-      std::copy(indices, indices + nodes, parts_.begin());
-      PetscCall(ISRestoreIndices(part_of, &indices));
-      PetscCall(ISDestroy(&part_of));
-      PetscCall(MatPartitioningDestroy(&partitioning));
-      PetscCall(MatDestroy(&graph));
-    }
-    MPI_Bcast(parts_.data(), nodes, MPI_INT, 0, PETSC_COMM_WORLD);
     return success;
   }
 
@@ -584,7 +614,6 @@ class PetscAmgSolver final : public AmgSolver {
   std::vector<PetscInt> local_ia_, local_ja_;  ///< this rank's rows of the pattern, PETSc's columns
   std::vector<Eigen::Index> value_from_;       ///< where each of this rank's values is in R
   std::vector<PetscScalar> local_values_;      ///< this rank's values, in local_ia_/local_ja_'s order
-  std::vector<int> parts_;                     ///< several ranks: each node's part (node_parts)
   std::vector<int> order_, renumbered_;        ///< several ranks: PETSc's row → R's row, and back
   IS fields_[2] = {nullptr, nullptr};
   MatNullSpace near_null_ = nullptr;
@@ -622,6 +651,16 @@ extern "C" void stoss_world_place(int* rank, int* size) {
   stoss::solve::initialize_petsc();
   *rank = stoss::solve::world_rank();
   *size = stoss::solve::world_size();
+}
+
+/// Partitions the nodes' graph among the ranks and keeps the partition for the solvers' rows; every rank
+/// gets the same `parts` (core/solve/petsc_solver.hpp, partition_nodes). False when PETSc failed.
+extern "C" bool stoss_partition_nodes(int nodes, const int* offsets, const int* neighbours, int* parts) {
+  stoss::solve::initialize_petsc();
+  std::vector<int>& kept = stoss::solve::node_partition();
+  if (stoss::solve::partition_graph(nodes, offsets, neighbours, kept) != 0) return false;
+  std::copy(kept.begin(), kept.end(), parts);
+  return true;
 }
 
 /// Sums `count` doubles over every rank in place: reduced to rank 0 and broadcast, so every rank gets the

@@ -1,8 +1,11 @@
 // The elasticity term on several ranks (core/parallel/element_share.hpp, docs/many_machines.md): each rank
-// adds the elements of its range, and after the sum over the ranks every rank holds the residual and the
-// matrix of all elements, with the other terms' entries kept. Two ranks are played here in one process: each
-// share's sum is the identity, and the two ranks' results are added by hand.
+// adds every element with a node it owns, so that its own rows of the residual and the matrix are those of
+// one process to the bit, and each position row of the residual comes from its owner. Two ranks are played
+// here in one process: each share's sum is the identity, and the two ranks' residuals are added by hand.
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
 
 #include "core/fem/assembly.hpp"
 #include "core/fem/neo_hookean.hpp"
@@ -12,31 +15,67 @@
 namespace stoss::fem {
 namespace {
 
-TEST(ElementShare, RangesCoverEveryElementOnceInOrder) {
-  for (int size : {1, 2, 3, 5})
-    for (int n : {0, 1, 4, 7, 100}) {
-      int next = 0;
-      for (int rank = 0; rank < size; ++rank) {
-        const auto [first, last] = parallel::ElementShare{rank, size, nullptr}.range(n);
-        EXPECT_EQ(first, next) << rank << " of " << size << ", n " << n;
-        EXPECT_LE(last - first, n / size + 1);
-        EXPECT_GE(last - first, n / size);
-        next = last;
-      }
-      EXPECT_EQ(next, n);
+mesh::Mesh block_mesh() {
+  mesh::Mesh mesh;
+  mesh.add_body("block", mesh::box({0, 0, 0}, {1, 0.5, 0.5}, {4, 2, 2}));
+  return mesh;
+}
+
+/// A partition of two parts with a ragged border: the nodes left of x = 0.4, and every other node left of
+/// x = 0.6, on rank 0.
+std::vector<int> ragged_parts(const mesh::Mesh& mesh) {
+  const Eigen::VectorXd X = mesh.reference_positions();
+  std::vector<int> part(mesh.node_count());
+  for (int node = 0; node < mesh.node_count(); ++node)
+    part[node] = X[3 * node] < 0.4 + 0.2 * (node % 2) ? 0 : 1;
+  return part;
+}
+
+TEST(ElementShare, NodeGraphJoinsTheNodesOfEachElement) {
+  mesh::Mesh mesh;
+  mesh.add_body("two", mesh::box({0, 0, 0}, {2, 1, 1}, {2, 1, 1}));  // 12 nodes, 2 hex8 sharing a face
+  std::vector<int> offsets, neighbours;
+  parallel::node_graph(mesh.hex8, mesh.node_count(), offsets, neighbours);
+  ASSERT_EQ(offsets.size(), 13u);
+  int face_nodes = 0;
+  for (int node = 0; node < 12; ++node) {
+    const int degree = offsets[node + 1] - offsets[node];
+    EXPECT_TRUE(degree == 7 || degree == 11) << "node " << node << ": " << degree;
+    face_nodes += degree == 11;
+    const std::set<int> distinct(neighbours.begin() + offsets[node], neighbours.begin() + offsets[node + 1]);
+    EXPECT_EQ(int(distinct.size()), degree) << "no neighbour twice";
+    EXPECT_EQ(distinct.count(node), 0u) << "no node its own neighbour";
+  }
+  EXPECT_EQ(face_nodes, 4);
+}
+
+TEST(ElementShare, EachRankHasTheElementsWithANodeOfItsOwn) {
+  const mesh::Mesh mesh = block_mesh();
+  const std::vector<int> part = ragged_parts(mesh);
+  std::vector<int> taken(mesh.element_count(), 0);
+  for (int rank : {0, 1}) {
+    const parallel::ElementShare share = parallel::share_of(mesh.hex8, part, rank, 2, nullptr);
+    EXPECT_TRUE(std::is_sorted(share.elements.begin(), share.elements.end()));
+    std::set<int> listed(share.elements.begin(), share.elements.end());
+    for (int e = 0; e < mesh.element_count(); ++e) {
+      bool touches = false;
+      for (int node : mesh.hex8[e]) touches |= part[node] == rank;
+      EXPECT_EQ(listed.count(e) == 1, touches) << "element " << e << ", rank " << rank;
+      taken[e] += touches;
     }
+  }
+  for (int e = 0; e < mesh.element_count(); ++e) EXPECT_GE(taken[e], 1) << "element " << e << " left out";
 }
 
 struct Assembled {
   Eigen::VectorXd R;
-  Eigen::VectorXd values;  ///< the matrix's stored values
+  solve::SparseMatrix K;
 };
 
-/// The term's add at a deformed x with share `share` set (unset after), starting from R = 0 and every matrix
-/// entry `others` (what other terms would have put there).
-Assembled assemble(const parallel::ElementShare& share, double others) {
-  mesh::Mesh mesh;
-  mesh.add_body("block", mesh::box({0, 0, 0}, {1, 0.5, 0.5}, {4, 2, 2}));
+/// The term's add at a deformed x with share `share` set (unset after), starting from the same R and matrix
+/// entries other terms would have put there.
+Assembled assemble(const parallel::ElementShare& share) {
+  const mesh::Mesh mesh = block_mesh();
   const auto material = std::make_shared<const NeoHookean>(1e3, 0.3);
   ElasticityTerm term(mesh, precompute_mesh(mesh),
                       std::vector<std::shared_ptr<const Material>>(mesh.hex8.size(), material));
@@ -44,35 +83,46 @@ Assembled assemble(const parallel::ElementShare& share, double others) {
   term.register_blocks(K);
   K.build(3 * mesh.node_count());
   K.zero();
-  std::fill(K.matrix().valuePtr(), K.matrix().valuePtr() + K.matrix().nonZeros(), others);
+  double* values = K.matrix().valuePtr();
+  for (Eigen::Index k = 0; k < K.matrix().nonZeros(); ++k) values[k] = 0.1 * double(k % 13);  // the others'
   Eigen::VectorXd x = mesh.reference_positions(), v = Eigen::VectorXd::Zero(x.size());
   for (int I = 0; I < mesh.node_count(); ++I) x[3 * I + 2] += 0.1 * x[3 * I] * x[3 * I];  // bent
   const time::StepContext step{mesh.reference_positions(), v, 0.01, time::ForceRule::discrete_gradient()};
-  Assembled out{Eigen::VectorXd::Zero(x.size()), {}};
+  Assembled out{Eigen::VectorXd::LinSpaced(x.size(), -1.0, 1.0), {}};  // the other terms' residual
   parallel::set_element_share(share);
   term.add(step, x, out.R, &K);
   parallel::set_element_share({});
-  out.values = Eigen::Map<const Eigen::VectorXd>(K.matrix().valuePtr(), K.matrix().nonZeros());
+  out.K = K.matrix();
   return out;
 }
 
-TEST(ElementShare, TwoRanksSharesSumToTheWholeTermAndKeepTheOtherEntries) {
+TEST(ElementShare, TwoRanksGiveOneProcesssResidualAndTheirOwnRowsOfTheMatrixToTheBit) {
   const auto identity = [](double*, long) {};  // each rank's sum over the ranks, played by hand below
-  const Assembled whole = assemble({}, 0.0);
-  const Assembled first = assemble({0, 2, identity}, 0.0), second = assemble({1, 2, identity}, 0.0);
+  const mesh::Mesh mesh = block_mesh();
+  const std::vector<int> part = ragged_parts(mesh);
+  const Assembled whole = assemble({});
+  const Assembled first = assemble(parallel::share_of(mesh.hex8, part, 0, 2, identity));
+  const Assembled second = assemble(parallel::share_of(mesh.hex8, part, 1, 2, identity));
   ASSERT_GT(whole.R.norm(), 0);
-  EXPECT_GT((first.R - whole.R).norm(), 0.1 * whole.R.norm()) << "a rank alone has only its elements";
-  EXPECT_LT((first.R + second.R - whole.R).norm(), 1e-13 * whole.R.norm());
-  EXPECT_LT((first.values + second.values - whole.values).norm(), 1e-13 * whole.values.norm());
-
-  const Assembled with_others = assemble({0, 2, identity}, 7.0);
-  EXPECT_LT((with_others.values - first.values - Eigen::VectorXd::Constant(first.values.size(), 7.0)).norm(),
-            1e-13 * whole.values.norm())
-      << "the other terms' entries are added back once, not summed over the ranks";
+  const Eigen::VectorXd summed = first.R + second.R;
+  for (Eigen::Index row = 0; row < whole.R.size(); ++row)
+    ASSERT_EQ(summed[row], whole.R[row]) << "row " << row << ": the owner's value alone, the same bits";
+  int own_entries = 0, partial_entries = 0;
+  for (int col = 0; col < whole.K.outerSize(); ++col)
+    for (solve::SparseMatrix::InnerIterator it(whole.K, col), a(first.K, col), b(second.K, col); it;
+         ++it, ++a, ++b) {
+      const int owner = part[it.row() / 3];
+      const double own = owner == 0 ? a.value() : b.value(), other = owner == 0 ? b.value() : a.value();
+      ASSERT_EQ(own, it.value()) << "entry (" << it.row() << ", " << col << ") of its owner's row";
+      ++own_entries;
+      partial_entries += other != it.value();
+    }
+  EXPECT_GT(partial_entries, own_entries / 10) << "the other rank's rows are partial and left so";
 
   int sums = 0;
-  const Assembled counted = assemble({1, 2, [&](double*, long count) { sums += count > 0; }}, 0.0);
-  EXPECT_EQ(sums, 2) << "the forces and the matrix values are summed over the ranks";
+  const Assembled counted = assemble(parallel::share_of(
+      mesh.hex8, part, 1, 2, [&](double*, long count) { sums += count == 3L * mesh.node_count(); }));
+  EXPECT_EQ(sums, 1) << "one sum per add: the position rows of the residual";
   EXPECT_EQ(counted.R, second.R);
 }
 
