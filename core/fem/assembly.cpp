@@ -61,25 +61,57 @@ solve::SparseMatrix assemble_mass(const mesh::Mesh& mesh, const std::vector<Elem
 
 ElasticityTerm::ElasticityTerm(const mesh::Mesh& mesh, std::vector<ElementGeometry> geometry,
                                std::vector<std::shared_ptr<const Material>> element_material)
-    : hex8_(mesh.hex8), geometry_(std::move(geometry)), material_(std::move(element_material)) {}
+    : hex8_(mesh.hex8), geometry_(std::move(geometry)), material_(std::move(element_material)) {
+  const parallel::ElementShare& share = parallel::element_share();
+  if (!share.shared()) return;
+  // Several ranks: the Gauss data of this rank's elements alone (core/parallel/element_share.hpp).
+  std::vector<ElementGeometry> own;
+  own.reserve(share.elements.size());
+  geometry_at_.assign(hex8_.size(), -1);
+  for (int e : share.elements) {
+    geometry_at_[e] = static_cast<int>(own.size());
+    own.push_back(geometry_[e]);
+  }
+  geometry_ = std::move(own);
+}
+
+const ElementGeometry& ElasticityTerm::geometry(int e) const {
+  return geometry_[geometry_at_.empty() ? e : geometry_at_[e]];
+}
 
 double ElasticityTerm::energy(const Eigen::VectorXd& x) const {
+  const parallel::ElementShare& share = parallel::element_share();
   double V = 0;
-  for (size_t e = 0; e < hex8_.size(); ++e)
-    V += strain_energy(geometry_[e], *material_[e], gather(hex8_[e], x));
+  if (!share.shared()) {
+    for (size_t e = 0; e < hex8_.size(); ++e)
+      V += strain_energy(geometry(e), *material_[e], gather(hex8_[e], x));
+    return V;
+  }
+  for (int e : share.elements)  // each element counted once, by the owner of its first node
+    if (share.owns(hex8_[e][0])) V += strain_energy(geometry(e), *material_[e], gather(hex8_[e], x));
+  share.sum(&V, 1);
   return V;
 }
 
 void ElasticityTerm::element_stresses(const Eigen::VectorXd& x, Eigen::VectorXd& cauchy,
                                       Eigen::VectorXd& von_mises_stress) const {
   const Eigen::Index E = static_cast<Eigen::Index>(hex8_.size());
-  cauchy.resize(6 * E);
-  von_mises_stress.resize(E);
-  for (Eigen::Index e = 0; e < E; ++e) {
-    const Eigen::Matrix3d sigma = average_cauchy_stress(geometry_[e], *material_[e], gather(hex8_[e], x));
+  cauchy = Eigen::VectorXd::Zero(6 * E);
+  von_mises_stress = Eigen::VectorXd::Zero(E);
+  const parallel::ElementShare& share = parallel::element_share();
+  const auto stress_of = [&](int e) {
+    const Eigen::Matrix3d sigma = average_cauchy_stress(geometry(e), *material_[e], gather(hex8_[e], x));
     cauchy.segment<6>(6 * e) << sigma(0, 0), sigma(0, 1), sigma(0, 2), sigma(1, 1), sigma(1, 2), sigma(2, 2);
     von_mises_stress[e] = von_mises(sigma);
+  };
+  if (!share.shared()) {
+    for (int e = 0; e < static_cast<int>(E); ++e) stress_of(e);
+    return;
   }
+  for (int e : share.elements)  // each element by the owner of its first node, the others' zeros summed
+    if (share.owns(hex8_[e][0])) stress_of(e);
+  share.sum(cauchy.data(), cauchy.size());
+  share.sum(von_mises_stress.data(), von_mises_stress.size());
 }
 
 void ElasticityTerm::register_blocks(solve::BlockPattern& pattern) {
@@ -95,7 +127,7 @@ void ElasticityTerm::begin_step(const time::StepContext& step, Eigen::VectorXd&)
   if (step.rule.previous_weight == 0) return;
   force_n_.resize(hex8_.size());
   const auto cache = [&](int e) {
-    internal_force(geometry_[e], *material_[e], gather(hex8_[e], step.x_n), force_n_[e], nullptr);
+    internal_force(geometry(e), *material_[e], gather(hex8_[e], step.x_n), force_n_[e], nullptr);
   };
   const parallel::ElementShare& share = parallel::element_share();
   if (share.shared())
@@ -109,10 +141,10 @@ void ElasticityTerm::element_step(const time::StepContext& step, int e, const Ei
   const Matrix83 xe_1 = gather(hex8_[e], x_1);
   const time::ForceRule& rule = step.rule;
   if (rule.kind == time::ForceRule::Kind::discrete_gradient) {
-    discrete_gradient_force(geometry_[e], *material_[e], gather(hex8_[e], step.x_n), xe_1, f, K);  // (2.6)
+    discrete_gradient_force(geometry(e), *material_[e], gather(hex8_[e], step.x_n), xe_1, f, K);  // (2.6)
     return;
   }
-  internal_force(geometry_[e], *material_[e], rule.evaluation_point(gather(hex8_[e], step.x_n), xe_1), f, K);
+  internal_force(geometry(e), *material_[e], rule.evaluation_point(gather(hex8_[e], step.x_n), xe_1), f, K);
   if (rule.weight != 1) f *= rule.weight;
   if (rule.previous_weight != 0) f += rule.previous_weight * force_n_[e];  // (2.5), (2.11), (2.12)
   if (K && rule.weight * rule.theta != 1) *K *= rule.weight * rule.theta;

@@ -27,6 +27,8 @@ solve::SparseMatrix assemble_mass(const mesh::Mesh& mesh, const std::vector<Elem
                                   const std::vector<double>& element_density);
 
 /// Strain energy of hyperelastic bodies (a Material per element): f_int with the force rule of the scheme.
+/// On several ranks (parallel::element_share, set before it is built) it keeps the Gauss data of the rank's
+/// elements only; energy and element_stresses then sum over the ranks, so every rank calls them at once.
 class ElasticityTerm : public time::Term {
  public:
   ElasticityTerm(const mesh::Mesh& mesh, std::vector<ElementGeometry> geometry,
@@ -50,12 +52,15 @@ class ElasticityTerm : public time::Term {
   /// position row of R from the rank that owns it.
   void add_shared(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
                   solve::BlockPattern* K) const;
+  /// The Gauss data of element e (on several ranks, one of this rank's elements).
+  const ElementGeometry& geometry(int e) const;
   /// h·f_alg and h·∂f_alg/∂x_1 of element e under the step's force rule.
   void element_step(const time::StepContext& step, int e, const Eigen::VectorXd& x_1, Vector24& f,
                     Matrix24* K) const;
 
   std::vector<mesh::Hex> hex8_;
-  std::vector<ElementGeometry> geometry_;
+  std::vector<ElementGeometry> geometry_;  ///< per element; on several ranks per element of this rank's
+  std::vector<int> geometry_at_;           ///< several ranks: each element's place in geometry_, or -1
   std::vector<std::shared_ptr<const Material>> material_;  ///< per element, shared per body
   std::vector<int> block_;
   std::vector<Vector24> force_n_;  ///< f_int(x_n) per element, cached for HHT

@@ -138,7 +138,7 @@ Problem build_problem(const model::Model& m) {
   for (const model::ContactPair& pair : m.contact) p.contact.push_back(contact::make_pair_term(m, pair));
   if (!m.contact.empty()) p.setup_contact_seconds = seconds_since(t0);
   const auto t1 = Clock::now();
-  p.geometry = fem::precompute_mesh(m.mesh);
+  std::vector<fem::ElementGeometry> geometry = fem::precompute_mesh(m.mesh);  // the term keeps it
   std::vector<double> density;
   std::vector<std::shared_ptr<const fem::Material>> body_material, material;
   for (const model::BodySpec& body : m.bodies) body_material.push_back(fem::make_material(body.material));
@@ -146,9 +146,9 @@ Problem build_problem(const model::Model& m) {
     density.push_back(m.bodies[body].material.density);
     material.push_back(body_material[body]);
   }
-  p.mass = contact::contact_mass(m, fem::assemble_mass(m.mesh, p.geometry, density));  // theory.md §4.6.1
+  p.mass = contact::contact_mass(m, fem::assemble_mass(m.mesh, geometry, density));  // theory.md §4.6.1
   p.velocity_map = contact::massless_velocity_map(m);
-  p.elasticity = std::make_unique<fem::ElasticityTerm>(m.mesh, p.geometry, std::move(material));
+  p.elasticity = std::make_unique<fem::ElasticityTerm>(m.mesh, std::move(geometry), std::move(material));
   if (m.has_effect(model::effect::gravity))
     p.gravity = std::make_unique<fem::GravityTerm>(p.mass, *m.gravity);
   for (const model::Load& l : m.loads) p.loads.push_back(make_load(m, l));

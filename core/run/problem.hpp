@@ -18,7 +18,6 @@ namespace stoss::run {
 
 /// Everything a run builds from the model: only the terms the scene calls for.
 struct Problem {
-  std::vector<fem::ElementGeometry> geometry;
   solve::SparseMatrix mass;
   solve::SparseMatrix velocity_map;  ///< P of docs/theory.md (4.13), empty unless a node is massless
   std::unique_ptr<fem::ElasticityTerm> elasticity;

@@ -126,5 +126,45 @@ TEST(ElementShare, TwoRanksGiveOneProcesssResidualAndTheirOwnRowsOfTheMatrixToTh
   EXPECT_EQ(counted.R, second.R);
 }
 
+/// The energy and the element stresses of a term built on rank `rank` of 2 (its Gauss data only), each
+/// sum over the ranks played by hand: the identity.
+struct Measured {
+  double energy = 0;
+  Eigen::VectorXd cauchy, von_mises;
+};
+Measured measure_on(const mesh::Mesh& mesh, const std::vector<int>& part, int rank,
+                    const Eigen::VectorXd& x) {
+  parallel::set_element_share(parallel::share_of(mesh.hex8, part, rank, 2, [](double*, long) {}));
+  const auto material = std::make_shared<const NeoHookean>(1e3, 0.3);
+  const ElasticityTerm term(mesh, precompute_mesh(mesh),
+                            std::vector<std::shared_ptr<const Material>>(mesh.hex8.size(), material));
+  Measured out;
+  out.energy = term.energy(x);
+  term.element_stresses(x, out.cauchy, out.von_mises);
+  parallel::set_element_share({});
+  return out;
+}
+
+TEST(ElementShare, TwoRanksWithTheirOwnGaussDataGiveTheEnergyAndEveryStressOfOneProcess) {
+  const mesh::Mesh mesh = block_mesh();
+  const std::vector<int> part = ragged_parts(mesh);
+  Eigen::VectorXd x = mesh.reference_positions();
+  for (int I = 0; I < mesh.node_count(); ++I) x[3 * I + 2] += 0.1 * x[3 * I] * x[3 * I];  // bent
+  const auto material = std::make_shared<const NeoHookean>(1e3, 0.3);
+  const ElasticityTerm whole(mesh, precompute_mesh(mesh),
+                             std::vector<std::shared_ptr<const Material>>(mesh.hex8.size(), material));
+  Eigen::VectorXd cauchy, von_mises;
+  whole.element_stresses(x, cauchy, von_mises);
+  const Measured first = measure_on(mesh, part, 0, x), second = measure_on(mesh, part, 1, x);
+  ASSERT_GT(whole.energy(x), 0);
+  EXPECT_GT(first.energy, 0.1 * whole.energy(x)) << "both ranks count elements";
+  EXPECT_GT(second.energy, 0.1 * whole.energy(x));
+  EXPECT_NEAR(first.energy + second.energy, whole.energy(x), 1e-14 * whole.energy(x))
+      << "each element counted once";
+  ASSERT_GT(von_mises.norm(), 0);
+  EXPECT_EQ(first.cauchy + second.cauchy, cauchy) << "each element's stress from one rank, the same bits";
+  EXPECT_EQ(first.von_mises + second.von_mises, von_mises);
+}
+
 }  // namespace
 }  // namespace stoss::fem
