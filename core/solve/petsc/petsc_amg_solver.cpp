@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/solve/petsc_solver.hpp"
@@ -144,9 +146,9 @@ class PetscAmgSolver final : public AmgSolver {
   ~PetscAmgSolver() override { destroy(); }
 
   bool factorize(const SparseMatrix& A, int generation, const Eigen::VectorXd& positions) override {
-    if (ranks_ > 1) return factorize_rows(own_rows_of(A, positions.size()), generation, positions);
-    RowMajorMatrix R = A;  // PETSc's AIJ is CSR
-    return factorize_rows(R, generation, positions);
+    if (ranks_ > 1) return factorize_matrix(A, generation, positions);  // its own rows read in place
+    const RowMajorMatrix R = A;                                         // PETSc's AIJ is CSR
+    return factorize_matrix(R, generation, positions);
   }
 
   void set_tolerance(double relative) override {
@@ -195,49 +197,21 @@ class PetscAmgSolver final : public AmgSolver {
   }
 
  private:
-  /// factorize on R, A in PETSc's row order.
-  bool factorize_rows(const RowMajorMatrix& R, int generation, const Eigen::VectorXd& positions) {
-    const int m = positions.size() % 3 == 0 && positions.size() <= R.rows() ? int(positions.size()) : 0;
-    if (generation != generation_ || R.rows() != rows_ || R.nonZeros() != nonzeros_ || m != positions_) {
+  /// factorize on M: A itself on several ranks (each reads its own rows out of it), A in row order on one.
+  template <class Matrix>
+  bool factorize_matrix(const Matrix& M, int generation, const Eigen::VectorXd& positions) {
+    const int m = positions.size() % 3 == 0 && positions.size() <= M.rows() ? int(positions.size()) : 0;
+    if (generation != generation_ || M.rows() != rows_ || M.nonZeros() != nonzeros_ || m != positions_) {
       destroy();
-      if (create(R, positions.head(m)) != success) return destroy(), false;
+      if (create(M, positions.head(m)) != success) return destroy(), false;
       generation_ = generation;
-    } else if (refill(R) != success) {
+    } else if (refill(M) != success) {
       return false;
     } else if (!lu_ && preconditioner_still_good()) {
       ++reuses_;
       return KSPSetReusePreconditioner(ksp_, PETSC_TRUE) == success;
     }
     return setup() == success;
-  }
-
-  /// Several ranks: A in CSR with this rank's rows alone (the others empty), the only ones it passes PETSc
-  /// and the only ones its element loop made whole (core/parallel/element_share.hpp); a whole copy would be
-  /// 12 bytes per entry on every rank. Its position rows are those of its nodes in the run's partition, the
-  /// contact unknowns are the last rank's (own_rows).
-  RowMajorMatrix own_rows_of(const SparseMatrix& A, Eigen::Index positions) const {
-    const std::vector<int>& parts = node_partition();
-    if (Eigen::Index(parts.size()) * 3 != positions || positions > A.rows()) return A;  // own_rows says why
-    const int rank = world_rank();
-    const auto mine = [&](Eigen::Index row) {
-      return row < positions ? parts[row / 3] == rank : rank == ranks_ - 1;
-    };
-    RowMajorMatrix R(A.rows(), A.cols());
-    int* outer = R.outerIndexPtr();  // zeros: the entries of each row, then where each row starts
-    for (Eigen::Index col = 0; col < A.outerSize(); ++col)
-      for (SparseMatrix::InnerIterator it(A, col); it; ++it)
-        if (mine(it.row())) ++outer[it.row() + 1];
-    for (Eigen::Index row = 0; row < A.rows(); ++row) outer[row + 1] += outer[row];
-    R.resizeNonZeros(outer[A.rows()]);
-    std::vector<int> next(outer, outer + A.rows());
-    for (Eigen::Index col = 0; col < A.outerSize(); ++col)  // column by column: each row's columns ascend
-      for (SparseMatrix::InnerIterator it(A, col); it; ++it)
-        if (mine(it.row())) {
-          const int at = next[it.row()]++;
-          R.innerIndexPtr()[at] = int(col);
-          R.valuePtr()[at] = it.value();
-        }
-    return R;
   }
 
   /// Counts a setup and describes it (GAMG levels exist only once set up).
@@ -333,7 +307,7 @@ class PetscAmgSolver final : public AmgSolver {
   /// ranks: the nodes in the run's partition (node_partition), the one by which the element loop is shared,
   /// numbered part by part (order_), so that each rank owns its part's position rows, with the contact
   /// unknowns after them on the last rank (the field split's second block, MUMPS's there).
-  PetscErrorCode own_rows(const RowMajorMatrix& R) {
+  PetscErrorCode own_rows() {
     first_ = 0;
     last_ = rows_;
     if (ranks_ == 1) return success;
@@ -363,29 +337,36 @@ class PetscAmgSolver final : public AmgSolver {
   /// The matrix's row (or unknown) that row `row` of PETSc's numbering is.
   int original(int row) const { return order_.empty() ? row : order_[row]; }
 
-  /// This rank's rows of R in CSR with PETSc's columns, sorted, and where each value comes from in R (kept
-  /// for refill on several ranks).
+  /// One process: R's pattern, for the preallocation only.
   void local_csr(const RowMajorMatrix& R) {
     const int* outer = R.outerIndexPtr();
-    if (ranks_ == 1) {  // R itself
-      local_ia_.assign(outer, outer + rows_ + 1);
-      local_ja_.assign(R.innerIndexPtr(), R.innerIndexPtr() + outer[rows_]);
-      return;
-    }
-    local_ia_.assign(1, 0);
-    local_ja_.clear();
-    value_from_.clear();
-    std::vector<std::pair<PetscInt, Eigen::Index>> row;
-    for (int k = first_; k < last_; ++k) {
-      const int from = original(k);
-      row.clear();
-      for (Eigen::Index at = outer[from]; at < outer[from + 1]; ++at) {
-        const int column = R.innerIndexPtr()[at];
-        row.emplace_back(renumbered_[column], at);
-      }
-      std::sort(row.begin(), row.end());
-      for (const auto& [column, at] : row) local_ja_.push_back(column), value_from_.push_back(at);
-      local_ia_.push_back(PetscInt(local_ja_.size()));
+    local_ia_.assign(outer, outer + rows_ + 1);
+    local_ja_.assign(R.innerIndexPtr(), R.innerIndexPtr() + outer[rows_]);
+  }
+
+  /// Several ranks: this rank's rows of A in CSR with PETSc's columns, sorted, and where each value is in A
+  /// (kept for refill). Read out of A's columns in place: the rows of A on this rank are whole only here
+  /// (core/parallel/element_share.hpp), and a row-ordered copy of A would be 12 bytes per entry more.
+  void local_csr(const SparseMatrix& A) {
+    const auto local_row = [&](Eigen::Index row) { return renumbered_[row] - first_; };  // < 0 or ≥: not ours
+    const int local = last_ - first_;
+    local_ia_.assign(local + 1, 0);
+    for (Eigen::Index col = 0; col < A.outerSize(); ++col)
+      for (SparseMatrix::InnerIterator it(A, col); it; ++it)
+        if (const int k = local_row(it.row()); k >= 0 && k < local) ++local_ia_[k + 1];
+    for (int k = 0; k < local; ++k) local_ia_[k + 1] += local_ia_[k];
+    std::vector<std::pair<PetscInt, int>> entries(local_ia_[local]);  // (PETSc's column, place in A)
+    std::vector<PetscInt> next(local_ia_.begin(), local_ia_.end() - 1);
+    for (Eigen::Index col = 0; col < A.outerSize(); ++col)
+      for (SparseMatrix::InnerIterator it(A, col); it; ++it)
+        if (const int k = local_row(it.row()); k >= 0 && k < local)
+          entries[next[k]++] = {renumbered_[col], int(&it.valueRef() - A.valuePtr())};
+    local_ja_.resize(entries.size());
+    value_from_.resize(entries.size());
+    for (int k = 0; k < local; ++k) {
+      std::sort(entries.begin() + local_ia_[k], entries.begin() + local_ia_[k + 1]);
+      for (PetscInt e = local_ia_[k]; e < local_ia_[k + 1]; ++e)
+        local_ja_[e] = entries[e].first, value_from_[e] = entries[e].second;
     }
     local_values_.resize(value_from_.size());
   }
@@ -424,27 +405,31 @@ class PetscAmgSolver final : public AmgSolver {
     return whole;
   }
 
-  /// This rank's values of R in local_csr's order.
-  const PetscScalar* local_values(const RowMajorMatrix& R) {
-    for (std::size_t k = 0; k < value_from_.size(); ++k) local_values_[k] = R.valuePtr()[value_from_[k]];
+  /// Several ranks: this rank's values of A in local_csr's order.
+  const PetscScalar* local_values(const SparseMatrix& A) {
+    for (std::size_t k = 0; k < value_from_.size(); ++k) local_values_[k] = A.valuePtr()[value_from_[k]];
     return local_values_.data();
   }
 
-  PetscErrorCode create(const RowMajorMatrix& R, const Eigen::VectorXd& positions) {
-    rows_ = int(R.rows());
-    nonzeros_ = R.nonZeros();
+  template <class Matrix>
+  PetscErrorCode create(const Matrix& M, const Eigen::VectorXd& positions) {
+    rows_ = int(M.rows());
+    nonzeros_ = M.nonZeros();
     positions_ = int(positions.size());
-    PetscCall(own_rows(R));
+    PetscCall(own_rows());
     const int local = last_ - first_;
     PetscCall(MatCreate(communicator(), &A_));
     PetscCall(MatSetSizes(A_, local, local, rows_, rows_));
     PetscCall(MatSetType(A_, ranks_ > 1 ? MATMPIAIJ : MATSEQAIJ));
     if (positions_ == rows_) PetscCall(MatSetBlockSize(A_, 3));
-    local_csr(R);
-    if (ranks_ > 1)
-      PetscCall(MatMPIAIJSetPreallocationCSR(A_, local_ia_.data(), local_ja_.data(), local_values(R)));
-    else
-      PetscCall(MatSeqAIJSetPreallocationCSR(A_, local_ia_.data(), local_ja_.data(), R.valuePtr()));
+    local_csr(M);
+    if constexpr (std::is_same_v<Matrix, SparseMatrix>) {
+      PetscCall(MatMPIAIJSetPreallocationCSR(A_, local_ia_.data(), local_ja_.data(), local_values(M)));
+    } else {
+      PetscCall(MatSeqAIJSetPreallocationCSR(A_, local_ia_.data(), local_ja_.data(), M.valuePtr()));
+      std::vector<PetscInt>().swap(local_ia_);  // PETSc copied the pattern; refill copies values only
+      std::vector<PetscInt>().swap(local_ja_);
+    }
     // No node (inode) kernels for this matrix: measured on the tumbling sphere at 27,648 hex8 (3 steps,
     // quiet machine), its products and sweeps took the linear solver from 11.9 s without them to 18.5 s.
     PetscCall(MatSetOption(A_, MAT_USE_INODES, PETSC_FALSE));
@@ -527,14 +512,14 @@ class PetscAmgSolver final : public AmgSolver {
   }
 
   /// Same pattern: the values only, in PETSc's CSR order (both sorted by column within a row).
+  PetscErrorCode refill(const SparseMatrix& A) {
+    const int local = last_ - first_;
+    PetscCall(MatUpdateMPIAIJWithArrays(A_, local, local, rows_, rows_, local_ia_.data(), local_ja_.data(),
+                                        local_values(A)));
+    PetscCall(KSPSetOperators(ksp_, A_, A_));
+    return success;
+  }
   PetscErrorCode refill(const RowMajorMatrix& R) {
-    if (ranks_ > 1) {
-      const int local = last_ - first_;
-      PetscCall(MatUpdateMPIAIJWithArrays(A_, local, local, rows_, rows_, local_ia_.data(), local_ja_.data(),
-                                          local_values(R)));
-      PetscCall(KSPSetOperators(ksp_, A_, A_));
-      return success;
-    }
     PetscScalar* values = nullptr;
     PetscCall(MatSeqAIJGetArray(A_, &values));
     std::copy(R.valuePtr(), R.valuePtr() + nonzeros_, values);
@@ -612,7 +597,7 @@ class PetscAmgSolver final : public AmgSolver {
   int ranks_ = 1;                              ///< MPI ranks, after PETSc's initialisation
   int first_ = 0, last_ = 0;                   ///< this rank's rows (own_rows)
   std::vector<PetscInt> local_ia_, local_ja_;  ///< this rank's rows of the pattern, PETSc's columns
-  std::vector<Eigen::Index> value_from_;       ///< where each of this rank's values is in R
+  std::vector<int> value_from_;                ///< several ranks: where each of this rank's values is in A
   std::vector<PetscScalar> local_values_;      ///< this rank's values, in local_ia_/local_ja_'s order
   std::vector<int> order_, renumbered_;        ///< several ranks: PETSc's row → R's row, and back
   IS fields_[2] = {nullptr, nullptr};
