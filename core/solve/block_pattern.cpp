@@ -58,9 +58,11 @@ void BlockPattern::build(int n) {
   std::copy(inner.begin(), inner.end(), matrix_.innerIndexPtr());
   matrix_.coeffs().setZero();
   for (Block& b : blocks_) {
-    b.slots.resize(b.rows.size() * b.cols.size());
+    b.in_triples = rows_in_triples(b.rows);
+    const size_t step = b.in_triples ? 3 : 1, kept = b.rows.size() / step;
+    b.slots.resize(kept * b.cols.size());
     for (size_t j = 0; j < b.cols.size(); ++j)
-      for (size_t i = 0; i < b.rows.size(); ++i) b.slots[i + j * b.rows.size()] = slot(b.rows[i], b.cols[j]);
+      for (size_t i = 0; i < kept; ++i) b.slots[i + j * kept] = slot(b.rows[step * i], b.cols[j]);
   }
   sparse_slots_.assign(sparse_entries_.size(), {});
   for (size_t k = 0; k < sparse_entries_.size(); ++k)
@@ -83,12 +85,30 @@ void BlockPattern::zero() {
   matrix_.coeffs().setZero();
 }
 
+bool BlockPattern::rows_in_triples(const std::vector<int>& rows) {
+  if (rows.empty() || rows.size() % 3 != 0) return false;
+  for (size_t I = 0; I < rows.size(); I += 3)
+    if (rows[I + 1] != rows[I] + 1 || rows[I + 2] != rows[I] + 2) return false;
+  return true;
+}
+
 void BlockPattern::scatter(int block, const Eigen::Ref<const Eigen::MatrixXd>& values) {
   const Block& b = blocks_[block];
   double* data = matrix_.valuePtr();
   const Eigen::Index nr = static_cast<Eigen::Index>(b.rows.size());
+  if (!b.in_triples) {
+    for (Eigen::Index j = 0; j < values.cols(); ++j)
+      for (Eigen::Index i = 0; i < nr; ++i) data[b.slots[i + j * nr]] += values(i, j);
+    return;
+  }
+  const Eigen::Index runs = nr / 3;  // a run's three rows are neighbours in every column
   for (Eigen::Index j = 0; j < values.cols(); ++j)
-    for (Eigen::Index i = 0; i < nr; ++i) data[b.slots[i + j * nr]] += values(i, j);
+    for (Eigen::Index I = 0; I < runs; ++I) {
+      double* at = data + b.slots[I + j * runs];
+      at[0] += values(3 * I, j);
+      at[1] += values(3 * I + 1, j);
+      at[2] += values(3 * I + 2, j);
+    }
 }
 
 void BlockPattern::add_diagonal(int i, double value) {

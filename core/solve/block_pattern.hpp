@@ -44,8 +44,14 @@ class BlockPattern {
  private:
   struct Block {
     std::vector<int> rows, cols;
-    std::vector<int> slots;  ///< value index of entry (i, j) at i + j * rows.size()
+    /// Value index of entry (i, j) at i + j * rows.size(); for rows in runs of three consecutive dofs (a
+    /// node's), whose entries sit together in every column, only the first row of each run: (3I, j) at
+    /// I + j * rows.size() / 3, a third of the indices (an 8-node element's block: 192 instead of 576).
+    std::vector<int> slots;
+    bool in_triples = false;
   };
+  /// Whether a block's rows come in runs of three consecutive dofs.
+  static bool rows_in_triples(const std::vector<int>& rows);
   int slot(int row, int col) const;
 
   std::vector<Block> blocks_;

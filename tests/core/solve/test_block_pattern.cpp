@@ -1,0 +1,52 @@
+// BlockPattern (core/solve/block_pattern.hpp): every block's values land on their entries, whether its rows
+// come in runs of three consecutive dofs (a node's: one slot kept per run and column) or not.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include "core/solve/block_pattern.hpp"
+
+namespace stoss::solve {
+namespace {
+
+/// Values that differ in every entry, so that a value on a wrong entry shows.
+Eigen::MatrixXd distinct_values(int rows, int cols, double offset) {
+  Eigen::MatrixXd values(rows, cols);
+  for (int j = 0; j < cols; ++j)
+    for (int i = 0; i < rows; ++i) values(i, j) = offset + i + 100.0 * j;
+  return values;
+}
+
+TEST(BlockPattern, BlocksInNodeTriplesAndOthersScatterOntoTheirEntries) {
+  const int n = 15;
+  const std::vector<std::vector<int>> row_sets = {
+      {0, 1, 2, 9, 10, 11},  // two nodes' dofs
+      {3, 4, 5, 6, 7, 8},    // two neighbouring nodes: one run of six is two runs of three
+      {4, 5, 6},             // three consecutive dofs that are not one node's
+      {1, 2, 12, 13},        // not in threes
+      {14},                  // one dof
+      {0, 1, 2, 3, 4, 5, 12, 13, 14}};
+  BlockPattern pattern;
+  std::vector<int> ids;
+  for (const auto& rows : row_sets) ids.push_back(pattern.add_block(rows, rows));
+  ids.push_back(pattern.add_block({0, 1, 2}, {13, 14}));  // a rectangular block in triples
+  pattern.build(n);
+  pattern.zero();
+  Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(n, n);
+  for (size_t k = 0; k < row_sets.size(); ++k) {
+    const auto& rows = row_sets[k];
+    const Eigen::MatrixXd values = distinct_values(int(rows.size()), int(rows.size()), 1000.0 * k);
+    pattern.scatter(ids[k], values);
+    for (size_t j = 0; j < rows.size(); ++j)
+      for (size_t i = 0; i < rows.size(); ++i) expected(rows[i], rows[j]) += values(i, j);
+  }
+  const Eigen::MatrixXd rectangular = distinct_values(3, 2, 7000.0);
+  pattern.scatter(ids.back(), rectangular);
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 3; ++i) expected(i, 13 + j) += rectangular(i, j);
+  const Eigen::MatrixXd assembled = Eigen::MatrixXd(pattern.matrix());
+  EXPECT_EQ(assembled, expected);
+}
+
+}  // namespace
+}  // namespace stoss::solve
