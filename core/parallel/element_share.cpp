@@ -36,6 +36,13 @@ void node_graph(const Elements& hex8, int nodes, std::vector<int>& offsets, std:
   }
 }
 
+std::vector<char> ElementShare::own_rows() const {
+  std::vector<char> rows(3 * node_part.size());
+  for (size_t node = 0; node < node_part.size(); ++node)
+    rows[3 * node] = rows[3 * node + 1] = rows[3 * node + 2] = owns(static_cast<int>(node));
+  return rows;
+}
+
 const ElementShare& element_share() {
   return current();
 }

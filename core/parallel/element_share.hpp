@@ -25,6 +25,8 @@ struct ElementShare {
   std::vector<int> elements;   ///< the elements with a node this rank owns, ascending
   bool shared() const { return size > 1 && sum != nullptr; }
   bool owns(int node) const { return node_part[node] == rank; }
+  /// Per position row (3 per node): whether this rank owns it.
+  std::vector<char> own_rows() const;
 };
 
 /// Node indices of each hex8 (mesh::Mesh::hex8).

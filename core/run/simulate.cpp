@@ -55,6 +55,8 @@ class Run {
         schedule_(m.output),
         landings_(m) {
     integrator_.set_velocity_map(problem_.velocity_map);
+    if (const parallel::ElementShare& share = parallel::element_share(); share.shared())
+      integrator_.keep_inertia_rows(share.own_rows());
     integrator_.initialize(s_);
     if (m.time.adaptive()) controller_.emplace(m.time, integrator_.scheme(), initial_acceleration());
     if (store_ && checkpoints.resume && store_->exists()) resumed_ = load_checkpoint(*store_, m, terms_);

@@ -11,31 +11,46 @@ int BlockPattern::add_block(std::vector<int> rows, std::vector<int> cols) {
   return static_cast<int>(blocks_.size()) - 1;
 }
 
-int BlockPattern::add_sparse(const SparseMatrix& S) {
+int BlockPattern::add_sparse(const SparseMatrix& S, const std::vector<char>* rows) {
   built_ = false;
   std::vector<std::pair<int, int>> entries;
-  entries.reserve(S.nonZeros());
+  std::vector<int> value_at;
+  entries.reserve(rows ? 0 : S.nonZeros());
   for (int c = 0; c < S.outerSize(); ++c)
-    for (SparseMatrix::InnerIterator it(S, c); it; ++it) entries.emplace_back(static_cast<int>(it.row()), c);
+    for (SparseMatrix::InnerIterator it(S, c); it; ++it) {
+      if (rows && !(*rows)[it.row()]) continue;
+      entries.emplace_back(static_cast<int>(it.row()), c);
+      if (rows) value_at.push_back(static_cast<int>(&it.value() - S.valuePtr()));
+    }
   sparse_entries_.push_back(std::move(entries));
+  sparse_value_at_.push_back(std::move(value_at));
   return static_cast<int>(sparse_entries_.size()) - 1;
 }
 
 void BlockPattern::scatter_sparse(int id, const SparseMatrix& S, double factor) {
   const std::vector<int>& slots = sparse_slots_[id];
+  const std::vector<int>& value_at = sparse_value_at_[id];
   double* data = matrix_.valuePtr();
   const double* values = S.valuePtr();
-  for (size_t k = 0; k < slots.size(); ++k) data[slots[k]] += factor * values[k];
+  if (value_at.empty()) {
+    for (size_t k = 0; k < slots.size(); ++k) data[slots[k]] += factor * values[k];
+    return;
+  }
+  for (size_t k = 0; k < slots.size(); ++k) data[slots[k]] += factor * values[value_at[k]];
 }
 
 void BlockPattern::clear() {
   blocks_.clear();
   sparse_entries_.clear();
+  sparse_value_at_.clear();
   sparse_slots_.clear();
+  sparse_entries_released_ = false;
   built_ = false;
 }
 
 void BlockPattern::build(int n) {
+  if (sparse_entries_released_ && !sparse_slots_.empty())
+    throw std::logic_error("BlockPattern: built twice; clear() and register again");
   std::vector<std::vector<int>> columns(n);
   for (int i = 0; i < n; ++i) columns[i].push_back(i);
   for (const Block& b : blocks_)
@@ -65,8 +80,12 @@ void BlockPattern::build(int n) {
       for (size_t i = 0; i < kept; ++i) b.slots[i + j * kept] = slot(b.rows[step * i], b.cols[j]);
   }
   sparse_slots_.assign(sparse_entries_.size(), {});
-  for (size_t k = 0; k < sparse_entries_.size(); ++k)
+  for (size_t k = 0; k < sparse_entries_.size(); ++k) {
+    sparse_slots_[k].reserve(sparse_entries_[k].size());
     for (auto [r, c] : sparse_entries_[k]) sparse_slots_[k].push_back(slot(r, c));
+    std::vector<std::pair<int, int>>().swap(sparse_entries_[k]);  // the slots say it all now
+  }
+  sparse_entries_released_ = true;
   diagonal_slots_.resize(n);
   for (int i = 0; i < n; ++i) diagonal_slots_[i] = slot(i, i);
   built_ = true;

@@ -15,11 +15,13 @@ class BlockPattern {
  public:
   /// Registers a block coupling rows × cols; returns its id for scatter(). Invalidates the pattern.
   int add_block(std::vector<int> rows, std::vector<int> cols);
-  /// Registers the pattern of a sparse matrix of the same size; returns its id for scatter_sparse().
-  int add_sparse(const SparseMatrix& S);
+  /// Registers the pattern of a sparse matrix of the same size, of the rows marked in `rows` alone when
+  /// given (a rank's own, on several MPI ranks); returns its id for scatter_sparse().
+  int add_sparse(const SparseMatrix& S, const std::vector<char>* rows = nullptr);
   /// Registers a square block rows × rows.
   int add_block(const std::vector<int>& dofs) { return add_block(dofs, dofs); }
-  /// Builds the n×n pattern (diagonal always included) and the scatter maps.
+  /// Builds the n×n pattern (diagonal always included) and the scatter maps, once per registration: it lets
+  /// go of the sparse matrices' entries (register them again after clear() to build again).
   void build(int n);
   bool built() const { return built_; }
   /// Forgets every block (call before registering a new set).
@@ -29,7 +31,7 @@ class BlockPattern {
   void zero();
   /// A(rows[i], cols[j]) += values(i, j) for the block's rows and cols.
   void scatter(int block, const Eigen::Ref<const Eigen::MatrixXd>& values);
-  /// A += factor · S for a matrix registered with add_sparse (same pattern as then).
+  /// A += factor · S for a matrix registered with add_sparse (same pattern as then; the marked rows only).
   void scatter_sparse(int id, const SparseMatrix& S, double factor);
   /// A(i, i) += value.
   void add_diagonal(int i, double value);
@@ -56,7 +58,10 @@ class BlockPattern {
 
   std::vector<Block> blocks_;
   std::vector<std::vector<std::pair<int, int>>> sparse_entries_;  ///< (row, col) per registered sparse matrix
+  /// Per registered sparse matrix: where each registered entry's value is in S (empty: all, in order).
+  std::vector<std::vector<int>> sparse_value_at_;
   std::vector<std::vector<int>> sparse_slots_;
+  bool sparse_entries_released_ = false;  ///< build let go of them
   std::vector<int> diagonal_slots_;
   SparseMatrix matrix_;
   bool built_ = false;

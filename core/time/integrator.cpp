@@ -76,7 +76,7 @@ void Integrator::rebuild_pattern(int n) {
   {
     Stopwatch assembly(inertia_seconds_);
     pattern_.clear();
-    mass_block_ = pattern_.add_sparse(mass_);
+    mass_block_ = pattern_.add_sparse(mass_, inertia_rows_.empty() ? nullptr : &inertia_rows_);
   }
   for (size_t k = 0; k < terms_.size(); ++k) {
     Stopwatch term(term_seconds_[k]);

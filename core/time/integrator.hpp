@@ -30,6 +30,9 @@ class Integrator {
   /// After each step (and in initialize) v ← P v: the velocity of the massless nodes of docs/theory.md
   /// §4.6.1 follows their donors. An empty P (the default) leaves v alone.
   void set_velocity_map(solve::SparseMatrix P) { velocity_map_ = std::move(P); }
+  /// The Jacobian rows whose inertia the pattern holds: on several MPI ranks a rank's own, the only rows it
+  /// hands the linear solver (core/parallel/element_share.hpp); every row when empty (the default).
+  void keep_inertia_rows(std::vector<char> rows) { inertia_rows_ = std::move(rows); }
   /// Completes the initial state (HHT: M a_0 = f_ext − f_int(x_0)).
   void initialize(State& s);
   /// Most times one step is solved again, shortened to a term's located contact event (§4.6.2).
@@ -117,6 +120,7 @@ class Integrator {
   solve::BlockPattern pattern_;
   solve::LinearSolver solver_;
   int mass_block_ = -1;
+  std::vector<char> inertia_rows_;          ///< keep_inertia_rows
   int auxiliary_layout_ = -1;               ///< total unknown count the pattern was built for
   std::vector<int> structure_generations_;  ///< per term, at the last rebuild
   std::unique_ptr<Eigen::SimplicialLDLT<solve::SparseMatrix>>

@@ -48,5 +48,25 @@ TEST(BlockPattern, BlocksInNodeTriplesAndOthersScatterOntoTheirEntries) {
   EXPECT_EQ(assembled, expected);
 }
 
+TEST(BlockPattern, ASparseMatrixOfTheMarkedRowsAloneAddsThoseRowsAndNoPatternElsewhere) {
+  const int n = 6;
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      if (std::abs(i - j) <= 2) dense(i, j) = 1.0 + i + 10.0 * j;
+  const SparseMatrix S = dense.sparseView();
+  const std::vector<char> rows = {1, 1, 1, 0, 0, 0};  // one node of two
+  BlockPattern pattern;
+  const int id = pattern.add_sparse(S, &rows);
+  pattern.build(n);
+  pattern.zero();
+  pattern.scatter_sparse(id, S, 2.0);
+  Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(n, n);
+  expected.topRows(3) = 2.0 * dense.topRows(3);
+  EXPECT_EQ(Eigen::MatrixXd(pattern.matrix()), expected);
+  EXPECT_EQ(pattern.matrix().nonZeros(), 12 + 3) << "the marked rows' entries and the diagonal";
+  EXPECT_THROW(pattern.build(n), std::logic_error) << "the entries are gone once built";
+}
+
 }  // namespace
 }  // namespace stoss::solve
