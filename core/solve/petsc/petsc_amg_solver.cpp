@@ -368,7 +368,6 @@ class PetscAmgSolver final : public AmgSolver {
       for (PetscInt e = local_ia_[k]; e < local_ia_[k + 1]; ++e)
         local_ja_[e] = entries[e].first, value_from_[e] = entries[e].second;
     }
-    local_values_.resize(value_from_.size());
   }
 
   /// Several ranks: the whole matrix on every rank, gathered from the ranks' rows. Only the LU fallback
@@ -393,7 +392,8 @@ class PetscAmgSolver final : public AmgSolver {
                    MPI_INT, PETSC_COMM_WORLD);
     MPI_Allgatherv(columns.data(), local_entries, MPI_INT, all_columns.data(), entries_of.data(),
                    entry_at.data(), MPI_INT, PETSC_COMM_WORLD);
-    MPI_Allgatherv(local_values_.data(), local_entries, MPI_DOUBLE, all_values.data(), entries_of.data(),
+    const std::vector<PetscScalar> values = own_values();
+    MPI_Allgatherv(values.data(), local_entries, MPI_DOUBLE, all_values.data(), entries_of.data(),
                    entry_at.data(), MPI_DOUBLE, PETSC_COMM_WORLD);
     std::vector<Eigen::Triplet<double>> entries;
     entries.reserve(all_values.size());
@@ -406,9 +406,27 @@ class PetscAmgSolver final : public AmgSolver {
   }
 
   /// Several ranks: this rank's values of A in local_csr's order.
-  const PetscScalar* local_values(const SparseMatrix& A) {
-    for (std::size_t k = 0; k < value_from_.size(); ++k) local_values_[k] = A.valuePtr()[value_from_[k]];
-    return local_values_.data();
+  /// Held only while PETSc copies them: GAMG's setup, which follows, finds the memory free.
+  std::vector<PetscScalar> local_values(const SparseMatrix& A) const {
+    std::vector<PetscScalar> values(value_from_.size());
+    for (std::size_t k = 0; k < value_from_.size(); ++k) values[k] = A.valuePtr()[value_from_[k]];
+    return values;
+  }
+
+  /// Several ranks: this rank's values as PETSc holds them, in local_ia_/local_ja_'s order (both sorted by
+  /// column within a row).
+  std::vector<PetscScalar> own_values() const {
+    std::vector<PetscScalar> values(local_ja_.size());
+    for (int k = 0; k < last_ - first_; ++k) {
+      PetscInt count = 0;
+      const PetscScalar* row = nullptr;
+      check(MatGetRow(A_, first_ + k, &count, nullptr, &row), "MatGetRow");
+      const bool same = count == local_ia_[k + 1] - local_ia_[k];
+      if (same) std::copy(row, row + count, values.begin() + local_ia_[k]);
+      check(MatRestoreRow(A_, first_ + k, &count, nullptr, &row), "MatRestoreRow");
+      if (!same) throw std::runtime_error("PETSc: a row of the matrix changed its length");
+    }
+    return values;
   }
 
   template <class Matrix>
@@ -424,7 +442,7 @@ class PetscAmgSolver final : public AmgSolver {
     if (positions_ == rows_) PetscCall(MatSetBlockSize(A_, 3));
     local_csr(M);
     if constexpr (std::is_same_v<Matrix, SparseMatrix>) {
-      PetscCall(MatMPIAIJSetPreallocationCSR(A_, local_ia_.data(), local_ja_.data(), local_values(M)));
+      PetscCall(MatMPIAIJSetPreallocationCSR(A_, local_ia_.data(), local_ja_.data(), local_values(M).data()));
     } else {
       PetscCall(MatSeqAIJSetPreallocationCSR(A_, local_ia_.data(), local_ja_.data(), M.valuePtr()));
       std::vector<PetscInt>().swap(local_ia_);  // PETSc copied the pattern; refill copies values only
@@ -515,7 +533,7 @@ class PetscAmgSolver final : public AmgSolver {
   PetscErrorCode refill(const SparseMatrix& A) {
     const int local = last_ - first_;
     PetscCall(MatUpdateMPIAIJWithArrays(A_, local, local, rows_, rows_, local_ia_.data(), local_ja_.data(),
-                                        local_values(A)));
+                                        local_values(A).data()));
     PetscCall(KSPSetOperators(ksp_, A_, A_));
     return success;
   }
@@ -598,7 +616,6 @@ class PetscAmgSolver final : public AmgSolver {
   int first_ = 0, last_ = 0;                   ///< this rank's rows (own_rows)
   std::vector<PetscInt> local_ia_, local_ja_;  ///< this rank's rows of the pattern, PETSc's columns
   std::vector<int> value_from_;                ///< several ranks: where each of this rank's values is in A
-  std::vector<PetscScalar> local_values_;      ///< this rank's values, in local_ia_/local_ja_'s order
   std::vector<int> order_, renumbered_;        ///< several ranks: PETSc's row → R's row, and back
   IS fields_[2] = {nullptr, nullptr};
   MatNullSpace near_null_ = nullptr;
