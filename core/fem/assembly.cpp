@@ -117,7 +117,7 @@ void ElasticityTerm::element_stresses(const Eigen::VectorXd& x, Eigen::VectorXd&
 void ElasticityTerm::register_blocks(solve::BlockPattern& pattern) {
   block_.assign(hex8_.size(), -1);
   const parallel::ElementShare& share = parallel::element_share();
-  if (share.shared())  // add scatters these only: 2.5 kB of slots per element
+  if (share.shared())  // add scatters these only: about a kB of slots per element
     for (int e : share.elements) block_[e] = pattern.add_block(element_dofs(hex8_[e]));
   else
     for (size_t e = 0; e < hex8_.size(); ++e) block_[e] = pattern.add_block(element_dofs(hex8_[e]));

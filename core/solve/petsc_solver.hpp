@@ -71,8 +71,8 @@ std::unique_ptr<AmgSolver> make_petsc_lu_solver();
 void synchronize_ranks();
 
 /// Sums `count` doubles over every rank of the launch in place, the same bits on every rank (a reduction to
-/// rank 0 and a broadcast); after synchronize_ranks. The element loops of a run on several ranks sum their
-/// shares with it (core/parallel/element_share.hpp).
+/// rank 0 and a broadcast); after synchronize_ranks. A run on several ranks sums with it the residual's
+/// position rows, each from its owner, and the strain energy and stresses (core/parallel/element_share.hpp).
 void sum_over_ranks(double* values, long count);
 
 /// The rank that owns each node: PETSc's partitioner (PT-Scotch) on the nodes' graph in CSR (`offsets` of

@@ -299,8 +299,8 @@ class PetscAmgSolver final : public AmgSolver {
     return std::to_string(levels);
   }
 
-  /// One process: PETSC_COMM_SELF and sequential objects. Several MPI ranks: every rank holds the whole
-  /// system (each assembles it: the model is replicated) and passes PETSc its own rows (own_rows).
+  /// One process: PETSC_COMM_SELF and sequential objects. Several MPI ranks: each rank passes PETSc its own
+  /// rows (own_rows), the only rows its element loop makes whole (core/parallel/element_share.hpp).
   MPI_Comm communicator() const { return ranks_ > 1 ? PETSC_COMM_WORLD : PETSC_COMM_SELF; }
 
   /// This rank's rows [first_, last_) of PETSc's numbering. One process: the matrix's own rows. Several
@@ -345,8 +345,8 @@ class PetscAmgSolver final : public AmgSolver {
   }
 
   /// Several ranks: this rank's rows of A in CSR with PETSc's columns, sorted, and where each value is in A
-  /// (kept for refill). Read out of A's columns in place: the rows of A on this rank are whole only here
-  /// (core/parallel/element_share.hpp), and a row-ordered copy of A would be 12 bytes per entry more.
+  /// (kept for refill). Read out of A's columns in place, since only this rank's rows of A are whole
+  /// (core/parallel/element_share.hpp) and a row-ordered copy would cost 12 bytes per entry.
   void local_csr(const SparseMatrix& A) {
     const auto local_row = [&](Eigen::Index row) { return renumbered_[row] - first_; };  // < 0 or ≥: not ours
     const int local = last_ - first_;

@@ -73,7 +73,8 @@ struct Assembled {
 };
 
 /// The term's add at a deformed x with share `share` set (unset after), starting from the same R and matrix
-/// entries other terms would have put there.
+/// entries other terms would have put there. The term is built and its blocks registered before the share
+/// is set, so that every call's matrix has one process's pattern and the three compare entry by entry.
 Assembled assemble(const parallel::ElementShare& share) {
   const mesh::Mesh mesh = block_mesh();
   const auto material = std::make_shared<const NeoHookean>(1e3, 0.3);
