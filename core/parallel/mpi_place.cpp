@@ -28,6 +28,8 @@ std::optional<MpiPlace> place_from(const char* rank_variable, const char* size_v
 MpiPlace mpi_place() {
   if (const auto open_mpi = place_from("OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE")) return *open_mpi;
   if (const auto pmi = place_from("PMI_RANK", "PMI_SIZE")) return *pmi;
+  // A task of srun's (any --mpi): a batch script's own process has SLURM_PROCID but no step task count.
+  if (const auto slurm = place_from("SLURM_PROCID", "SLURM_STEP_NUM_TASKS")) return *slurm;
   return MpiPlace{};
 }
 

@@ -13,8 +13,9 @@ struct MpiPlace {
   bool several() const { return size > 1; }
 };
 
-/// From Open MPI's OMPI_COMM_WORLD_RANK / OMPI_COMM_WORLD_SIZE, else the PMI_RANK / PMI_SIZE of MPICH and
-/// Slurm's srun; {0, 1} when neither is set or either is not a rank below a size of at least 1.
+/// From Open MPI's OMPI_COMM_WORLD_RANK / OMPI_COMM_WORLD_SIZE, else the PMI_RANK / PMI_SIZE of MPICH (and of
+/// srun --mpi=pmi2), else the SLURM_PROCID / SLURM_STEP_NUM_TASKS of any task srun starts (srun --mpi=pmix
+/// sets no PMI_RANK); {0, 1} when none is set or a pair is not a rank below a size of at least 1.
 MpiPlace mpi_place();
 
 }  // namespace stoss::parallel

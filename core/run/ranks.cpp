@@ -30,6 +30,10 @@ void prepare_for_ranks(model::Model& m, parallel::MpiPlace place) {
     parallel::set_worker_threads(std::max(1, parallel::machine_cores() / place.size));
   }
   solve::synchronize_ranks();
+  if (const auto [rank, size] = solve::world_place(); rank != place.rank || size != place.size)
+    throw std::runtime_error("the launcher started " + std::to_string(place.size) +
+                             " processes, but MPI joined " + std::to_string(size) +
+                             " of them into one launch: with srun, pass --mpi=pmix (docs/many_machines.md)");
   std::vector<int> offsets, neighbours;
   parallel::node_graph(m.mesh.hex8, m.mesh.node_count(), offsets, neighbours);
   std::vector<int> node_part = solve::partition_nodes(offsets, neighbours);

@@ -17,7 +17,8 @@ namespace stoss::run {
 /// otherwise. Then waits for every rank (core/solve/petsc_solver.hpp, synchronize_ranks), partitions the
 /// nodes with them (partition_nodes) and shares the element loop by that partition. Nothing on a process of
 /// its own.
-/// @throws std::invalid_argument when the scene asks for a solver that runs on one rank.
+/// @throws std::invalid_argument when the scene asks for a solver that runs on one rank; std::runtime_error
+/// when MPI does not see the place the launcher's environment gave (srun without a PMI plugin).
 void prepare_for_ranks(model::Model& m, parallel::MpiPlace place);
 
 /// What one rank of a launch changes in its run; nothing for a process of its own. Rank 0 writes the run's

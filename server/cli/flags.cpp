@@ -99,7 +99,8 @@ const char* runner_flags_usage() {
                          N are claimed, bigger ones wait for a worker started with more (default 1)
   --launcher TEMPLATE    starts a job's ranks: {ranks} becomes their number, the rank's command goes last
                          (default "mpiexec -n {ranks} --use-hwthread-cpus --bind-to none", with
-                         --allow-run-as-root as root; on Slurm "srun -n {ranks} --kill-on-bad-exit=1 …")
+                         --allow-run-as-root as root; on Slurm
+                         "srun --mpi=pmix -n {ranks} --kill-on-bad-exit=1 …")
 )";
 }
 

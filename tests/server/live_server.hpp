@@ -15,6 +15,9 @@
 
 namespace stoss::test {
 
+/// A loopback port nobody listens on now.
+int free_port();
+
 /// A TCP connection to 127.0.0.1:`port` (a raw socket, for what an HTTP client will not send); -1 when
 /// refused. A `receive_timeout` above zero bounds each read on it.
 int connect_loopback(int port, std::chrono::seconds receive_timeout = std::chrono::seconds(0));

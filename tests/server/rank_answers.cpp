@@ -28,6 +28,32 @@ double largest_energy_step(const output::ResultFile& r) {
 
 }  // namespace
 
+std::string id_of(const httplib::Result& r) {
+  return body_json(r)["id"].get<std::string>();
+}
+
+int processes_of(const std::string& job_id) {
+  int found = 0;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    std::ifstream in(entry.path() / "cmdline", std::ios::binary);
+    const std::string command(std::istreambuf_iterator<char>(in), {});
+    if (command.find(job_id) != std::string::npos) ++found;
+  }
+  return found;
+}
+
+std::vector<std::string> two_rank_service(std::vector<std::string> more) {
+  std::vector<std::string> flags{"--workers", "1", "--max-ranks-per-job", "2", "--ranks-per-job", "2"};
+  flags.insert(flags.end(), more.begin(), more.end());
+  return flags;
+}
+
+nlohmann::json long_two_rank_scene() {
+  nlohmann::json scene = box_scene(6, 100'000, {1, 0, 0}, 2.0);
+  scene["solver"]["ranks"] = 2;
+  return scene;
+}
+
 bool one_core() {
   return std::thread::hardware_concurrency() < 2;
 }

@@ -25,6 +25,15 @@ std::string seed_in_contact(const TempDir& dir, const std::string& linear, int c
 /// 20 steps, every one in contact.
 void expect_the_same_answers(const std::filesystem::path& one, const std::filesystem::path& two);
 
+/// The id of a job just submitted.
+std::string id_of(const httplib::Result& r);
+/// The processes whose command line names `job_id`: the launcher and the ranks of that job.
+int processes_of(const std::string& job_id);
+/// The server flags of a service that runs jobs of up to 2 ranks, then `more`.
+std::vector<std::string> two_rank_service(std::vector<std::string> more = {});
+/// box_scene for minutes on 2 ranks.
+nlohmann::json long_two_rank_scene();
+
 /// TMPDIR for the test's runs, which rank k > 0 makes its private directory in (core/run/ranks.hpp); empty
 /// again once they ended. Restored by the destructor.
 class PrivateTemp {

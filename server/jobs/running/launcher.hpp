@@ -1,7 +1,8 @@
 #pragma once
 /// @file The launcher that starts a job's process on several MPI ranks (docs/many_machines.md, "Jobs on
 /// several ranks"): a template of words, `{ranks}` standing for the job's ranks, after which the command of
-/// one rank goes. `mpiexec -n {ranks} …` on one machine, `srun -n {ranks} …` where Slurm places the ranks.
+/// one rank goes. `mpiexec -n {ranks} …` on one machine, `srun --mpi=pmix -n {ranks} …` where Slurm places
+/// the ranks.
 
 #include <filesystem>
 #include <optional>

@@ -1,6 +1,6 @@
 // A run's place in an MPI launch (core/parallel/mpi_place.hpp) shall come from Open MPI's variables, else
-// from PMI's, and be {0, 1} when they are absent or make no sense, so that a stray variable never splits a
-// run.
+// from PMI's, else from an srun task's, and be {0, 1} when they are absent or make no sense, so that a stray
+// variable never splits a run.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -23,6 +23,7 @@ void launch_environment(const char* ompi_rank, const char* ompi_size, const char
   set("OMPI_COMM_WORLD_SIZE", ompi_size);
   set("PMI_RANK", pmi_rank);
   set("PMI_SIZE", pmi_size);
+  for (const char* slurm : {"SLURM_PROCID", "SLURM_STEP_NUM_TASKS", "SLURM_NTASKS"}) unsetenv(slurm);
 }
 
 TEST(MpiPlace, IsRankZeroOfOneWithoutALauncher) {
@@ -39,6 +40,18 @@ TEST(MpiPlace, ReadsOpenMpiFirstThenPmi) {
   EXPECT_EQ(mpi_place().size, 3);
   EXPECT_TRUE(mpi_place().several());
   launch_environment(nullptr, nullptr, "1", "2");
+  EXPECT_EQ(mpi_place().rank, 1);
+  EXPECT_EQ(mpi_place().size, 2);
+  launch_environment(nullptr, nullptr, nullptr, nullptr);
+}
+
+TEST(MpiPlace, ReadsAnSrunTaskButNotTheBatchScriptAroundIt) {
+  launch_environment(nullptr, nullptr, nullptr, nullptr);
+  setenv("SLURM_PROCID", "0", 1);  // sbatch -n 2: the script's own process, no step yet
+  setenv("SLURM_NTASKS", "2", 1);
+  EXPECT_EQ(mpi_place().size, 1) << "a script that runs stoss itself is one process";
+  setenv("SLURM_PROCID", "1", 1);  // srun --mpi=pmix -n 2: PMIx sets no PMI_RANK
+  setenv("SLURM_STEP_NUM_TASKS", "2", 1);
   EXPECT_EQ(mpi_place().rank, 1);
   EXPECT_EQ(mpi_place().size, 2);
   launch_environment(nullptr, nullptr, nullptr, nullptr);

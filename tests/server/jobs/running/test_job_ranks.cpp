@@ -16,35 +16,6 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-std::string id_of(const httplib::Result& r) {
-  return body_json(r)["id"].get<std::string>();
-}
-
-/// The processes whose command line names `job_id`: the launcher and the ranks of that job.
-int processes_of(const std::string& job_id) {
-  int found = 0;
-  for (const auto& entry : fs::directory_iterator("/proc")) {
-    std::ifstream in(entry.path() / "cmdline", std::ios::binary);
-    const std::string command(std::istreambuf_iterator<char>(in), {});
-    if (command.find(job_id) != std::string::npos) ++found;
-  }
-  return found;
-}
-
-/// The server flags of a service that runs jobs of up to 2 ranks.
-std::vector<std::string> two_rank_service(std::vector<std::string> more = {}) {
-  std::vector<std::string> flags{"--workers", "1", "--max-ranks-per-job", "2", "--ranks-per-job", "2"};
-  flags.insert(flags.end(), more.begin(), more.end());
-  return flags;
-}
-
-/// box_scene for minutes on 2 ranks.
-nlohmann::json long_two_rank_scene() {
-  nlohmann::json scene = box_scene(6, 100'000, {1, 0, 0}, 2.0);
-  scene["solver"]["ranks"] = 2;
-  return scene;
-}
-
 TEST(JobRanks, ATwoRankJobGivesTheAnswersOfOneRankAndCountsTheMemoryOfBoth) {
   if (one_core()) GTEST_SKIP() << "one core: mpiexec has one slot";
   TempDir dir;
