@@ -55,6 +55,9 @@ void write_configuration(const fs::path& dir) {
        << "ProctrackType=proctrack/linuxproc\nTaskPlugin=task/none\nMpiDefault=none\n"
        << "SchedulerType=sched/builtin\nSelectType=select/cons_tres\nSelectTypeParameters=CR_CPU\n"
        << "ReturnToService=2\nJobAcctGatherType=jobacct_gather/none\n"
+       // Job ids of this cluster's own: Open MPI names a launch's shared memory after PMIx's namespace,
+       // "slurm.pmix.JOB.STEP", and two clusters at once both counting from 1 crossed each other's messages.
+       << "FirstJobId=" << 1000 + getpid() % 600000 * 100 << "\n"  // below MaxJobId, 67,043,328
        << "AccountingStorageType=accounting_storage/none\nKillWait=2\n"
        << "NodeName=" << host << " NodeAddr=127.0.0.1 CPUs=2 State=UNKNOWN\n"
        << "PartitionName=test Nodes=" << host << " Default=YES MaxTime=INFINITE State=UP OverSubscribe=YES\n";
