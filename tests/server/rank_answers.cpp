@@ -54,6 +54,21 @@ nlohmann::json long_two_rank_scene() {
   return scene;
 }
 
+OneAndTwoRankJobs seed_jobs_on_one_and_two_ranks(httplib::Client& c) {
+  using namespace std::chrono_literals;
+  nlohmann::json scene = seed_in_contact_scene("petsc_gamg");
+  OneAndTwoRankJobs jobs;
+  jobs.one = id_of(submit(c, scene));
+  scene["solver"]["ranks"] = 2;
+  jobs.two = id_of(submit(c, scene));
+  jobs.one_job = wait_for_status(c, jobs.one, {"succeeded", "failed", "canceled"}, 180s);
+  jobs.two_job = wait_for_status(c, jobs.two, {"succeeded", "failed", "canceled"}, 180s);
+  EXPECT_EQ(jobs.one_job["status"], "succeeded") << jobs.one_job.dump();
+  EXPECT_EQ(jobs.two_job["status"], "succeeded")
+      << jobs.two_job.dump() << c.Get("/v1/jobs/" + jobs.two + "/log")->body;
+  return jobs;
+}
+
 bool one_core() {
   return std::thread::hardware_concurrency() < 2;
 }

@@ -34,6 +34,14 @@ std::vector<std::string> two_rank_service(std::vector<std::string> more = {});
 /// box_scene for minutes on 2 ranks.
 nlohmann::json long_two_rank_scene();
 
+/// The seed's example in contact (petsc_gamg) submitted as a job of 1 rank and as one of 2, both waited for:
+/// their ids and last job JSON. Fails the test (with the two-rank job's log) unless both succeeded.
+struct OneAndTwoRankJobs {
+  std::string one, two;
+  nlohmann::json one_job, two_job;
+};
+OneAndTwoRankJobs seed_jobs_on_one_and_two_ranks(httplib::Client& c);
+
 /// TMPDIR for the test's runs, which rank k > 0 makes its private directory in (core/run/ranks.hpp); empty
 /// again once they ended. Restored by the destructor.
 class PrivateTemp {

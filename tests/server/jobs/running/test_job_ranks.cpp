@@ -23,14 +23,8 @@ TEST(JobRanks, ATwoRankJobGivesTheAnswersOfOneRankAndCountsTheMemoryOfBoth) {
   const fs::path data = dir.path() / "data";
   LiveServer server(data, two_rank_service());
   auto c = server.client();
-  nlohmann::json scene = seed_in_contact_scene("petsc_gamg");
-  const std::string one = id_of(submit(c, scene));
-  scene["solver"]["ranks"] = 2;
-  const std::string two = id_of(submit(c, scene));
-  const auto a = wait_for_status(c, one, {"succeeded", "failed", "canceled"}, 180s);
-  const auto b = wait_for_status(c, two, {"succeeded", "failed", "canceled"}, 180s);
-  ASSERT_EQ(a["status"], "succeeded") << a.dump();
-  ASSERT_EQ(b["status"], "succeeded") << b.dump() << c.Get("/v1/jobs/" + two + "/log")->body;
+  const auto [one, two, a, b] = seed_jobs_on_one_and_two_ranks(c);
+  ASSERT_FALSE(HasFailure());
   EXPECT_EQ(b["ranks"], 2);
   EXPECT_EQ(b["progress"]["step"], 20) << "rank 0's progress reached the server through the launcher";
   EXPECT_NE(c.Get("/v1/jobs/" + two + "/log")->body.find("on 2 MPI ranks"), std::string::npos);
