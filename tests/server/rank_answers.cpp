@@ -69,6 +69,20 @@ OneAndTwoRankJobs seed_jobs_on_one_and_two_ranks(httplib::Client& c) {
   return jobs;
 }
 
+fs::path last_attempt(const fs::path& data, const nlohmann::json& job) {
+  const fs::path folder = data / "jobs" / job["id"].get<std::string>();
+  const fs::path attempt = folder / ("attempt-" + std::to_string(job["attempt"].get<int>()));
+  if (!fs::exists(attempt / "result.h5")) {  // what is there instead, for the failure's message
+    std::string listing;
+    std::error_code error;
+    for (const auto& entry : fs::recursive_directory_iterator(folder, error))
+      listing += " " + entry.path().lexically_relative(folder).string();
+    ADD_FAILURE() << "no result.h5 in " << attempt << " for " << job.dump()
+                  << "; the job's folder holds:" << listing;
+  }
+  return attempt;
+}
+
 bool one_core() {
   return std::thread::hardware_concurrency() < 2;
 }

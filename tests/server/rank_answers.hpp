@@ -41,6 +41,10 @@ struct OneAndTwoRankJobs {
   nlohmann::json one_job, two_job;
 };
 OneAndTwoRankJobs seed_jobs_on_one_and_two_ranks(httplib::Client& c);
+/// The folder of the attempt that ended `job` (its last job JSON) in the data directory `data`: the first,
+/// unless a lease lost under load gave the job to a second. Fails the test, naming what the job's folder
+/// holds, when it has no result.h5.
+std::filesystem::path last_attempt(const std::filesystem::path& data, const nlohmann::json& job);
 
 /// TMPDIR for the test's runs, which rank k > 0 makes its private directory in (core/run/ranks.hpp); empty
 /// again once they ended. Restored by the destructor.

@@ -6,11 +6,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "tests/server/live_server.hpp"
@@ -42,7 +44,7 @@ std::string host_name() {
   return full.substr(0, full.find('.'));
 }
 
-/// A configuration of one node, this machine's 2 CPUs shared by steps, no accounting, no munge.
+/// A configuration of one node, this machine's CPUs shared by steps, no accounting, no munge.
 void write_configuration(const fs::path& dir) {
   const std::string host = host_name(), d = dir.string();
   std::ofstream conf(dir / "slurm.conf");
@@ -59,7 +61,9 @@ void write_configuration(const fs::path& dir) {
        // "slurm.pmix.JOB.STEP", and two clusters at once both counting from 1 crossed each other's messages.
        << "FirstJobId=" << 1000 + getpid() % 600000 * 100 << "\n"  // below MaxJobId, 67,043,328
        << "AccountingStorageType=accounting_storage/none\nKillWait=2\n"
-       << "NodeName=" << host << " NodeAddr=127.0.0.1 CPUs=2 State=UNKNOWN\n"
+       << "NodeName=" << host
+       << " NodeAddr=127.0.0.1 CPUs=" << std::max(2u, std::thread::hardware_concurrency())
+       << " State=UNKNOWN\n"
        << "PartitionName=test Nodes=" << host << " Default=YES MaxTime=INFINITE State=UP OverSubscribe=YES\n";
   // PMIx's folders per step in this cluster's directory: in /tmp they are named by job and step id alone,
   // so a cluster started at the same time, or a killed step's leftovers, would collide.
