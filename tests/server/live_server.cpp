@@ -11,7 +11,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <atomic>
+#include <cstdio>
 #include <fstream>
 #include <regex>
 #include <stdexcept>
@@ -65,11 +67,6 @@ std::vector<char*> argv_of(std::vector<std::string>& args) {
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   return argv;
-}
-
-std::string read_text(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 /// Waits up to `deadline` for the child to exit; its status, or -1 if it still runs.
@@ -164,19 +161,51 @@ std::string LiveServer::output() const {
   return read_text(out_);
 }
 
-pid_t spawn_stoss(const std::vector<std::string>& arguments, const std::filesystem::path& log) {
-  std::vector<std::string> args = stoss_command(arguments);
+std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::string shell_output(const std::string& command, int* status) {
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) {
+    if (status) *status = -1;
+    return {};
+  }
+  std::string out;
+  std::array<char, 256> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe)) out += buffer.data();
+  const int ended = pclose(pipe);
+  if (status) *status = ended;
+  return out;
+}
+
+pid_t spawn_program(const std::vector<std::string>& command, const std::filesystem::path& log,
+                    bool own_group) {
+  std::vector<std::string> args = command;
   const std::vector<char*> argv = argv_of(args);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  if (own_group) {
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&attributes, 0);
+  }
   pid_t pid = -1;
-  const int rc = posix_spawn(&pid, STOSS_BINARY, &actions, nullptr, argv.data(), environ);
+  const int rc = posix_spawnp(&pid, args.front().c_str(), &actions, &attributes, argv.data(), environ);
+  posix_spawnattr_destroy(&attributes);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0)
-    throw std::runtime_error("cannot start " + std::string(STOSS_BINARY) + " " + arguments.front());
+    throw std::runtime_error("cannot start " + command.front() +
+                             (command.size() > 1 ? " " + command[1] : ""));
   return pid;
+}
+
+pid_t spawn_stoss(const std::vector<std::string>& arguments, const std::filesystem::path& log) {
+  return spawn_program(stoss_command(arguments), log);
 }
 
 CommandResult run_stoss(const std::vector<std::string>& arguments, std::chrono::milliseconds deadline,

@@ -75,6 +75,15 @@ struct CommandResult {
 /// Starts the `stoss` binary with `args` in the background, stdout and stderr into `log` (truncated).
 /// @throws std::runtime_error when it cannot be started.
 pid_t spawn_stoss(const std::vector<std::string>& args, const std::filesystem::path& log);
+/// Starts `command` (its program found on PATH) in the background, stdout and stderr into `log`
+/// (truncated), in a process group of its own when `own_group`. @throws std::runtime_error as spawn_stoss.
+pid_t spawn_program(const std::vector<std::string>& command, const std::filesystem::path& log,
+                    bool own_group = false);
+
+/// The text of file `p` (empty when it cannot be read).
+std::string read_text(const std::filesystem::path& p);
+/// What `command` prints on stdout, run through the shell; its exit status into `status` when given.
+std::string shell_output(const std::string& command, int* status = nullptr);
 
 /// Runs the `stoss` binary with `args`, waits at most `deadline` (then SIGKILL, signal 9 reported).
 CommandResult run_stoss(const std::vector<std::string>& args,

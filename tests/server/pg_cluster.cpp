@@ -27,18 +27,10 @@ const std::string script = std::string(STOSS_SOURCE_DIR) + "/tests/server/pg_clu
 
 /// Runs `command` through the shell; its stdout. Throws when it fails.
 std::string shell(const std::string& command) {
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) throw std::runtime_error("cannot run " + command);
-  std::string out;
-  std::array<char, 256> buffer{};
-  while (fgets(buffer.data(), buffer.size(), pipe)) out += buffer.data();
-  if (pclose(pipe) != 0) throw std::runtime_error(command + " failed: " + out);
+  int status = 0;
+  const std::string out = shell_output(command, &status);
+  if (status != 0) throw std::runtime_error(command + " failed: " + out);
   return out;
-}
-
-std::string read_text(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 }  // namespace

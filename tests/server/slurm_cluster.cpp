@@ -1,14 +1,11 @@
 #include "tests/server/slurm_cluster.hpp"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
-#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
@@ -17,24 +14,11 @@
 
 #include "tests/server/live_server.hpp"
 
-extern char** environ;
-
 namespace stoss::test {
 namespace {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
-
-/// stdout of `command` through the shell (empty when it cannot run).
-std::string output_of(const std::string& command) {
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return {};
-  std::string out;
-  std::array<char, 256> buffer{};
-  while (fgets(buffer.data(), buffer.size(), pipe)) out += buffer.data();
-  pclose(pipe);
-  return out;
-}
 
 /// The host's name up to its first dot: what slurmd and slurmctld call this machine.
 std::string host_name() {
@@ -73,25 +57,7 @@ void write_configuration(const fs::path& dir) {
 
 /// `program -D -f conf` in a process group of its own, its output beside its log; its pid.
 pid_t start_daemon(const std::string& program, const fs::path& conf) {
-  std::vector<std::string> args{program, "-D", "-f", conf.string()};
-  const fs::path out = conf.parent_path() / (program + ".out");
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawnattr_t attributes;
-  posix_spawnattr_init(&attributes);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
-  posix_spawnattr_setpgroup(&attributes, 0);
-  pid_t pid = -1;
-  const int error = posix_spawnp(&pid, program.c_str(), &actions, &attributes, argv.data(), environ);
-  posix_spawnattr_destroy(&attributes);
-  posix_spawn_file_actions_destroy(&actions);
-  if (error != 0) throw std::runtime_error("cannot start " + program);
-  return pid;
+  return spawn_program({program, "-D", "-f", conf.string()}, conf.parent_path() / (program + ".out"), true);
 }
 
 /// SIGTERM to the daemon's process group, SIGKILL if it is still there after 5 s; reaped.
@@ -110,7 +76,7 @@ void stop_daemon(pid_t pid) {
 std::string SlurmCluster::unavailable() {
   if (geteuid() != 0) return "not root: slurmd runs steps as root here";
   for (const char* program : {"slurmctld", "slurmd", "srun"})
-    if (output_of(std::string("command -v ") + program).empty())
+    if (shell_output(std::string("command -v ") + program).empty())
       return std::string(program) + " is not installed (deploy/packages.txt)";
   return {};
 }
@@ -125,7 +91,7 @@ SlurmCluster::SlurmCluster() {
   setenv("SLURM_CONF", (dir_ / "slurm.conf").c_str(), 1);
   controller_ = start_daemon("slurmctld", dir_ / "slurm.conf");
   node_daemon_ = start_daemon("slurmd", dir_ / "slurm.conf");
-  if (!eventually([] { return output_of("sinfo -h -o %T 2>/dev/null").find("idle") == 0; }, 30s)) {
+  if (!eventually([] { return shell_output("sinfo -h -o %T 2>/dev/null").find("idle") == 0; }, 30s)) {
     const std::string text = logs();
     stop();
     throw std::runtime_error("the Slurm cluster did not come up: " + text);
@@ -138,8 +104,8 @@ SlurmCluster::~SlurmCluster() {
 
 void SlurmCluster::stop() {
   if (controller_ > 0) {  // the steps first, which slurmd does not end when it stops
-    output_of("scancel --full --user=root 2>/dev/null");
-    eventually([] { return output_of("squeue -h 2>/dev/null").empty(); }, 15s);
+    shell_output("scancel --full --user=root 2>/dev/null");
+    eventually([] { return shell_output("squeue -h 2>/dev/null").empty(); }, 15s);
   }
   stop_daemon(node_daemon_);
   stop_daemon(controller_);
@@ -152,10 +118,8 @@ void SlurmCluster::stop() {
 
 std::string SlurmCluster::logs() const {
   std::string text;
-  for (const char* name : {"slurmctld.log", "slurmd.log"}) {
-    std::ifstream in(dir_ / name);
-    text += std::string(name) + ":\n" + std::string(std::istreambuf_iterator<char>(in), {});
-  }
+  for (const char* name : {"slurmctld.log", "slurmd.log"})
+    text += std::string(name) + ":\n" + read_text(dir_ / name);
   return text;
 }
 

@@ -19,11 +19,6 @@ using namespace std::chrono_literals;
 
 const std::string srun_launcher = "srun --mpi=pmix -n {ranks} --kill-on-bad-exit=1";
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 TEST(SlurmRanks, SrunRunsStossRunOnTwoRanksWithTheAnswersOfOne) {
   if (const std::string why = SlurmCluster::unavailable(); !why.empty()) GTEST_SKIP() << why;
   if (one_core()) GTEST_SKIP() << "one core";
