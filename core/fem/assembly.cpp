@@ -79,18 +79,25 @@ const ElementGeometry& ElasticityTerm::geometry(int e) const {
   return geometry_[geometry_at_.empty() ? e : geometry_at_[e]];
 }
 
-double ElasticityTerm::energy(const Eigen::VectorXd& x) const {
+void ElasticityTerm::for_each_own(const std::function<void(int)>& f) const {
   const parallel::ElementShare& share = parallel::element_share();
+  if (share.shared())
+    for (int e : share.elements) f(e);
+  else
+    for (int e = 0; e < static_cast<int>(hex8_.size()); ++e) f(e);
+}
+
+void ElasticityTerm::for_each_counted(const std::function<void(int)>& f) const {
+  const parallel::ElementShare& share = parallel::element_share();
+  for_each_own([&](int e) {  // on several ranks, each element by the owner of its first node
+    if (!share.shared() || share.owns(hex8_[e][0])) f(e);
+  });
+}
+
+double ElasticityTerm::energy(const Eigen::VectorXd& x) const {
   double V = 0;
-  if (!share.shared()) {
-    for (size_t e = 0; e < hex8_.size(); ++e)
-      V += strain_energy(geometry(e), *material_[e], gather(hex8_[e], x));
-    return V;
-  }
-  for (int e : share.elements)  // each element counted once, by the owner of its first node
-    if (share.owns(hex8_[e][0])) V += strain_energy(geometry(e), *material_[e], gather(hex8_[e], x));
-  share.sum(&V, 1);
-  return V;
+  for_each_counted([&](int e) { V += strain_energy(geometry(e), *material_[e], gather(hex8_[e], x)); });
+  return parallel::total_over_ranks(V);
 }
 
 void ElasticityTerm::element_stresses(const Eigen::VectorXd& x, Eigen::VectorXd& cauchy,
@@ -98,42 +105,28 @@ void ElasticityTerm::element_stresses(const Eigen::VectorXd& x, Eigen::VectorXd&
   const Eigen::Index E = static_cast<Eigen::Index>(hex8_.size());
   cauchy = Eigen::VectorXd::Zero(6 * E);
   von_mises_stress = Eigen::VectorXd::Zero(E);
-  const parallel::ElementShare& share = parallel::element_share();
-  const auto stress_of = [&](int e) {
+  for_each_counted([&](int e) {
     const Eigen::Matrix3d sigma = average_cauchy_stress(geometry(e), *material_[e], gather(hex8_[e], x));
     cauchy.segment<6>(6 * e) << sigma(0, 0), sigma(0, 1), sigma(0, 2), sigma(1, 1), sigma(1, 2), sigma(2, 2);
     von_mises_stress[e] = von_mises(sigma);
-  };
-  if (!share.shared()) {
-    for (int e = 0; e < static_cast<int>(E); ++e) stress_of(e);
-    return;
-  }
-  for (int e : share.elements)  // each element by the owner of its first node, the others' zeros summed
-    if (share.owns(hex8_[e][0])) stress_of(e);
-  share.sum(cauchy.data(), cauchy.size());
+  });
+  const parallel::ElementShare& share = parallel::element_share();
+  if (!share.shared()) return;
+  share.sum(cauchy.data(), cauchy.size());  // the other ranks' elements are zeros here
   share.sum(von_mises_stress.data(), von_mises_stress.size());
 }
 
 void ElasticityTerm::register_blocks(solve::BlockPattern& pattern) {
-  block_.assign(hex8_.size(), -1);
-  const parallel::ElementShare& share = parallel::element_share();
-  if (share.shared())  // add scatters these only: about a kB of slots per element
-    for (int e : share.elements) block_[e] = pattern.add_block(element_dofs(hex8_[e]));
-  else
-    for (size_t e = 0; e < hex8_.size(); ++e) block_[e] = pattern.add_block(element_dofs(hex8_[e]));
+  block_.assign(hex8_.size(), -1);  // add scatters the own elements only: about a kB of slots each
+  for_each_own([&](int e) { block_[e] = pattern.add_block(element_dofs(hex8_[e])); });
 }
 
 void ElasticityTerm::begin_step(const time::StepContext& step, Eigen::VectorXd&) {
   if (step.rule.previous_weight == 0) return;
   force_n_.resize(hex8_.size());
-  const auto cache = [&](int e) {
+  for_each_own([&](int e) {  // add asks for these only
     internal_force(geometry(e), *material_[e], gather(hex8_[e], step.x_n), force_n_[e], nullptr);
-  };
-  const parallel::ElementShare& share = parallel::element_share();
-  if (share.shared())
-    for (int e : share.elements) cache(e);  // add asks for these only
-  else
-    for (int e = 0; e < static_cast<int>(hex8_.size()); ++e) cache(e);
+  });
 }
 
 void ElasticityTerm::element_step(const time::StepContext& step, int e, const Eigen::VectorXd& x_1,

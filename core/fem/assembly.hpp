@@ -2,6 +2,7 @@
 /// @file Whole-mesh pieces built from the element kernels: geometry, mass, and the elasticity and gravity
 /// terms.
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -52,6 +53,12 @@ class ElasticityTerm : public time::Term {
   /// position row of R from the rank that owns it.
   void add_shared(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
                   solve::BlockPattern* K) const;
+  /// f(e) for each element this process computes: every one, or on several ranks the rank's
+  /// (parallel::ElementShare::elements).
+  void for_each_own(const std::function<void(int)>& f) const;
+  /// f(e) for each element this process counts in a total over the ranks: every one, or on several ranks
+  /// those whose first node it owns, so that each element counts on one rank.
+  void for_each_counted(const std::function<void(int)>& f) const;
   /// The Gauss data of element e (on several ranks, one of this rank's elements).
   const ElementGeometry& geometry(int e) const;
   /// h·f_alg and h·∂f_alg/∂x_1 of element e under the step's force rule.
