@@ -10,15 +10,63 @@
 
 #include "core/contact/geometry/assignment.hpp"
 #include "core/contact/geometry/smooth_surface.hpp"
+#include "core/parallel/element_share.hpp"
 
 namespace stoss::contact {
 
 ContactTerm::ContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair)
     : pair_(pair), surfaces_(pair_surfaces(mesh, pair.slave, pair.master)) {
-  if (pair.master_surface != model::MasterSurface::smooth) return;
-  SmoothSurface smooth = smooth_surface(surfaces_.faces);
-  if (!smooth.ok()) throw std::invalid_argument("contact master " + pair.master + ": " + smooth.problem);
-  surfaces_.patches = std::move(smooth.patches);
+  if (pair.master_surface == model::MasterSurface::smooth) {
+    SmoothSurface smooth = smooth_surface(surfaces_.faces);
+    if (!smooth.ok()) throw std::invalid_argument("contact master " + pair.master + ": " + smooth.problem);
+    surfaces_.patches = std::move(smooth.patches);
+  }
+  std::set<int> nodes(surfaces_.slave_nodes.begin(), surfaces_.slave_nodes.end());
+  for (int face = 0; face < static_cast<int>(surfaces_.faces.size()); ++face)
+    for (int node : master_nodes(surfaces_, face)) nodes.insert(node);
+  for (int node : nodes)
+    for (int c = 0; c < 3; ++c) surface_rows_.push_back(3 * node + c);
+}
+
+void ContactTerm::register_blocks(solve::BlockPattern& pattern) {
+  first_block_ = pattern.block_count();
+  register_pair_blocks(pattern);
+  end_block_ = pattern.block_count();
+}
+
+bool ContactTerm::computes(int slave) const {
+  const parallel::ElementShare& share = parallel::element_share();
+  return !share.shared() || share.owns(surfaces_.slave_nodes[slave]);
+}
+
+void ContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                      solve::BlockPattern* K) const {
+  if (parallel::element_share().shared()) return add_on_ranks(step, z, R, K);
+  add_pair(step, z, R, K);
+}
+
+void ContactTerm::add_on_ranks(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                               solve::BlockPattern* K) const {
+  // The pair's rows and entries start from zero, so that after add_pair they hold this rank's part alone;
+  // the parts of the ranks are summed, and what the other terms had put there is added back.
+  std::vector<int> rows = surface_rows_;
+  for (int row = offset_; row < std::min<int>(offset_ + auxiliary_count(), static_cast<int>(R.size())); ++row)
+    rows.push_back(row);
+  if (K && slots_generation_ != K->generation()) {
+    slots_ = K->slots_of(first_block_, end_block_);
+    slots_generation_ = K->generation();
+  }
+  const size_t entries = K ? slots_.size() : 0;
+  double* values = K ? K->matrix().valuePtr() : nullptr;
+  std::vector<double> others(rows.size() + entries), part(rows.size() + entries);
+  for (size_t i = 0; i < rows.size(); ++i) std::swap(others[i], R[rows[i]]);
+  for (size_t j = 0; j < entries; ++j) std::swap(others[rows.size() + j], values[slots_[j]]);
+  add_pair(step, z, R, K);
+  for (size_t i = 0; i < rows.size(); ++i) part[i] = R[rows[i]];
+  for (size_t j = 0; j < entries; ++j) part[rows.size() + j] = values[slots_[j]];
+  parallel::element_share().sum(part.data(), static_cast<long>(part.size()));  // the same bits on every rank
+  for (size_t i = 0; i < rows.size(); ++i) R[rows[i]] = others[i] + part[i];
+  for (size_t j = 0; j < entries; ++j) values[slots_[j]] = others[rows.size() + j] + part[rows.size() + j];
 }
 
 void ContactTerm::contact_pressure(Eigen::VectorXd& p) const {

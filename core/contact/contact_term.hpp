@@ -44,11 +44,21 @@ struct ContactReport {
 
 /// A contact pair as a time::Term, with what the run reports of it: the pair, its surfaces and broad
 /// phase, the last converged step's report and nodal pressures (what every enforcement shares).
+/// @note On several MPI ranks (core/parallel/element_share.hpp) each rank computes the contact rows of the
+///       slave nodes it owns (computes()); add() then sums the pair's rows of R and its entries of K over the
+///       ranks, so that every rank holds all of them (docs/many_machines.md, "Contact on several ranks"). The
+///       search, the active set and the report stay one computation on every rank, from the same bits.
 class ContactTerm : public time::Term {
  public:
   /// Collects the pair's surfaces (surface.hpp: throws naming a missing or empty surface).
   ContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair);
   std::string name() const override { return "contact " + pair_.slave + " on " + pair_.master; }
+  /// Registers the pair's blocks (register_pair_blocks) and remembers which they are.
+  void register_blocks(solve::BlockPattern& pattern) final;
+  /// One process: add_pair. Several ranks: add_pair for this rank's slave nodes, then the sum over the ranks.
+  void add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+           solve::BlockPattern* K) const final;
+  void set_auxiliary_offset(int offset) final { offset_ = offset; }
   /// The last converged step's report.
   const ContactReport& report() const { return report_; }
   /// The frozen gap of the step's new contacts (ContactReport::max_new_gap_target; Term::event_offset).
@@ -62,6 +72,15 @@ class ContactTerm : public time::Term {
   const PairSurfaces& surfaces() const { return surfaces_; }
 
  protected:
+  /// Registers the Jacobian blocks the pair's add_pair writes (Term::register_blocks).
+  virtual void register_pair_blocks(solve::BlockPattern& pattern) = 0;
+  /// Adds the rows of the slave nodes this rank computes (computes(); all of them on one process) to R, and
+  /// their derivatives to K if given (Term::add): into the pair's rows and blocks only.
+  virtual void add_pair(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                        solve::BlockPattern* K) const = 0;
+  /// Whether this rank computes the rows of slave `slave` (index into surfaces_.slave_nodes): the rank that
+  /// owns the node; every slave on a process of its own.
+  bool computes(int slave) const;
   /// Sends "<name>: <line>" to the run's solver log, if any.
   void log(const time::StepContext& step, const std::string& line) const;
   /// Records the normal contact force (≥ 0) of slave `slave` (index into surfaces_.slave_nodes) as a
@@ -91,6 +110,18 @@ class ContactTerm : public time::Term {
   BroadPhase broad_;
   ContactReport report_;
   std::vector<std::pair<int, double>> pressure_;  ///< (node, pressure) of the last converged step
+  int offset_ = 0;                                ///< where the pair's auxiliary unknowns start in z
+
+ private:
+  /// Several ranks: add_pair for this rank's slave nodes, then the pair's rows of R and entries of K summed
+  /// over the ranks, each added to what the other terms put there.
+  void add_on_ranks(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                    solve::BlockPattern* K) const;
+
+  std::vector<int> surface_rows_;        ///< the position rows of the slave and master nodes, ascending
+  int first_block_ = 0, end_block_ = 0;  ///< the pair's blocks in the pattern (register_blocks)
+  mutable int slots_generation_ = -1;    ///< the pattern generation slots_ belong to
+  mutable std::vector<int> slots_;       ///< K's values of the pair's blocks (BlockPattern::slots_of)
 };
 
 }  // namespace stoss::contact

@@ -1,6 +1,7 @@
 #include "core/solve/block_pattern.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <stdexcept>
 
 namespace stoss::solve {
@@ -89,7 +90,8 @@ void BlockPattern::build(int n) {
   diagonal_slots_.resize(n);
   for (int i = 0; i < n; ++i) diagonal_slots_[i] = slot(i, i);
   built_ = true;
-  ++generation_;
+  static std::atomic<int> last_generation{0};
+  generation_ = ++last_generation;
 }
 
 int BlockPattern::slot(int row, int col) const {
@@ -98,6 +100,19 @@ int BlockPattern::slot(int row, int col) const {
   const int* it = std::lower_bound(begin, end, row);
   if (it == end || *it != row) throw std::logic_error("BlockPattern: entry outside the pattern");
   return static_cast<int>(it - matrix_.innerIndexPtr());
+}
+
+std::vector<int> BlockPattern::slots_of(int first, int end) const {
+  std::vector<std::pair<int, int>> entries;  // (column, row)
+  for (int block = first; block < end; ++block)
+    for (int c : blocks_[block].cols)
+      for (int r : blocks_[block].rows) entries.emplace_back(c, r);
+  std::sort(entries.begin(), entries.end());
+  entries.erase(std::unique(entries.begin(), entries.end()), entries.end());
+  std::vector<int> slots;
+  slots.reserve(entries.size());
+  for (auto [c, r] : entries) slots.push_back(slot(r, c));
+  return slots;
 }
 
 void BlockPattern::zero() {

@@ -24,6 +24,12 @@ class BlockPattern {
   /// go of the sparse matrices' entries (register them again after clear() to build again).
   void build(int n);
   bool built() const { return built_; }
+  /// The number of blocks registered so far: the id the next add_block returns.
+  int block_count() const { return static_cast<int>(blocks_.size()); }
+  /// Where the values of the entries of blocks [first, end) are in matrix().valuePtr(), each entry once, in
+  /// the order of (column, row): the same order on every pattern that holds these blocks, whatever else it
+  /// holds. Needs the built pattern.
+  std::vector<int> slots_of(int first, int end) const;
   /// Forgets every block (call before registering a new set).
   void clear();
 
@@ -40,7 +46,8 @@ class BlockPattern {
 
   const SparseMatrix& matrix() const { return matrix_; }
   SparseMatrix& matrix() { return matrix_; }
-  /// Incremented every time the pattern is rebuilt; solvers redo their symbolic analysis on change.
+  /// Changes every time the pattern is rebuilt, to a number no pattern of the process had before: solvers
+  /// redo their symbolic analysis on change, and what is kept for one pattern is never taken for another's.
   int generation() const { return generation_; }
 
  private:

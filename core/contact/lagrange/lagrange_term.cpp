@@ -28,7 +28,7 @@ LagrangeContactTerm::LagrangeContactTerm(const mesh::Mesh& mesh, const model::Co
   pending_ = armed_ = released_now_;
 }
 
-void LagrangeContactTerm::register_blocks(solve::BlockPattern& pattern) {
+void LagrangeContactTerm::register_pair_blocks(solve::BlockPattern& pattern) {
   for (size_t k = 0; k < elements_.size(); ++k) {
     ContactElement& e = elements_[k];
     std::vector<int> rows = element_dofs(slave_node(e), surfaces_, e.face);

@@ -50,11 +50,9 @@ struct LocatedEvent {
 class LagrangeContactTerm : public ContactTerm {
  public:
   LagrangeContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair);
-  void register_blocks(solve::BlockPattern& pattern) override;
   void prepare_step(const time::StepContext& step) override;
   void begin_step(const time::StepContext& step, Eigen::VectorXd& z) override;
   int auxiliary_count() const override { return static_cast<int>(elements_.size()) * unknowns_per_element(); }
-  void set_auxiliary_offset(int offset) override { offset_ = offset; }
   int structure_generation() const override { return generation_; }
   void initialize_auxiliaries(const time::StepContext& step, Eigen::VectorXd& z) override;
   bool update_active_set(const time::StepContext& step, const Eigen::VectorXd& z) override;
@@ -72,6 +70,7 @@ class LagrangeContactTerm : public ContactTerm {
   const std::vector<ContactElement>& elements() const { return elements_; }
 
  protected:
+  void register_pair_blocks(solve::BlockPattern& pattern) override;
   /// Auxiliary unknowns of one element (mixed: 11, midpoint: 1).
   virtual int unknowns_per_element() const = 0;
   /// Writes the element's initial auxiliary values at `offset` of z (positions of z: current iterate).
@@ -123,7 +122,6 @@ class LagrangeContactTerm : public ContactTerm {
   std::vector<int> start_of_;              ///< per slave: index into start_, or −1
   std::vector<int> toggles_;               ///< per slave: active-set changes in this step
   std::vector<char> released_now_;         ///< per slave: released in the current pass
-  int offset_ = 0;
   int generation_ = 0;
 
   // impact located (§4.6.2)

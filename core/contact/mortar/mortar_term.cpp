@@ -131,7 +131,7 @@ void MortarContactTerm::refresh_structure() {
     ++generation_;
 }
 
-void MortarContactTerm::register_blocks(solve::BlockPattern& pattern) {
+void MortarContactTerm::register_pair_blocks(solve::BlockPattern& pattern) {
   for (FacePair& p : pairs_) {
     set_dofs(p);
     p.block =
@@ -297,16 +297,18 @@ void MortarContactTerm::pair_contribution(const FacePair& p, const time::StepCon
     if (active_[p.slave_index[k]]) out.block.block<1, 24>(24 + k, 0) = g_1.gradient.row(k);  // (4.83)
 }
 
-void MortarContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
-                            solve::BlockPattern* K) const {
+void MortarContactTerm::add_pair(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                                 solve::BlockPattern* K) const {
   const Eigen::VectorXd x_1 = z.head(step.x_n.size());
   const Eigen::VectorXd x_theta = rule_.evaluation_point(step.x_n, x_1);
   // A pair with no active node adds nothing but its λ_n part: its force is λ = 0, it has no gap rows, and its
   // multipliers' columns of K meet rows λ_j = 0 that fix their increments to zero, so they change no Newton
   // step. Nor has it a block in the pattern, whose factorisation then costs what the contact really couples.
+  // On several ranks a face pair is the rows of the rank that owns its slave face's first node (computes).
+  const auto computed = [&](const FacePair& p) { return computes(p.slave_index[0]); };
   std::vector<int> loaded;  // the pairs with an active node, computed on the worker threads
   for (size_t k = 0; k < pairs_.size(); ++k)
-    if (has_active_node(pairs_[k])) loaded.push_back(static_cast<int>(k));
+    if (has_active_node(pairs_[k]) && computed(pairs_[k])) loaded.push_back(static_cast<int>(k));
   contributions_.resize(loaded.size());
   threads_->for_each(0, static_cast<int>(loaded.size()), parallel::worker_threads(), 1, [&](int i) {
     PairContribution& out = contributions_[i];
@@ -321,7 +323,7 @@ void MortarContactTerm::add(const time::StepContext& step, const Eigen::VectorXd
   const double w_n = step.force_factor * rule_.previous_weight;
   for (size_t k = 0, i = 0; k < pairs_.size(); ++k) {
     const FacePair& p = pairs_[k];
-    if (w_n != 0 && p.force_n)
+    if (w_n != 0 && p.force_n && computed(p))
       for (int a = 0; a < 24; ++a) R[p.dofs[a]] += w_n * (*p.force_n)[a];  // h w_n λ_n ∂g̃/∂x(x_n) (4.82)
     if (i == loaded.size() || loaded[i] != static_cast<int>(k)) continue;
     const PairContribution& c = contributions_[i++];
@@ -335,6 +337,7 @@ void MortarContactTerm::add(const time::StepContext& step, const Eigen::VectorXd
     if (K && c.tangent) K->scatter(p.block, c.block);
   }
   for (int j = 0; j < auxiliary_count(); ++j) {
+    if (!computes(j)) continue;
     if (active_[j]) {
       R[offset_ + j] -= target_[j];  // (4.83)
       continue;

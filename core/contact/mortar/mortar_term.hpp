@@ -42,13 +42,9 @@ namespace stoss::contact {
 class MortarContactTerm final : public ContactTerm {
  public:
   MortarContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair, const time::ForceRule& rule);
-  void register_blocks(solve::BlockPattern& pattern) override;
   void prepare_step(const time::StepContext& step) override;
   void begin_step(const time::StepContext& step, Eigen::VectorXd& z) override;
-  void add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
-           solve::BlockPattern* K) const override;
   int auxiliary_count() const override { return static_cast<int>(surfaces_.slave_nodes.size()); }
-  void set_auxiliary_offset(int offset) override { offset_ = offset; }
   int structure_generation() const override { return generation_; }
   void initialize_auxiliaries(const time::StepContext& step, Eigen::VectorXd& z) override;
   bool update_active_set(const time::StepContext& step, const Eigen::VectorXd& z) override;
@@ -70,6 +66,9 @@ class MortarContactTerm final : public ContactTerm {
                   Eigen::VectorXd* support = nullptr, std::vector<mortar::PairGaps>* pairs = nullptr) const;
 
  private:
+  void register_pair_blocks(solve::BlockPattern& pattern) override;
+  void add_pair(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                solve::BlockPattern* K) const override;
   /// A slave face against a master face that may overlap in this step.
   struct FacePair {
     int slave_face = -1, master_face = -1;
@@ -142,7 +141,7 @@ class MortarContactTerm final : public ContactTerm {
   double length_ = 1;                             ///< mean master face size ℓ
   mutable std::vector<PairContribution> contributions_;  ///< add's per-pair buffers
   mutable std::unique_ptr<parallel::WorkerThreads> threads_ = std::make_unique<parallel::WorkerThreads>();
-  int offset_ = 0, generation_ = 0;
+  int generation_ = 0;
 };
 
 }  // namespace stoss::contact

@@ -126,13 +126,14 @@ double PenaltyContactTerm::switch_face(int slave, int face, const Eigen::VectorX
   return offset;
 }
 
-void PenaltyContactTerm::register_blocks(solve::BlockPattern& pattern) {
+void PenaltyContactTerm::register_pair_blocks(solve::BlockPattern& pattern) {
   for (PenaltyContact& c : contacts_) c.block = pattern.add_block(c.dofs);  // non-symmetric values
 }
 
-void PenaltyContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
-                             solve::BlockPattern* K) const {
+void PenaltyContactTerm::add_pair(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                                  solve::BlockPattern* K) const {
   for (const PenaltyContact& c : contacts_) {
+    if (!computes(c.slave)) continue;
     evaluate(c, step.x_n, z, [&](const auto& r) {
       if (!r.closed) return;
       for (size_t i = 0; i < c.dofs.size(); ++i) R[c.dofs[i]] += step.force_factor * r.force[i];  // h·(5.2)

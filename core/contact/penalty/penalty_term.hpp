@@ -57,10 +57,7 @@ class PenaltyContactTerm : public ContactTerm {
   PenaltyContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair, double master_youngs_modulus,
                      bool static_steps = false);
   double energy(const Eigen::VectorXd& x) const override;
-  void register_blocks(solve::BlockPattern& pattern) override;
   void prepare_step(const time::StepContext& step) override;
-  void add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
-           solve::BlockPattern* K) const override;
   int structure_generation() const override { return generation_; }
   void end_step(const time::StepContext& step, const Eigen::VectorXd& z) override;
   /// Per slave node: face, ξ, friction history, gap offset; the Coulomb work so far (penalty_state.cpp).
@@ -73,12 +70,16 @@ class PenaltyContactTerm : public ContactTerm {
   const PenaltyParameters& parameters() const { return params_; }
   const std::vector<PenaltyContact>& contacts() const { return contacts_; }
   const std::vector<PenaltyNodeState>& node_states() const { return committed_; }
-  /// Closed elements that went through the Coulomb return mapping (5.3), over all evaluations.
+  /// Closed elements that went through the Coulomb return mapping (5.3), over all evaluations (on several
+  /// ranks, the evaluations of this rank's add and of the steps' ends, which every rank makes).
   long return_map_evaluations() const { return return_maps_; }
   /// Slip work t_{n+1}·Δξ_p of the last converged step (0 when every contact stuck).
   double last_slip_work() const { return last_slip_work_; }
 
  private:
+  void register_pair_blocks(solve::BlockPattern& pattern) override;
+  void add_pair(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                solve::BlockPattern* K) const override;
   /// Evaluates the element of contact c over the step on the pair's surface and hands its result
   /// (PenaltyResult or PatchPenaltyResult) to use(result).
   template <class Use>

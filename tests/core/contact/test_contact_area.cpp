@@ -13,9 +13,9 @@ namespace {
 class RecordedPair final : public ContactTerm {
  public:
   using ContactTerm::ContactTerm;
-  void register_blocks(solve::BlockPattern&) override {}
-  void add(const time::StepContext&, const Eigen::VectorXd&, Eigen::VectorXd&,
-           solve::BlockPattern*) const override {}
+  void register_pair_blocks(solve::BlockPattern&) override {}
+  void add_pair(const time::StepContext&, const Eigen::VectorXd&, Eigen::VectorXd&,
+                solve::BlockPattern*) const override {}
   void record(const std::vector<std::pair<int, double>>& forces) {
     clear_pressure();
     for (const auto& [slave, force] : forces) add_pressure(slave, force);

@@ -68,5 +68,29 @@ TEST(BlockPattern, ASparseMatrixOfTheMarkedRowsAloneAddsThoseRowsAndNoPatternEls
   EXPECT_THROW(pattern.build(n), std::logic_error) << "the entries are gone once built";
 }
 
+TEST(BlockPattern, SlotsOfBlocksNameTheSameEntriesInOrderWhateverElseThePatternHolds) {
+  // Two patterns with the same two blocks after different others: the (column, row) order of slots_of is
+  // the same in both, each entry once, though the slots themselves differ.
+  const std::vector<int> a{3, 4, 5, 9}, b{4, 5, 6, 7, 8, 1};
+  BlockPattern first, second;
+  first.add_block({0, 1, 2});
+  second.add_block({10, 11}, {2, 10});
+  for (BlockPattern* P : {&first, &second}) {
+    P->add_block(a);
+    P->add_block(b);
+    P->build(12);
+    P->zero();
+    P->scatter(1, distinct_values(4, 4, 0.5));
+    P->scatter(2, distinct_values(6, 6, 0.25));
+  }
+  EXPECT_NE(first.generation(), second.generation()) << "no two patterns share a generation";
+  const std::vector<int> slots_1 = first.slots_of(1, 3), slots_2 = second.slots_of(1, 3);
+  ASSERT_EQ(slots_1.size(), 16u + 36u - 4u) << "entries (4|5, 4|5) are in both blocks, listed once";
+  ASSERT_EQ(slots_2.size(), slots_1.size());
+  EXPECT_NE(slots_1, slots_2) << "the other blocks moved the slots";
+  for (size_t k = 0; k < slots_1.size(); ++k)
+    ASSERT_EQ(first.matrix().valuePtr()[slots_1[k]], second.matrix().valuePtr()[slots_2[k]]) << "entry " << k;
+}
+
 }  // namespace
 }  // namespace stoss::solve

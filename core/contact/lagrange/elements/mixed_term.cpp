@@ -24,6 +24,7 @@ void MixedContactTerm::add_smooth(const time::StepContext& step, const Eigen::Ve
                                   solve::BlockPattern* K) const {
   for (size_t k = 0; k < elements_.size(); ++k) {
     const ContactElement& e = elements_[k];
+    if (!computes(e.slave)) continue;
     const int o = element_offset(static_cast<int>(k));
     const PatchMixedResult r = patch_mixed_element(
         surfaces_.patches[e.face], patch_state(e, step.x_n, e.d_n, e.xi_n),
@@ -38,12 +39,13 @@ void MixedContactTerm::add_smooth(const time::StepContext& step, const Eigen::Ve
   }
 }
 
-void MixedContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
-                           solve::BlockPattern* K) const {
+void MixedContactTerm::add_pair(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                                solve::BlockPattern* K) const {
   if (surfaces_.smooth()) return add_smooth(step, z, R, K);
   Eigen::Matrix<double, 26, 26> block;
   for (size_t k = 0; k < elements_.size(); ++k) {
     const ContactElement& e = elements_[k];
+    if (!computes(e.slave)) continue;
     const int o = element_offset(static_cast<int>(k));
     const Vector20 q_n = coordinates(e, step.x_n, e.d_n, e.xi_n);
     const Vector20 q_1 = coordinates(e, z, z.segment<3>(o), z.segment<2>(o + 3));

@@ -15,8 +15,6 @@ namespace stoss::contact {
 class MixedContactTerm final : public LagrangeContactTerm {
  public:
   using LagrangeContactTerm::LagrangeContactTerm;
-  void add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
-           solve::BlockPattern* K) const override;
   double auxiliary_residual_measure(const Eigen::VectorXd& R, const time::MeasureScales& s) const override;
   double auxiliary_increment_measure(const Eigen::VectorXd& dz, const time::MeasureScales& s) const override;
   /// velocity_correction pairs: b += h λ_1 ∂g_1/∂x (q_{n+1}) over the elements with a jump, and ΔH of (4.11)
@@ -25,6 +23,8 @@ class MixedContactTerm final : public LagrangeContactTerm {
                           double& energy_jump) const override;
 
  protected:
+  void add_pair(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                solve::BlockPattern* K) const override;
   int unknowns_per_element() const override { return 11; }
   void write_auxiliaries(const ContactElement& e, const Eigen::VectorXd& z_x, int offset,
                          Eigen::VectorXd& z) const override;

@@ -30,11 +30,11 @@ void NtsContactTerm::scatter_patch(const ContactElement& e, int offset, const Pa
   K->scatter(e.block, block);
 }
 
-void NtsContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
-                         solve::BlockPattern* K) const {
+void NtsContactTerm::add_pair(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                              solve::BlockPattern* K) const {
   if (!end_point_) return add_midpoint(step, z, R, K);
-  for (const auto& [dofs, force] : previous_force_)
-    for (size_t i = 0; i < dofs.size(); ++i)
+  for (const auto& [slave, dofs, force] : previous_force_)
+    for (size_t i = 0; i < dofs.size() && computes(slave); ++i)
       R[dofs[i]] +=
           step.rule.previous_weight * step.force_factor * force[i];  // h w_n λ_n N_s(x_n) (2.11), (2.12)
   add_end_point(step, z, R, K);
@@ -79,15 +79,15 @@ void NtsContactTerm::end_step(const time::StepContext& step, const Eigen::Vector
     const std::vector<int> dofs = element_dofs(slave_node(e), surfaces_, e.face);
     if (!surfaces_.smooth()) {
       const Vector15 x = element_positions(slave_node(e), face_of(e), z);
-      previous_force_.emplace_back(dofs, hht_element_force(x, e.lambda[0], e.xi));
+      previous_force_.push_back({e.slave, dofs, hht_element_force(x, e.lambda[0], e.xi)});
       continue;
     }
     const TensorPatch& local = local_patch_of(e.face);
     const Eigen::VectorXd x = local_positions(slave_node(e), surfaces_.patches[e.face], z);
     const Projection p = patch_projection(x.head<3>(), local, x, e.xi);
-    previous_force_.emplace_back(dofs, p.converged
-                                           ? Eigen::VectorXd(e.lambda[0] * patch_gap_gradient(local, x, p.xi))
-                                           : Eigen::VectorXd::Zero(dofs.size()));  // λ N_s (3.6)
+    previous_force_.push_back({e.slave, dofs,
+                               p.converged ? Eigen::VectorXd(e.lambda[0] * patch_gap_gradient(local, x, p.xi))
+                                           : Eigen::VectorXd::Zero(dofs.size())});  // λ N_s (3.6)
   }
 }
 

@@ -31,18 +31,19 @@ class NtsContactTerm final : public LagrangeContactTerm {
  public:
   /// `rule`: a midpoint or an end-point rule (make_pair_term rejects the others).
   NtsContactTerm(const mesh::Mesh& mesh, const model::ContactPair& pair, const time::ForceRule& rule);
-  void add(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
-           solve::BlockPattern* K) const override;
   /// Commits the step; under an end-point rule keeps λ_{n+1} N_s(x_{n+1}) of every active element for
   /// the next step.
   void end_step(const time::StepContext& step, const Eigen::VectorXd& z) override;
   double auxiliary_residual_measure(const Eigen::VectorXd& R, const time::MeasureScales& s) const override;
 
  private:
-  /// Calls f(element, offset of its auxiliaries) for each active element, in order.
+  void add_pair(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
+                solve::BlockPattern* K) const override;
+  /// Calls f(element, offset of its auxiliaries) for each active element this rank computes, in order.
   template <class F>
   void for_each_element(F f) const {
-    for (size_t k = 0; k < elements_.size(); ++k) f(elements_[k], element_offset(static_cast<int>(k)));
+    for (size_t k = 0; k < elements_.size(); ++k)
+      if (computes(elements_[k].slave)) f(elements_[k], element_offset(static_cast<int>(k)));
   }
   /// The midpoint rows (4.2), and the end-point rows (2.11), (2.12) without the t_n part.
   void add_midpoint(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
@@ -84,8 +85,13 @@ class NtsContactTerm final : public LagrangeContactTerm {
   /// Forces at t_{n+1} and t_n (HHT-α, generalized-α) rather than at the midpoint; fixed by the scheme,
   /// so that restore_state's replayed end_step (which carries no rule) rebuilds λ_n N_s(x_n).
   bool end_point_ = false;
-  /// (element dofs, λ N_s) of the elements active at the end of the last converged step (end point).
-  std::vector<std::pair<std::vector<int>, Eigen::VectorXd>> previous_force_;
+  /// λ N_s of an element active at the end of the last converged step (end point).
+  struct PreviousForce {
+    int slave = -1;         ///< index into PairSurfaces::slave_nodes
+    std::vector<int> dofs;  ///< the element's
+    Eigen::VectorXd force;
+  };
+  std::vector<PreviousForce> previous_force_;
 };
 
 }  // namespace stoss::contact

@@ -13,6 +13,7 @@
 #include "core/contact/lagrange/elements/nts_term.hpp"
 #include "core/mesh/generators.hpp"
 #include "core/time/scheme.hpp"
+#include "tests/core/contact/ranks_test_utils.hpp"
 
 namespace stoss::contact {
 namespace {
@@ -259,6 +260,26 @@ TEST(ContactTerm, RestoredEndPointTermAddsTheSameTnForce) {
   EXPECT_GT(R_ran.head(f.nx).norm(), 0);
   EXPECT_LE((R_ran - R_restored).norm(), 1e-12 * R_ran.norm());
 }
+
+class ContactOnRanks : public ::testing::TestWithParam<model::Scheme> {};
+
+// Two ranks played in one process (ranks_test_utils.hpp).
+TEST_P(ContactOnRanks, EachRankComputesItsSlaveNodesAndEveryRankGetsOneProcesssRows) {
+  Fixture f(GetParam(), 5);
+  if (GetParam() == model::Scheme::hht) {  // a t_n force of the last step's elements too (2.11)
+    for (int i = f.nx; i < f.z.size(); ++i) f.z[i] = 1.0 + 0.1 * (i - f.nx);
+    f.term->end_step(*f.step, f.z);
+    f.term->prepare_step(*f.step);
+    f.term->set_auxiliary_offset(f.nx);
+  }
+  ASSERT_EQ(f.term->elements().size(), 4u);
+  test::expect_one_process_rows(test::play_two_ranks(*f.term, f.mesh, *f.step, f.z));
+}
+
+INSTANTIATE_TEST_SUITE_P(Schemes, ContactOnRanks,
+                         ::testing::Values(model::Scheme::energy_momentum, model::Scheme::midpoint,
+                                           model::Scheme::hht),
+                         [](const auto& info) { return std::string(model::to_string(info.param)); });
 
 TEST(ContactTerm, EachSchemeGetsTheTermOfItsForceRule) {
   const mesh::Mesh m = cube_over_plate();

@@ -10,6 +10,7 @@
 
 #include "core/contact/mortar/mortar_term.hpp"
 #include "core/mesh/generators.hpp"
+#include "tests/core/contact/ranks_test_utils.hpp"
 
 namespace stoss::contact {
 namespace {
@@ -87,6 +88,21 @@ TEST(MortarTerm, EveryPenetratingSlaveNodeIsActivated) {
   f.term->nodal_gaps(f.z.head(f.nx), gap, weight);
   EXPECT_NEAR(weight.sum(), 0.95, 0.02);  // Σ D_jj = the bottom's area (1.0 × 0.95, jittered)
   EXPECT_LT(gap.maxCoeff(), 0);
+}
+
+// Two ranks played in one process (ranks_test_utils.hpp): a face pair is computed by the owner of its slave
+// face's first node, a multiplier row by its node's.
+TEST(MortarTerm, OnTwoRanksEachComputesItsSlaveNodesAndEveryRankGetsOneProcesssRows) {
+  for (const time::ForceRule& rule : {time::ForceRule::midpoint(), time::ForceRule::end_point(0.9, 0.1)}) {
+    Fixture f(rule);
+    if (rule.previous_weight != 0) {  // λ_n ∂g̃/∂x(x_n) of the last step too (4.82)
+      f.term->end_step(*f.step, f.z);
+      f.term->prepare_step(*f.step);
+      f.term->set_auxiliary_offset(f.nx);
+      f.term->begin_step(*f.step, f.z);
+    }
+    test::expect_one_process_rows(test::play_two_ranks(*f.term, f.mesh, *f.step, f.z));
+  }
 }
 
 TEST(MortarTerm, MidpointTangentMatchesCentralDifferences) {

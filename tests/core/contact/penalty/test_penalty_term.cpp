@@ -9,6 +9,7 @@
 #include "core/contact/contact.hpp"
 #include "core/contact/penalty/penalty_term.hpp"
 #include "core/mesh/generators.hpp"
+#include "tests/core/contact/ranks_test_utils.hpp"
 
 namespace stoss::contact {
 namespace {
@@ -130,6 +131,13 @@ INSTANTIATE_TEST_SUITE_P(StickAndSlip, PenaltyTermTangent,
                            return std::string(std::get<0>(info.param).name) + "_" +
                                   std::to_string(std::get<1>(info.param));
                          });
+
+// Two ranks played in one process (ranks_test_utils.hpp), with friction, two nodes sticking or slipping each.
+TEST(PenaltyTerm, OnTwoRanksEachComputesItsSlaveNodesAndEveryRankGetsOneProcesssRows) {
+  Fixture f(0.3, 2);
+  ASSERT_EQ(f.closed_and_slipping().first, 4) << "every bottom node closed";
+  test::expect_one_process_rows(test::play_two_ranks(f.term, f.mesh, *f.step, f.x_1));
+}
 
 TEST(PenaltyTerm, CommitsTheHistoryOnlyInEndStepAndResetsItWhenTheContactOpens) {
   Fixture f(0.1, 4);
