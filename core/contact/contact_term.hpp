@@ -46,8 +46,8 @@ struct ContactReport {
 /// phase, the last converged step's report and nodal pressures (what every enforcement shares).
 /// @note On several MPI ranks (core/parallel/element_share.hpp) each rank computes the contact rows of the
 ///       slave nodes it owns (computes()); add() then sums the pair's rows of R and its entries of K over the
-///       ranks, so that every rank holds all of them (docs/many_machines.md, "Contact on several ranks"). The
-///       search, the active set and the report stay one computation on every rank, from the same bits.
+///       ranks, so that every rank holds all of them (docs/many_machines.md, "One run on several MPI ranks").
+///       The search, the active set and the report stay one computation on every rank, from the same bits.
 class ContactTerm : public time::Term {
  public:
   /// Collects the pair's surfaces (surface.hpp: throws naming a missing or empty surface).

@@ -33,10 +33,12 @@ void NtsContactTerm::scatter_patch(const ContactElement& e, int offset, const Pa
 void NtsContactTerm::add_pair(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
                               solve::BlockPattern* K) const {
   if (!end_point_) return add_midpoint(step, z, R, K);
-  for (const auto& [slave, dofs, force] : previous_force_)
-    for (size_t i = 0; i < dofs.size() && computes(slave); ++i)
+  for (const auto& [slave, dofs, force] : previous_force_) {
+    if (!computes(slave)) continue;
+    for (size_t i = 0; i < dofs.size(); ++i)
       R[dofs[i]] +=
           step.rule.previous_weight * step.force_factor * force[i];  // h w_n λ_n N_s(x_n) (2.11), (2.12)
+  }
   add_end_point(step, z, R, K);
 }
 
