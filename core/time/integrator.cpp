@@ -60,16 +60,22 @@ double Integrator::potential_energy(const Eigen::VectorXd& x) const {
   return V;
 }
 
-int Integrator::prepare_unknowns() {
+int Integrator::lay_out_auxiliaries() {
   int offset = static_cast<int>(mass_.rows());
-  bool structure_changed = structure_generations_.size() != terms_.size();
-  for (size_t k = 0; k < terms_.size(); ++k) {
-    terms_[k]->set_auxiliary_offset(offset);
-    offset += terms_[k]->auxiliary_count();
-    structure_changed = structure_changed || structure_generations_[k] != terms_[k]->structure_generation();
+  for (Term* t : terms_) {
+    t->set_auxiliary_offset(offset);
+    offset += t->auxiliary_count();
   }
-  if (offset != auxiliary_layout_ || !pattern_.built() || structure_changed) rebuild_pattern(offset);
   return offset;
+}
+
+int Integrator::prepare_unknowns() {
+  const int n = lay_out_auxiliaries();
+  bool structure_changed = structure_generations_.size() != terms_.size();
+  for (size_t k = 0; k < terms_.size() && !structure_changed; ++k)
+    structure_changed = structure_generations_[k] != terms_[k]->structure_generation();
+  if (n != auxiliary_layout_ || !pattern_.built() || structure_changed) rebuild_pattern(n);
+  return n;
 }
 
 void Integrator::rebuild_pattern(int n) {
@@ -102,16 +108,20 @@ void Integrator::initialize(State& s) {
   if (!scheme_->needs_initial_acceleration()) return;
   // M a_0 = f_ext − f_int(x_0): the terms' midpoint force at x_1 = x_n, divided by h = 1.
   const StepContext at_rest{s.x, s.v, 1.0, ForceRule::midpoint()};
-  Eigen::VectorXd z = s.x;
+  // The terms' auxiliary unknowns (contact multipliers, 0: no contact force at rest) laid out after the
+  // positions, so that no term adds the rows of its own on a position row.
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(lay_out_auxiliaries());
+  z.head(s.x.size()) = s.x;
   for (size_t k = 0; k < terms_.size(); ++k) {
     Stopwatch term(term_seconds_[k]);
     terms_[k]->begin_step(at_rest, z);
   }
-  Eigen::VectorXd R = Eigen::VectorXd::Zero(s.x.size());
+  Eigen::VectorXd R = Eigen::VectorXd::Zero(z.size());
   for (size_t k = 0; k < terms_.size(); ++k) {
     Stopwatch term(term_seconds_[k]);
-    terms_[k]->add(at_rest, s.x, R, nullptr);
+    terms_[k]->add(at_rest, z, R, nullptr);
   }
+  R.conservativeResize(s.x.size());
   solve::BlockPattern M;
   const int block = M.add_sparse(mass_);
   M.build(static_cast<int>(mass_.rows()));

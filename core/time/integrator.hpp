@@ -90,6 +90,9 @@ class Integrator {
   /// Lays out the auxiliary unknowns and rebuilds the pattern when their number or a term's
   /// structure changed. Returns the number of unknowns.
   int prepare_unknowns();
+  /// Sets each term's auxiliary offset, after the positions and the terms before it; returns the unknowns'
+  /// count.
+  int lay_out_auxiliaries();
   void rebuild_pattern(int n);
   /// z for the current layout: positions from `positions`, auxiliaries from the terms.
   Eigen::VectorXd relayout(const StepContext& step, const Eigen::VectorXd& positions);

@@ -96,6 +96,28 @@ TEST(MortarScenes, EverySchemeRunsWithAListMasterAndABoundarySlave) {
   EXPECT_NEAR(r.contact_force, r.load, 0.01 * r.load) << "the follower load on the top, widened by ν = 0.3";
 }
 
+// HHT-α and generalized-α start from M a_0 = f(x_0). A mortar pair's multiplier rows were once added onto the
+// first position rows there, its offset not yet laid out: the seed's ball, in free flight 0.3 above the
+// plate, gained 38 % kinetic energy and 17 % momentum in its first step. A free flight keeps both to
+// round-off.
+TEST(MortarScenes, UnderHhtAndGeneralizedAlphaAFreeFlightKeepsItsMomentumAndEnergyFromTheFirstStep) {
+  for (const char* scheme : {"hht", "generalized_alpha"}) {
+    json scene =
+        json::parse(std::ifstream(std::string(STOSS_SOURCE_DIR) + "/api/examples/hollow_ball_plate.json"));
+    scene["contact"][0]["discretization"] = "mortar";
+    scene["time"] = {{"scheme", scheme}, {"step", 0.01}, {"end", 0.05}};
+    testing::RecordingObserver r;
+    const model::Summary s = simulate(scene::load(scene), r);
+    ASSERT_TRUE(s.completed) << scheme;
+    const std::vector<double> energy = r.series("kinetic_energy"), p_z = r.series("linear_momentum", 2);
+    ASSERT_EQ(energy.size(), 6u) << scheme;
+    for (size_t k = 1; k < energy.size(); ++k) {
+      EXPECT_NEAR(energy[k], energy[0], 1e-10 * energy[0]) << scheme << ", step " << k;
+      EXPECT_NEAR(p_z[k], p_z[0], 1e-10 * std::abs(p_z[0])) << scheme << ", step " << k;
+    }
+  }
+}
+
 TEST(MortarScenes, EveryImpactModeRuns) {
   for (const char* impact : {"persist", "exact", "velocity_correction", "located"}) {
     const MortarRun r = run("energy_momentum", impact);
