@@ -47,26 +47,25 @@ void ContactTerm::add(const time::StepContext& step, const Eigen::VectorXd& z, E
 
 void ContactTerm::add_on_ranks(const time::StepContext& step, const Eigen::VectorXd& z, Eigen::VectorXd& R,
                                solve::BlockPattern* K) const {
-  // The pair's rows and entries start from zero, so that after add_pair they hold this rank's part alone;
-  // the parts of the ranks are summed, and what the other terms had put there is added back.
-  std::vector<int> rows = surface_rows_;
-  for (int row = offset_; row < std::min<int>(offset_ + auxiliary_count(), static_cast<int>(R.size())); ++row)
-    rows.push_back(row);
   if (K && slots_generation_ != K->generation()) {
     slots_ = K->slots_of(first_block_, end_block_);
     slots_generation_ = K->generation();
   }
-  const size_t entries = K ? slots_.size() : 0;
-  double* values = K ? K->matrix().valuePtr() : nullptr;
-  std::vector<double> others(rows.size() + entries), part(rows.size() + entries);
-  for (size_t i = 0; i < rows.size(); ++i) std::swap(others[i], R[rows[i]]);
-  for (size_t j = 0; j < entries; ++j) std::swap(others[rows.size() + j], values[slots_[j]]);
+  // The pair's values: its rows of R (positions of its nodes, then its auxiliaries) and its entries of K.
+  std::vector<double*> cells;
+  cells.reserve(surface_rows_.size() + auxiliary_count() + (K ? slots_.size() : 0));
+  for (int row : surface_rows_) cells.push_back(&R[row]);
+  for (int row = offset_; row < offset_ + auxiliary_count(); ++row) cells.push_back(&R[row]);
+  if (K)
+    for (int slot : slots_) cells.push_back(K->matrix().valuePtr() + slot);
+  // They start from zero, so that after add_pair they hold this rank's part alone; the parts of the ranks
+  // are summed, and what the other terms had put there is added back.
+  std::vector<double> others(cells.size()), part(cells.size());
+  for (size_t i = 0; i < cells.size(); ++i) std::swap(others[i], *cells[i]);
   add_pair(step, z, R, K);
-  for (size_t i = 0; i < rows.size(); ++i) part[i] = R[rows[i]];
-  for (size_t j = 0; j < entries; ++j) part[rows.size() + j] = values[slots_[j]];
+  for (size_t i = 0; i < cells.size(); ++i) part[i] = *cells[i];
   parallel::element_share().sum(part.data(), static_cast<long>(part.size()));  // the same bits on every rank
-  for (size_t i = 0; i < rows.size(); ++i) R[rows[i]] = others[i] + part[i];
-  for (size_t j = 0; j < entries; ++j) values[slots_[j]] = others[rows.size() + j] + part[rows.size() + j];
+  for (size_t i = 0; i < cells.size(); ++i) *cells[i] = others[i] + part[i];
 }
 
 void ContactTerm::contact_pressure(Eigen::VectorXd& p) const {
